@@ -1,0 +1,18 @@
+# Inlines #include "x.glsl" lines of SHADER (as the engine does at run time) and
+# runs glslangValidator on the result; fails the test on any error.
+get_filename_component(dir ${SHADER} DIRECTORY)
+get_filename_component(name ${SHADER} NAME)
+file(READ ${SHADER} text)
+string(REGEX MATCHALL "#include \"[^\"]+\"" includes "${text}")
+foreach(inc ${includes})
+  string(REGEX REPLACE "#include \"([^\"]+)\"" "\\1" incname "${inc}")
+  file(READ ${dir}/${incname} inctext)
+  string(REPLACE "${inc}" "${inctext}" text "${text}")
+endforeach()
+file(MAKE_DIRECTORY ${WORK_DIR})
+file(WRITE ${WORK_DIR}/${name} "${text}")
+execute_process(COMMAND ${VALIDATOR} ${WORK_DIR}/${name} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "glslangValidator rejected ${name}:\n${out}${err}")
+endif()
+message(STATUS "${name}: valid")

@@ -1,0 +1,36 @@
+#pragma once
+// Shader programs built from the embedded files of shaders/.
+//
+// A stage file may pull in shared code with a line `#include "name.glsl"`; the
+// text is inlined with #line directives, so a compile error names the real file
+// and line: "terrain.vert:42: error: ...".
+
+#include <sierra/gpu/Objects.h>
+
+#include <string>
+#include <string_view>
+
+namespace sierra::gpu {
+
+struct ProgramDesc {
+    std::string_view vertex;    // file names in shaders/; empty = no such stage
+    std::string_view fragment;
+    std::string_view compute;
+    std::string_view defines;   // extra lines inserted after #version, e.g. "#define X 1\n"
+};
+
+class Program : public GlObject<Program, detail::deleteProgram> {
+public:
+    using GlObject::GlObject;
+    // Compiles and links; throws sierra::Error with the file, line and driver
+    // message on failure.
+    static Program create(const ProgramDesc& desc);
+    // Location of a uniform, -1 if the linker removed it (setting -1 is a no-op).
+    GLint uniform(const char* name) const { return glGetUniformLocation(id_, name); }
+};
+
+// The source of `file` with #include lines inlined and `defines` after #version:
+// what the driver (and glslangValidator in tests) compiles.
+std::string preprocessShader(std::string_view file, std::string_view defines = {});
+
+}  // namespace sierra::gpu

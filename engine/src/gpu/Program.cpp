@@ -1,0 +1,140 @@
+#include <sierra/gpu/Program.h>
+
+#include <sierra/core/Error.h>
+#include <sierra/gpu/EmbeddedShaders.h>
+
+#include <regex>
+#include <sstream>
+#include <vector>
+
+namespace sierra::gpu {
+
+std::string_view embeddedShader(std::string_view name) {
+    for (const EmbeddedShader& s : embeddedShaders())
+        if (s.name == name) return s.source;
+    throw Error(msg("no shader named '", name, "' is embedded (files come from shaders/)"));
+}
+
+namespace {
+
+// Source-string numbers used in #line directives: index into `files`.
+struct Preprocessed {
+    std::string text;
+    std::vector<std::string> files;
+};
+
+void appendFile(Preprocessed& out, std::string_view file, std::string_view defines, int depth) {
+    SIERRA_CHECK(depth < 8, "shader includes nested too deep at ", file);
+    int fileIndex = int(out.files.size());
+    out.files.emplace_back(file);
+    std::istringstream in{std::string(embeddedShader(file))};
+    std::string line;
+    int lineNo = 0;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        if (line.rfind("#version", 0) == 0) {
+            out.text += line + "\n" + std::string(defines);
+            out.text += msg("#line ", lineNo + 1, " ", fileIndex, "\n");
+            continue;
+        }
+        if (line.rfind("#include", 0) == 0) {
+            size_t a = line.find('"'), b = line.rfind('"');
+            SIERRA_CHECK(a != std::string::npos && b > a, file, ":", lineNo,
+                         ": malformed #include (write #include \"name.glsl\")");
+            out.text += msg("#line 1 ", int(out.files.size()), "\n");
+            appendFile(out, line.substr(a + 1, b - a - 1), {}, depth + 1);
+            out.text += msg("#line ", lineNo + 1, " ", fileIndex, "\n");
+            continue;
+        }
+        out.text += line + "\n";
+    }
+}
+
+Preprocessed preprocess(std::string_view file, std::string_view defines) {
+    Preprocessed out;
+    appendFile(out, file, defines, 0);
+    return out;
+}
+
+// Rewrites driver log lines "N:L(C): ..." (Mesa) or "N(L) : ..." (NVIDIA) as
+// "file:L: ...".
+std::string mapLog(const std::string& log, const std::vector<std::string>& files) {
+    static const std::regex mesa(R"(^(\d+):(\d+)\(\d+\):\s*(.*)$)");
+    static const std::regex nvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
+    std::istringstream in(log);
+    std::string line, result;
+    while (std::getline(in, line)) {
+        std::smatch m;
+        if (std::regex_match(line, m, mesa) || std::regex_match(line, m, nvidia)) {
+            size_t index = std::stoul(m[1]);
+            std::string name = index < files.size() ? files[index] : "?";
+            line = name + ":" + m[2].str() + ": " + m[3].str();
+        }
+        if (!line.empty()) result += (result.empty() ? "" : "\n") + line;
+    }
+    return result;
+}
+
+GLuint compile(GLenum stage, std::string_view file, std::string_view defines) {
+    Preprocessed source = preprocess(file, defines);
+    GLuint shader = glCreateShader(stage);
+    const char* text = source.text.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        glGetShaderInfoLog(shader, length, nullptr, log.data());
+        glDeleteShader(shader);
+        throw Error(msg("shader ", file, " failed to compile:\n", mapLog(log.c_str(), source.files)));
+    }
+    return shader;
+}
+
+}  // namespace
+
+std::string preprocessShader(std::string_view file, std::string_view defines) {
+    return preprocess(file, defines).text;
+}
+
+Program Program::create(const ProgramDesc& desc) {
+    GLuint id = glCreateProgram();
+    Program program(id, kAdopt);
+    std::vector<GLuint> shaders;
+    std::string names;
+    try {
+        auto add = [&](GLenum stage, std::string_view file) {
+            if (file.empty()) return;
+            shaders.push_back(compile(stage, file, desc.defines));
+            glAttachShader(id, shaders.back());
+            names += (names.empty() ? "" : " + ") + std::string(file);
+        };
+        add(GL_VERTEX_SHADER, desc.vertex);
+        add(GL_FRAGMENT_SHADER, desc.fragment);
+        add(GL_COMPUTE_SHADER, desc.compute);
+    } catch (...) {
+        for (GLuint s : shaders) glDeleteShader(s);
+        throw;
+    }
+    SIERRA_CHECK(!shaders.empty(), "a program needs at least one stage");
+    glLinkProgram(id);
+    for (GLuint s : shaders) {
+        glDetachShader(id, s);
+        glDeleteShader(s);
+    }
+    GLint ok = 0;
+    glGetProgramiv(id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(id, GL_INFO_LOG_LENGTH, &length);
+        std::string log(size_t(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(id, length, nullptr, log.data());
+        throw Error(msg("program ", names, " failed to link:\n", log.c_str()));
+    }
+    return program;
+}
+
+}  // namespace sierra::gpu
