@@ -1,0 +1,135 @@
+#pragma once
+// SBT refinement in Lindstrom and Pascucci's style: a top-down recursion over
+// vertex coordinates (nothing stored per triangle), flat arrays, no virtual
+// calls, no allocation per frame once the buffers have grown (output and
+// per-chunk buffers are reused; only the worker threads of parallelChunks are
+// created per call when threads > 1).
+//
+// Output: generalized triangle strips in Sierpinski-curve order (the paper's
+// Algorithm 4): the leaves of the tree are visited along the curve, left child
+// (the one holding the triangle's entry vertex) first. A vertex is appended
+// when it is not one of the last two; when the level parity of the append
+// equals the parity of the previous one, the second-to-last vertex is re-sent
+// first so the strip turns (Lindstrom and Pascucci's tstrip-append).
+//
+// Threads: the tree is cut at a fixed level (RefinerDesc::chunkLevel) into
+// disjoint subtrees taken in Sierpinski order; each is refined on its own into
+// its own strip and the strips are joined in that order with primitive restart
+// (kRestartIndex). The cut does not depend on the thread count, so the output
+// is byte-identical for any number of threads.
+//
+// Winding: every decoded triangle (GL rule: odd positions swap their first two
+// vertices) is clockwise in the (i, j) plane, which is counter-clockwise seen
+// from above (+y) with x = i and z = j: front faces point up under GL's default
+// glFrontFace(GL_CCW).
+
+#include <sierra/sbt/VertexErrors.h>
+#include <sierra/terrain/Heightfield.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace sierra::sbt {
+
+// Primitive-restart index between strips (glPrimitiveRestartIndex or
+// GL_PRIMITIVE_RESTART_FIXED_INDEX with 32-bit indices).
+inline constexpr uint32_t kRestartIndex = 0xFFFFFFFFu;
+
+struct StripMesh {
+    // Linear vertex indices j * side + i; kRestartIndex separates strips.
+    std::vector<uint32_t> indices;
+    int64_t triangleCount = 0;  // leaf triangles emitted (non-degenerate)
+    int stripCount = 0;
+    double indicesPerTriangle() const {
+        return triangleCount ? double(indices.size()) / double(triangleCount) : 0.0;
+    }
+};
+
+// A plane a*x + b*y + c*z + d, >= 0 inside, (a, b, c) unit length, world units.
+struct Plane {
+    float a = 0, b = 0, c = 0, d = 0;
+};
+
+struct ViewParams {
+    std::array<float, 3> eye{0, 0, 0};  // camera position, world units
+    // lambda = viewport height in pixels / (2 tan(fovy / 2)); see projectionLambda.
+    float lambda = 1.0f;
+    float tau = 1.0f;  // screen-space error threshold in pixels, default 1
+    // Frustum planes (inside: a*x + b*y + c*z + d >= 0, normalised); order free.
+    std::array<Plane, 6> planes{};
+    bool cull = true;  // false: no frustum culling (planes ignored)
+};
+
+// lambda for a viewport `viewportHeightPx` pixels high and a vertical field of
+// view `fovyRadians`.
+float projectionLambda(float viewportHeightPx, float fovyRadians);
+
+// The 6 normalised planes of the frustum of a column-major (OpenGL) 4x4
+// view-projection matrix (Gribb and Hartmann), clip space -w <= x, y, z <= w.
+std::array<Plane, 6> frustumPlanes(const float viewProjection[16]);
+
+struct RefinerDesc {
+    int threads = 0;      // 0 = sierra::defaultThreadCount()
+    int chunkLevel = -1;  // level of the parallel subtrees; -1 = clamp(2n - 8, 0, 7)
+};
+
+class Refiner {
+public:
+    // Keeps pointers to `field` and `errors`: both must outlive the refiner and
+    // stay unchanged. errors must come from computeVertexErrors(field).
+    Refiner(const terrain::Heightfield& field, const VertexErrors& errors, RefinerDesc desc = {});
+    ~Refiner();
+    Refiner(const Refiner&) = delete;
+    Refiner& operator=(const Refiner&) = delete;
+
+    // Fixed-error mesh: a triangle splits while level < 2n and the saturated
+    // error of its hypotenuse midpoint is > epsilon (world height units).
+    // epsilon < 0 gives the full grid. `out` is overwritten, its capacity reused.
+    void refineFixed(float epsilon, StripMesh& out);
+
+    // View-dependent mesh: vertex m is active iff
+    //   (lambda * e(m) / tau + r(m))^2 > |p(m) - eye|^2,
+    // i.e. lambda * e / (d - r) > tau; a triangle splits while level < 2n and
+    // its split vertex is active. With culling, a triangle whose split-vertex
+    // sphere lies fully outside a plane is not emitted (the sphere holds both
+    // triangles of the pair and all their descendants), and below a sphere
+    // fully inside all planes no plane is tested again.
+    void refineView(const ViewParams& view, StripMesh& out);
+
+    int n() const { return n_; }
+    int side() const { return side_; }
+    int chunkLevel() const { return chunkLevel_; }
+    void setThreads(int threads) { threads_ = threads; }
+
+    struct Op;     // implementation detail (top-level recursion record)
+    struct Chunk;  // implementation detail (one subtree's strip)
+
+private:
+    template <bool kView>
+    void run(const ViewParams* view, float epsilon, StripMesh& out);
+
+    const terrain::Heightfield* field_;
+    const VertexErrors* errors_;
+    int n_ = 0;
+    int side_ = 0;
+    int threads_ = 0;
+    int chunkLevel_ = 0;
+    std::vector<Op> ops_;
+    std::vector<Chunk> chunks_;
+};
+
+// Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate
+// ones dropped, GL's winding rule applied (odd positions swap their first two).
+std::vector<std::array<uint32_t, 3>> decodeStrip(const std::vector<uint32_t>& indices);
+
+// Number of distinct vertices referenced by `indices` (restarts ignored).
+int64_t countDistinctVertices(const std::vector<uint32_t>& indices, int side);
+
+// The largest |grid world height - mesh height| over all grid samples, the
+// mesh interpolated linearly over each triangle on the samples it covers
+// (triangles are linear indices j * side + i into `field`). Multithreaded.
+double maxVerticalDistance(const terrain::Heightfield& field,
+                           const std::vector<std::array<uint32_t, 3>>& triangles, int threads = 0);
+
+}  // namespace sierra::sbt

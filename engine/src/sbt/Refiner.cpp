@@ -1,0 +1,480 @@
+#include <sierra/sbt/Refiner.h>
+
+#include <sierra/core/Error.h>
+#include <sierra/core/Parallel.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <type_traits>
+
+namespace sierra::sbt {
+
+// One step of the serial top of the recursion (levels < chunkLevel).
+struct Refiner::Op {
+    enum Kind : uint8_t { kSubtree, kLeaf, kAppend, kBreak };
+    Kind kind;
+    uint8_t level;   // level of the triangle, or the parity of an append
+    uint8_t mask;    // planes still to test below (view mode)
+    uint64_t a, q, b;  // vertices (linear index in fixed mode, packed (i, j) in view mode)
+};
+
+struct Refiner::Chunk {
+    std::vector<uint32_t> buffer;    // strip indices, capacity reused
+    std::vector<uint32_t> starts;    // offset of every strip in buffer
+    int64_t used = 0;
+    int64_t leaves = 0;
+};
+
+namespace {
+
+constexpr unsigned kAllPlanes = 0x3f;
+constexpr unsigned kCulled = 0x80;
+
+// The recursion state of one chunk. kView selects the vertex representation:
+// a linear index j * side + i in fixed mode (the midpoint of a and b is
+// (a + b) / 2 because both coordinate sums are even), packed (i | j << 32) in
+// view mode (the same midpoint rule holds lane-wise).
+template <bool kView>
+struct Walker {
+    using V = std::conditional_t<kView, uint64_t, uint32_t>;
+
+    // configuration
+    const float* err;
+    const float* rad;
+    const float* height;
+    uint32_t side;
+    int finest;
+    float eps;
+    double ex, ey, ez, sx, sz, vs, kE;
+    Plane planes[6];
+
+    // output
+    Refiner::Chunk* chunk;
+    uint32_t* base;
+    uint32_t* out;
+    uint32_t* cap;
+    int parity = -1;
+    bool needStart = true;
+    int64_t leaves = 0;
+
+    void bind(Refiner::Chunk& c) {
+        chunk = &c;
+        c.starts.clear();
+        if (c.buffer.size() < 4096) c.buffer.resize(4096);
+        base = out = c.buffer.data();
+        cap = base + c.buffer.size();
+    }
+    void finish() {
+        chunk->used = out - base;
+        chunk->leaves = leaves;
+    }
+    void grow(size_t need) {
+        size_t used = size_t(out - base);
+        auto& buf = chunk->buffer;
+        buf.resize(std::max(buf.size() * 2, used + need + 4096));
+        base = buf.data();
+        out = base + used;
+        cap = base + buf.size();
+    }
+    inline void ensure(size_t k) {
+        if (size_t(cap - out) < k) [[unlikely]]
+            grow(k);
+    }
+
+    inline uint32_t index(V v) const {
+        if constexpr (kView)
+            return uint32_t(v >> 32) * side + uint32_t(v);
+        else
+            return v;
+    }
+
+    inline void append(uint32_t v, int p) {
+        if constexpr (kView) {
+            if (needStart) return;
+        }
+        if (v == out[-1] || v == out[-2]) return;
+        if (p == parity) {
+            out[0] = out[-2];  // re-send: the strip turns
+            ++out;
+        } else {
+            parity = p;
+        }
+        *out++ = v;
+    }
+
+    void start(uint32_t a) {
+        ensure(8);
+        if (out != base) *out++ = kRestartIndex;
+        chunk->starts.push_back(uint32_t(out - base));
+        out[0] = a;
+        out[1] = a;
+        out += 2;
+        parity = -1;
+        needStart = false;
+    }
+
+    // Sphere of vertex m against the planes still in `mask`: kCulled when fully
+    // outside one, else the planes it still straddles.
+    inline unsigned cull(double x, double y, double z, float r, unsigned mask) const {
+        for (int k = 0; k < 6; ++k) {
+            if (!(mask & (1u << k))) continue;
+            const Plane& p = planes[k];
+            double s = p.a * x + p.b * y + p.c * z + p.d;
+            if (s < -double(r)) return kCulled;
+            if (s >= double(r)) mask &= ~(1u << k);
+        }
+        return mask;
+    }
+
+    // Triangle with hypotenuse endpoints a (entry) and b (exit), apex q.
+    void refine(V a, V q, V b, int l, unsigned mask) {
+        ensure(4);
+        if (l < finest) {
+            const V m = (a + b) >> 1;
+            const uint32_t mi = index(m);
+            if constexpr (kView) {
+                const uint32_t i = uint32_t(m), j = uint32_t(m >> 32);
+                const double x = i * sx, y = double(height[mi]) * vs, z = j * sz;
+                const float r = rad[mi];
+                if (mask) {
+                    mask = cull(x, y, z, r, mask);
+                    if (mask == kCulled) {
+                        needStart = true;
+                        return;
+                    }
+                }
+                if (needStart) start(index(a));
+                const double dx = x - ex, dy = y - ey, dz = z - ez;
+                const double reach = kE * double(err[mi]) + double(r);
+                if (reach * reach > dx * dx + dy * dy + dz * dz) {
+                    refine(a, m, q, l + 1, mask);
+                    append(index(q), l & 1);
+                    refine(q, m, b, l + 1, mask);
+                    return;
+                }
+            } else {
+                if (err[mi] > eps) {
+                    refine(a, m, q, l + 1, mask);
+                    append(q, l & 1);
+                    refine(q, m, b, l + 1, mask);
+                    return;
+                }
+            }
+        } else if constexpr (kView) {
+            if (needStart) start(index(a));
+        }
+        append(index(q), l & 1);
+        ++leaves;
+    }
+
+    void execute(const Refiner::Op* op, const Refiner::Op* end) {
+        for (; op != end; ++op) {
+            switch (op->kind) {
+                case Refiner::Op::kSubtree:
+                    if (!kView && needStart) start(index(V(op->a)));
+                    refine(V(op->a), V(op->q), V(op->b), op->level, op->mask);
+                    break;
+                case Refiner::Op::kLeaf:
+                    if (needStart) start(index(V(op->a)));
+                    ensure(4);
+                    append(index(V(op->q)), op->level & 1);
+                    ++leaves;
+                    break;
+                case Refiner::Op::kAppend:
+                    ensure(4);
+                    append(uint32_t(op->a), op->level);
+                    break;
+                case Refiner::Op::kBreak: needStart = true; break;
+            }
+        }
+    }
+};
+
+// Serial recursion over the levels above the chunk level, recording ops.
+template <bool kView>
+struct TopWalker {
+    using V = typename Walker<kView>::V;
+    const Walker<kView>* w;  // decisions only
+    int chunkLevel;
+    std::vector<Refiner::Op>* ops;
+
+    void push(Refiner::Op::Kind kind, int level, unsigned mask, uint64_t a, uint64_t q,
+              uint64_t b) {
+        ops->push_back(Refiner::Op{kind, uint8_t(level), uint8_t(mask), a, q, b});
+    }
+
+    void refine(V a, V q, V b, int l, unsigned mask) {
+        if (l == chunkLevel) {
+            push(Refiner::Op::kSubtree, l, mask, a, q, b);
+            return;
+        }
+        if (l < w->finest) {
+            const V m = (a + b) >> 1;
+            const uint32_t mi = w->index(m);
+            bool split;
+            if constexpr (kView) {
+                const uint32_t i = uint32_t(m), j = uint32_t(m >> 32);
+                const double x = i * w->sx, y = double(w->height[mi]) * w->vs, z = j * w->sz;
+                const float r = w->rad[mi];
+                if (mask) {
+                    mask = w->cull(x, y, z, r, mask);
+                    if (mask == kCulled) {
+                        push(Refiner::Op::kBreak, l, 0, 0, 0, 0);
+                        return;
+                    }
+                }
+                const double dx = x - w->ex, dy = y - w->ey, dz = z - w->ez;
+                const double reach = w->kE * double(w->err[mi]) + double(r);
+                split = reach * reach > dx * dx + dy * dy + dz * dz;
+            } else {
+                split = w->err[mi] > w->eps;
+            }
+            if (split) {
+                refine(a, m, q, l + 1, mask);
+                push(Refiner::Op::kAppend, l & 1, 0, w->index(q), 0, 0);
+                refine(q, m, b, l + 1, mask);
+                return;
+            }
+        }
+        push(Refiner::Op::kLeaf, l, mask, a, q, b);
+    }
+};
+
+// Orientation in the (i, j) plane of the first non-degenerate triangle of the
+// strip s[0..count), decoded by GL's rule: > 0 counter-clockwise.
+int64_t firstOrientation(const uint32_t* s, int64_t count, uint32_t side) {
+    for (int64_t k = 0; k + 2 < count; ++k) {
+        uint32_t v0 = s[k], v1 = s[k + 1], v2 = s[k + 2];
+        if (v0 == v1 || v1 == v2 || v0 == v2) continue;
+        if (k & 1) std::swap(v0, v1);
+        int64_t i0 = v0 % side, j0 = v0 / side, i1 = v1 % side, j1 = v1 / side,
+                i2 = v2 % side, j2 = v2 / side;
+        return (i1 - i0) * (j2 - j0) - (j1 - j0) * (i2 - i0);
+    }
+    return 0;
+}
+
+}  // namespace
+
+float projectionLambda(float viewportHeightPx, float fovyRadians) {
+    SIERRA_CHECK(viewportHeightPx > 0 && fovyRadians > 0 && fovyRadians < 3.14159f,
+                 "projectionLambda: need a positive viewport height and 0 < fovy < pi, got ",
+                 viewportHeightPx, " px, ", fovyRadians, " rad");
+    return viewportHeightPx / (2.0f * std::tan(0.5f * fovyRadians));
+}
+
+std::array<Plane, 6> frustumPlanes(const float m[16]) {
+    // row k of the matrix (column-major storage): m[k], m[4 + k], m[8 + k], m[12 + k]
+    auto row = [&](int k, float out[4]) {
+        for (int c = 0; c < 4; ++c) out[c] = m[4 * c + k];
+    };
+    float r0[4], r1[4], r2[4], r3[4];
+    row(0, r0), row(1, r1), row(2, r2), row(3, r3);
+    std::array<Plane, 6> planes;
+    const float* rows[3] = {r0, r1, r2};
+    for (int k = 0; k < 6; ++k) {
+        const float* r = rows[k / 2];
+        float sgn = (k & 1) ? -1.0f : 1.0f;
+        Plane p{r3[0] + sgn * r[0], r3[1] + sgn * r[1], r3[2] + sgn * r[2], r3[3] + sgn * r[3]};
+        float len = std::sqrt(p.a * p.a + p.b * p.b + p.c * p.c);
+        if (len > 0) p = Plane{p.a / len, p.b / len, p.c / len, p.d / len};
+        planes[k] = p;
+    }
+    return planes;
+}
+
+Refiner::Refiner(const terrain::Heightfield& field, const VertexErrors& errors, RefinerDesc desc)
+    : field_(&field), errors_(&errors), threads_(desc.threads) {
+    int n = 0;
+    SIERRA_CHECK(isSbtGrid(field, &n), "Refiner: the SBT needs a (2^n+1)^2 grid, got ",
+                 field.width(), "x", field.height());
+    SIERRA_CHECK(errors.n == n && errors.side == field.width() &&
+                     errors.error.size() == size_t(field.sampleCount()) &&
+                     errors.radius.size() == size_t(field.sampleCount()),
+                 "Refiner: the vertex errors do not belong to this ", field.width(), "x",
+                 field.height(), " grid");
+    n_ = n;
+    side_ = field.width();
+    chunkLevel_ = desc.chunkLevel >= 0 ? std::min(desc.chunkLevel, 2 * n - 1)
+                                       : std::clamp(2 * n - 8, 0, 7);
+}
+
+Refiner::~Refiner() = default;
+
+void Refiner::refineFixed(float epsilon, StripMesh& out) { run<false>(nullptr, epsilon, out); }
+
+void Refiner::refineView(const ViewParams& view, StripMesh& out) {
+    SIERRA_CHECK(view.tau > 0 && std::isfinite(view.tau), "refineView: tau must be > 0 pixels, got ",
+                 view.tau);
+    SIERRA_CHECK(view.lambda > 0 && std::isfinite(view.lambda),
+                 "refineView: lambda must be > 0, got ", view.lambda);
+    run<true>(&view, 0.0f, out);
+}
+
+template <bool kView>
+void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
+    using W = Walker<kView>;
+    using V = typename W::V;
+    W proto{};
+    proto.err = errors_->error.data();
+    proto.rad = errors_->radius.data();
+    proto.height = field_->samples().data();
+    proto.side = uint32_t(side_);
+    proto.finest = 2 * n_;
+    proto.eps = epsilon;
+    unsigned rootMask = 0;
+    if constexpr (kView) {
+        proto.ex = view->eye[0], proto.ey = view->eye[1], proto.ez = view->eye[2];
+        proto.sx = field_->spacingX(), proto.sz = field_->spacingZ();
+        proto.vs = field_->verticalScale();
+        proto.kE = double(view->lambda) / double(view->tau);
+        for (int k = 0; k < 6; ++k) proto.planes[k] = view->planes[k];
+        rootMask = view->cull ? kAllPlanes : 0;
+    }
+
+    // Vertices of the two level-0 triangles: entry (0,0), apex (0,S), exit (S,S);
+    // entry (S,S), apex (S,0), exit (0,0).
+    const uint32_t S = uint32_t(side_ - 1);
+    auto vert = [&](uint32_t i, uint32_t j) -> V {
+        if constexpr (kView)
+            return V(i) | (V(j) << 32);
+        else
+            return j * uint32_t(side_) + i;
+    };
+    const V v00 = vert(0, 0), v0S = vert(0, S), vSS = vert(S, S), vS0 = vert(S, 0);
+
+    ops_.clear();
+    TopWalker<kView> top{&proto, chunkLevel_, &ops_};
+    top.refine(v00, v0S, vSS, 0, rootMask);
+    top.push(Op::kAppend, 0, 0, proto.index(vSS), 0, 0);
+    top.refine(vSS, vS0, v00, 0, rootMask);
+    top.push(Op::kAppend, 0, 0, proto.index(v00), 0, 0);
+
+    // Chunks: cut before every subtree op (the ops before the first form chunk 0).
+    std::vector<size_t> cuts;  // small: at most 2^(chunkLevel+1) + 1 entries
+    cuts.reserve(size_t(2) << chunkLevel_);
+    cuts.push_back(0);
+    for (size_t k = 1; k < ops_.size(); ++k)
+        if (ops_[k].kind == Op::kSubtree) cuts.push_back(k);
+    cuts.push_back(ops_.size());
+    const int chunkCount = int(cuts.size()) - 1;
+    if (chunks_.size() < size_t(chunkCount)) chunks_.resize(chunkCount);
+
+    int threads = threads_ > 0 ? threads_ : defaultThreadCount();
+    parallelChunks(
+        0, chunkCount, chunkCount,
+        [&](int64_t lo, int64_t hi, int) {
+            for (int64_t c = lo; c < hi; ++c) {
+                W w = proto;
+                w.bind(chunks_[c]);
+                w.execute(ops_.data() + cuts[c], ops_.data() + cuts[c + 1]);
+                w.finish();
+            }
+        },
+        threads);
+
+    // Join in chunk order; a strip whose first triangle would decode
+    // counter-clockwise in (i, j) drops its leading duplicate vertex, which flips
+    // the GL parity of the whole strip (every strip starts with a, a).
+    size_t total = 0;
+    int strips = 0;
+    for (int c = 0; c < chunkCount; ++c) {
+        total += size_t(chunks_[c].used) + 1;
+        strips += int(chunks_[c].starts.size());
+    }
+    out.indices.resize(total);
+    uint32_t* dst = out.indices.data();
+    int64_t leaves = 0;
+    for (int c = 0; c < chunkCount; ++c) {
+        Chunk& ch = chunks_[c];
+        leaves += ch.leaves;
+        const uint32_t* src = ch.buffer.data();
+        for (size_t s = 0; s < ch.starts.size(); ++s) {
+            int64_t begin = ch.starts[s];
+            int64_t end = s + 1 < ch.starts.size() ? int64_t(ch.starts[s + 1]) - 1 : ch.used;
+            if (firstOrientation(src + begin, end - begin, uint32_t(side_)) > 0) ++begin;
+            if (dst != out.indices.data()) *dst++ = kRestartIndex;
+            std::memcpy(dst, src + begin, size_t(end - begin) * sizeof(uint32_t));
+            dst += end - begin;
+        }
+    }
+    out.indices.resize(size_t(dst - out.indices.data()));
+    out.triangleCount = leaves;
+    out.stripCount = strips;
+}
+
+std::vector<std::array<uint32_t, 3>> decodeStrip(const std::vector<uint32_t>& indices) {
+    std::vector<std::array<uint32_t, 3>> tris;
+    tris.reserve(indices.size());
+    size_t begin = 0;
+    while (begin < indices.size()) {
+        size_t end = begin;
+        while (end < indices.size() && indices[end] != kRestartIndex) ++end;
+        for (size_t k = begin; k + 2 < end; ++k) {
+            uint32_t v0 = indices[k], v1 = indices[k + 1], v2 = indices[k + 2];
+            if (v0 == v1 || v1 == v2 || v0 == v2) continue;
+            if ((k - begin) & 1) std::swap(v0, v1);
+            tris.push_back({v0, v1, v2});
+        }
+        begin = end + 1;
+    }
+    return tris;
+}
+
+int64_t countDistinctVertices(const std::vector<uint32_t>& indices, int side) {
+    std::vector<uint8_t> seen(size_t(side) * side, 0);
+    int64_t count = 0;
+    for (uint32_t v : indices) {
+        if (v == kRestartIndex) continue;
+        SIERRA_CHECK(v < seen.size(), "countDistinctVertices: index ", v, " outside a ", side,
+                     "x", side, " grid");
+        count += !seen[v];
+        seen[v] = 1;
+    }
+    return count;
+}
+
+double maxVerticalDistance(const terrain::Heightfield& field,
+                           const std::vector<std::array<uint32_t, 3>>& triangles, int threads) {
+    const int side = field.width();
+    const int64_t chunks = std::max<int64_t>(1, std::min<int64_t>(int64_t(triangles.size()) / 4096 + 1, 256));
+    std::vector<double> best(size_t(chunks), 0.0);
+    parallelChunks(
+        0, int64_t(triangles.size()), int(chunks),
+        [&](int64_t lo, int64_t hi, int c) {
+            double worst = 0.0;
+            for (int64_t t = lo; t < hi; ++t) {
+                int vi[3], vj[3];
+                double vh[3];
+                for (int k = 0; k < 3; ++k) {
+                    vi[k] = int(triangles[t][k] % uint32_t(side));
+                    vj[k] = int(triangles[t][k] / uint32_t(side));
+                    vh[k] = field.worldHeight(vi[k], vj[k]);
+                }
+                const int64_t det = int64_t(vi[1] - vi[0]) * (vj[2] - vj[0]) -
+                                    int64_t(vj[1] - vj[0]) * (vi[2] - vi[0]);
+                if (det == 0) continue;
+                const int i0 = std::min({vi[0], vi[1], vi[2]}), i1 = std::max({vi[0], vi[1], vi[2]});
+                const int j0 = std::min({vj[0], vj[1], vj[2]}), j1 = std::max({vj[0], vj[1], vj[2]});
+                for (int j = j0; j <= j1; ++j)
+                    for (int i = i0; i <= i1; ++i) {
+                        // barycentric coordinates (exact integers)
+                        int64_t w1 = int64_t(i - vi[0]) * (vj[2] - vj[0]) - int64_t(j - vj[0]) * (vi[2] - vi[0]);
+                        int64_t w2 = int64_t(vi[1] - vi[0]) * (j - vj[0]) - int64_t(vj[1] - vj[0]) * (i - vi[0]);
+                        int64_t w0 = det - w1 - w2;
+                        bool inside = det > 0 ? (w0 >= 0 && w1 >= 0 && w2 >= 0)
+                                              : (w0 <= 0 && w1 <= 0 && w2 <= 0);
+                        if (!inside) continue;
+                        double hMesh = (double(w0) * vh[0] + double(w1) * vh[1] + double(w2) * vh[2]) / double(det);
+                        worst = std::max(worst, std::fabs(double(field.worldHeight(i, j)) - hMesh));
+                    }
+            }
+            best[size_t(c)] = worst;
+        },
+        threads);
+    return *std::max_element(best.begin(), best.end());
+}
+
+}  // namespace sierra::sbt
