@@ -1,0 +1,52 @@
+#include <sierra/render/FrameTarget.h>
+
+#include <sierra/core/Error.h>
+
+namespace sierra::render {
+
+FrameTarget FrameTarget::create(const FrameTargetDesc& desc) {
+    SIERRA_CHECK(desc.samples == 0 || (desc.samples >= 2 && desc.samples <= 16),
+                 "multisampling takes 0 (off) or 2..16 samples, got ", desc.samples);
+    FrameTarget target;
+    target.desc_ = desc;
+    if (desc.samples > 0) {
+        GLint maxSamples = 0;
+        glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+        SIERRA_CHECK(desc.samples <= maxSamples, desc.samples, "x multisampling requested; this GL offers at most ",
+                     maxSamples);
+        gpu::TextureDesc t{.target = GL_TEXTURE_2D_MULTISAMPLE, .format = GL_RGBA8,
+                           .width = desc.width, .height = desc.height, .samples = desc.samples};
+        target.colour_ = gpu::Texture::create(t);
+        t.format = GL_DEPTH_COMPONENT32F;
+        target.depth_ = gpu::Texture::create(t);
+        target.fbo_ = gpu::Framebuffer::create();
+        target.fbo_.attach(GL_COLOR_ATTACHMENT0, target.colour_);
+        target.fbo_.attach(GL_DEPTH_ATTACHMENT, target.depth_);
+        target.fbo_.checkComplete("multisampled frame target");
+    }
+    return target;
+}
+
+void FrameTarget::begin(const glm::vec3& clearColour) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_ ? fbo_.id() : 0);
+    glViewport(0, 0, desc_.width, desc_.height);
+    glClearColor(clearColour.r, clearColour.g, clearColour.b, 1.0f);
+    glClearDepth(1.0);
+    glDepthMask(GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void FrameTarget::resolve() {
+    if (fbo_) {
+        glBlitNamedFramebuffer(fbo_.id(), 0, 0, 0, desc_.width, desc_.height, 0, 0, desc_.width,
+                               desc_.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+gpu::Image FrameTarget::read() {
+    resolve();
+    return gpu::readFramebuffer(desc_.width, desc_.height);
+}
+
+}  // namespace sierra::render

@@ -1,0 +1,54 @@
+#include "render/SbtBridge.h"
+
+#include <sierra/core/Error.h>
+#include <sierra/sbt/Refiner.h>
+#include <sierra/sbt/VertexErrors.h>
+
+namespace sierra::render {
+
+struct SbtBridge::State {
+    sbt::VertexErrors errors;
+    std::vector<float> morphBase;
+    std::unique_ptr<sbt::Refiner> refiner;
+    sbt::StripMesh mesh;  // reused every frame
+};
+
+SbtBridge::SbtBridge(const terrain::Heightfield& field, int threads) : state_(std::make_unique<State>()) {
+    state_->errors = sbt::computeVertexErrors(field, threads);
+    state_->morphBase = sbt::buildMorphBase(field, threads);
+    state_->refiner = std::make_unique<sbt::Refiner>(field, state_->errors, sbt::RefinerDesc{.threads = threads});
+}
+
+SbtBridge::~SbtBridge() = default;
+std::span<const float> SbtBridge::errors() const { return state_->errors.error; }
+std::span<const float> SbtBridge::radii() const { return state_->errors.radius; }
+std::span<const float> SbtBridge::morphBase() const { return state_->morphBase; }
+
+uint64_t SbtBridge::refineView(const SbtView& view, std::vector<uint32_t>& out, int threads) {
+    sbt::ViewParams params;
+    params.eye = {view.eye.x, view.eye.y, view.eye.z};
+    params.lambda = view.lambda;
+    params.tau = view.tau;
+    params.cull = view.cull;
+    for (size_t k = 0; k < 6; ++k)
+        params.planes[k] = {view.planes[k].x, view.planes[k].y, view.planes[k].z, view.planes[k].w};
+    state_->refiner->setThreads(threads);
+    // Refine into the bridge's own mesh and swap buffers with the caller, so
+    // both vectors keep their capacity from frame to frame.
+    state_->mesh.indices.swap(out);
+    state_->refiner->refineView(params, state_->mesh);
+    state_->mesh.indices.swap(out);
+    return uint64_t(state_->mesh.triangleCount);
+}
+
+std::vector<uint32_t> SbtBridge::fullGridTriangles() const {
+    sbt::StripMesh full;
+    state_->refiner->refineFixed(-1.0f, full);
+    std::vector<std::array<uint32_t, 3>> triangles = sbt::decodeStrip(full.indices);
+    std::vector<uint32_t> flat;
+    flat.reserve(triangles.size() * 3);
+    for (const auto& t : triangles) flat.insert(flat.end(), t.begin(), t.end());
+    return flat;
+}
+
+}  // namespace sierra::render

@@ -1,0 +1,48 @@
+#pragma once
+// The render module's view of the SBT: per-vertex data for the GPU texture,
+// per-frame view-dependent refinement into a reused index vector, and the
+// full-grid triangle list.
+
+#include <sierra/terrain/Heightfield.h>
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace sierra::render {
+
+struct SbtView {
+    glm::vec3 eye{0.0f};
+    float lambda = 1.0f;  // viewport height / (2 tan(fovy / 2))
+    float tau = 1.0f;     // pixels
+    bool cull = true;
+    std::array<glm::vec4, 6> planes{};
+};
+
+class SbtBridge {
+public:
+    SbtBridge(const terrain::Heightfield& field, int threads);
+    ~SbtBridge();
+
+    std::span<const float> errors() const;     // world units, per sample
+    std::span<const float> radii() const;      // world units, per sample
+    std::span<const float> morphBase() const;  // world heights, per sample
+
+    // Refines for the view and writes the strip (restart 0xFFFFFFFF) into out;
+    // returns the triangle count.
+    uint64_t refineView(const SbtView& view, std::vector<uint32_t>& out, int threads);
+
+    // Every cell of the grid as indexed triangles (3 indices each), with the
+    // diagonals of the SBT's finest level.
+    std::vector<uint32_t> fullGridTriangles() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace sierra::render

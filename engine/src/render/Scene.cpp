@@ -1,0 +1,55 @@
+#include <sierra/render/Scene.h>
+
+#include <sierra/core/Error.h>
+#include <sierra/terrain/DiamondSquare.h>
+#include <sierra/terrain/HeightfieldIO.h>
+#include <sierra/terrain/Padding.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace sierra::render {
+
+terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description) {
+    terrain::Heightfield field;
+    std::string what;
+    bool srtm = false;
+    if (source.heightmap.empty()) {
+        field = terrain::generateDiamondSquare(
+            {.size = source.generateSize, .seed = source.seed, .roughness = source.roughness});
+        what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ", source.seed,
+                   ", roughness ", source.roughness);
+    } else {
+        field = terrain::loadHeightfield(source.heightmap,
+                                         {.rawWidth = source.rawWidth, .rawHeight = source.rawHeight});
+        std::string ext = std::filesystem::path(source.heightmap).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+        srtm = ext == ".hgt";
+        what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
+    }
+    int originalWidth = field.width(), originalHeight = field.height();
+    field = terrain::padToPowerOfTwoPlusOne(field);
+    if (field.width() != originalWidth || field.height() != originalHeight)
+        what += msg(", padded to ", field.width(), "x", field.height());
+
+    float spacing = source.spacing;
+    if (spacing <= 0.0f) spacing = srtm ? (originalWidth == 1201 ? 90.0f : 30.0f) : 1.0f;
+    field.setSpacing(spacing, spacing);
+    float scale = source.verticalScale;
+    if (scale <= 0.0f) {
+        if (srtm) {
+            scale = 1.0f;
+        } else {
+            auto [lo, hi] = field.range();
+            float extent = float(field.width() - 1) * spacing;
+            scale = hi > lo ? 0.2f * extent / (hi - lo) : 1.0f;
+        }
+    }
+    field.setVerticalScale(scale);
+    what += msg(", spacing ", spacing, ", vertical scale ", scale);
+    if (description) *description = what;
+    return field;
+}
+
+}  // namespace sierra::render

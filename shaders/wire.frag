@@ -1,0 +1,6 @@
+#version 450 core
+// Wireframe overlay: the triangulation's edges in one colour.
+uniform vec4 uColour;
+in vec3 vWorld;
+out vec4 fragColour;
+void main() { fragColour = uColour; }
