@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Sierra needs (when missing), then configures and
+# builds it in build/ (Release). Sourced by run-default.sh and test.sh; can be
+# run on its own. BUILD_DIR and BUILD_TYPE override the defaults.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${BUILD_DIR:-$root/build}"
+build_type="${BUILD_TYPE:-Release}"
+
+packages=(
+  build-essential cmake pkg-config
+  libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libglm-dev libstb-dev libimgui-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev nlohmann-json3-dev glslang-tools
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "sierra setup: installing ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  else
+    echo "sierra setup: missing Debian packages. Install them with:" >&2
+    echo "  sudo apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+
+jobs="$(nproc 2>/dev/null || echo 2)"
+echo "sierra setup: configuring $build_type build in $build_dir"
+cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" >/dev/null
+echo "sierra setup: building with $jobs jobs"
+cmake --build "$build_dir" -j "$jobs"

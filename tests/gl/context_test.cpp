@@ -1,0 +1,151 @@
+#include "GlTest.h"
+
+#include <sierra/core/Error.h>
+#include <sierra/gpu/EmbeddedShaders.h>
+#include <sierra/gpu/Gl.h>
+#include <sierra/gpu/Program.h>
+#include <sierra/gpu/ReadBack.h>
+#include <sierra/gpu/StreamRing.h>
+
+#include <gmock/gmock.h>
+
+#include <cstdlib>
+#include <cstring>
+
+using namespace sierra;
+using ::testing::HasSubstr;
+
+namespace {
+
+class GlContext : public test::GlTest {};
+
+TEST_F(GlContext, ComesUpWith45CoreAndLogsRenderer) {
+    std::printf("renderer: %s | %s | %s\n", context().renderer().c_str(), context().version().c_str(),
+                context().platform().c_str());
+    EXPECT_FALSE(context().renderer().empty());
+    GLint major = 0, minor = 0, profile = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+    EXPECT_GE(major * 10 + minor, 45);
+    EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
+    EXPECT_EQ(context().width(), 640);
+    EXPECT_EQ(context().height(), 360);
+}
+
+TEST_F(GlContext, ClearedPbufferReadsBackExactly) {
+    glViewport(0, 0, 640, 360);
+    glClearColor(64.0f / 255.0f, 128.0f / 255.0f, 191.0f / 255.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    gpu::Image image = gpu::readFramebuffer(640, 360);
+    ASSERT_EQ(image.rgba.size(), 640u * 360u * 4u);
+    for (size_t p = 0; p < 640u * 360u; ++p) {
+        ASSERT_EQ(image.rgba[p * 4 + 0], 64) << "pixel " << p;
+        ASSERT_EQ(image.rgba[p * 4 + 1], 128) << "pixel " << p;
+        ASSERT_EQ(image.rgba[p * 4 + 2], 191) << "pixel " << p;
+        ASSERT_EQ(image.rgba[p * 4 + 3], 255) << "pixel " << p;
+    }
+}
+
+TEST_F(GlContext, ReadBackIsInImageOrder) {
+    // Bottom half red, top half blue in GL coordinates: the image's first row
+    // (top) must be blue.
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 640, 180);
+    glClearColor(1, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glScissor(0, 180, 640, 180);
+    glClearColor(0, 0, 1, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+    gpu::Image image = gpu::readFramebuffer(640, 360);
+    EXPECT_EQ(image.rgba[2], 255);                       // top-left blue
+    EXPECT_EQ(image.rgba[0], 0);
+    EXPECT_EQ(image.rgba[(359u * 640u) * 4 + 0], 255);   // bottom-left red
+}
+
+TEST_F(GlContext, PixelReaderReturnsEachFrameOnceInOrder) {
+    gpu::PixelReader reader(640, 360);
+    gpu::Image got;
+    std::vector<int> reds;
+    for (int frame = 0; frame < 4; ++frame) {
+        glClearColor(float(frame * 50) / 255.0f, 0, 0, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        if (reader.start(got)) reds.push_back(got.rgba[0]);
+    }
+    if (reader.finish(got)) reds.push_back(got.rgba[0]);
+    EXPECT_EQ(reds, (std::vector<int>{0, 50, 100, 150}));
+    EXPECT_FALSE(reader.finish(got));
+}
+
+TEST_F(GlContext, StreamRingCyclesRegionsAndGrows) {
+    gpu::StreamRing ring = gpu::StreamRing::create({.regionBytes = 4096});
+    std::vector<size_t> offsets;
+    for (int frame = 0; frame < 4; ++frame) {
+        std::span<std::byte> region = ring.beginFrame(1000);
+        ASSERT_GE(region.size(), 1000u);
+        std::memset(region.data(), frame, 1000);
+        offsets.push_back(ring.offset());
+        ring.finishFrame();
+    }
+    EXPECT_EQ(offsets, (std::vector<size_t>{0, 4096, 8192, 0}));
+    std::span<std::byte> big = ring.beginFrame(10000);
+    EXPECT_GE(big.size(), 10000u);
+    EXPECT_EQ(ring.growCount(), 1);
+    // The data written lands in the buffer the GPU reads.
+    std::memset(big.data(), 0x5a, 10000);
+    ring.finishFrame();
+    std::vector<uint8_t> back(16);
+    glGetNamedBufferSubData(ring.buffer(), GLintptr(0), 16, back.data());
+    EXPECT_EQ(back[0], 0x5a);
+}
+
+TEST_F(GlContext, EveryShaderFileCompilesAndLinks) {
+    int stages = 0;
+    for (const gpu::EmbeddedShader& s : gpu::embeddedShaders()) {
+        std::string name(s.name);
+        gpu::ProgramDesc desc;
+        if (name.ends_with(".vert")) desc.vertex = s.name;
+        else if (name.ends_with(".frag")) desc.fragment = s.name;
+        else if (name.ends_with(".comp")) desc.compute = s.name;
+        else continue;
+        EXPECT_NO_THROW(gpu::Program::create(desc)) << name;
+        ++stages;
+    }
+    EXPECT_GE(stages, 4);
+    // The programs Sierra draws with.
+    EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "terrain.frag"}));
+    EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "wire.frag"}));
+    EXPECT_NO_THROW(gpu::Program::create({.vertex = "solid.vert", .fragment = "solid.frag"}));
+}
+
+TEST_F(GlContext, ShaderErrorsNameFileAndLine) {
+    try {
+        gpu::Program::create({.vertex = "terrain.vert", .defines = "#define vec3 nonsense_type\n"});
+        FAIL() << "a broken shader compiled";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("failed to compile"));
+        EXPECT_THAT(e.what(), HasSubstr(".glsl:"));  // the error is in the included file
+    }
+    EXPECT_THROW(gpu::Program::create({.vertex = "no_such_file.vert"}), Error);
+    // Mesa also reports the failed compile through KHR_debug; it was expected.
+    context().resetGlErrorCount();
+}
+
+TEST(GlContextErrors, BadDeviceIndexIsReported) {
+    ::setenv("SIERRA_EGL_DEVICE", "99", 1);
+    try {
+        gpu::EglContext::create({});
+        ::unsetenv("SIERRA_EGL_DEVICE");
+        FAIL() << "device 99 accepted";
+    } catch (const Error& e) {
+        ::unsetenv("SIERRA_EGL_DEVICE");
+        EXPECT_THAT(e.what(), HasSubstr("EGL device 99"));
+    }
+}
+
+TEST(GlContextErrors, BadFrameSizeIsReported) {
+    EXPECT_THROW(gpu::EglContext::create({.width = 0, .height = 10}), Error);
+}
+
+}  // namespace

@@ -1,0 +1,175 @@
+// Golden images of the default scene (the diamond-square terrain sierra-render
+// draws with no arguments), compared with a tolerance that survives llvmpipe
+// versions but not a black, flipped or wrongly coloured frame.
+//
+// SIERRA_UPDATE_GOLDEN=1 rewrites the references in tests/golden/.
+
+#include "GlTest.h"
+
+#include <sierra/render/Capture.h>
+#include <sierra/render/DebugOverlay.h>
+#include <sierra/render/FrameTarget.h>
+#include <sierra/render/Scene.h>
+#include <sierra/render/TerrainRenderer.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+using namespace sierra;
+
+namespace {
+
+constexpr int kWidth = 640;
+constexpr int kHeight = 360;
+
+// Tolerance against a reference: llvmpipe builds differ in the last bits of
+// rasterisation and filtering, which moves edge pixels by a little.
+constexpr double kGoldenMinPsnr = 30.0;
+constexpr double kGoldenMaxDiffering = 0.02;  // share of pixels off by more than 24
+constexpr int kGoldenThreshold = 24;
+
+bool matchesGolden(const gpu::Image& image, const gpu::Image& golden) {
+    if (image.width != golden.width || image.height != golden.height) return false;
+    render::ImageDifference d = render::compareImages(image, golden, kGoldenThreshold);
+    return d.psnr >= kGoldenMinPsnr && d.differingShare <= kGoldenMaxDiffering;
+}
+
+std::string goldenPath(const std::string& name) { return std::string(SIERRA_GOLDEN_DIR) + "/" + name; }
+
+bool updating() {
+    const char* env = std::getenv("SIERRA_UPDATE_GOLDEN");
+    return env && std::string(env) == "1";
+}
+
+class Golden : public test::GlTest {
+protected:
+    void SetUp() override {
+        createContext(kWidth, kHeight);
+        field_ = render::loadTerrain({});  // the default scene
+        terrain_.emplace(render::TerrainRenderer::create({.field = &field_}));
+        target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
+    }
+
+    gpu::Image renderFrame(render::Lod lod, float tau = 1.0f) {
+        render::Camera camera = render::defaultCamera(terrain_->bounds());
+        target_->begin(terrain_->skyColour());
+        stats_ = terrain_->draw(camera, kWidth, kHeight, {.lod = lod, .tau = tau});
+        return target_->read();
+    }
+
+    void checkAgainstGolden(const gpu::Image& image, const std::string& name) {
+        std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
+        render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name, image);
+        if (updating()) {
+            render::writePng(goldenPath(name), image);
+            GTEST_SKIP() << "golden image " << name << " rewritten";
+        }
+        gpu::Image golden = render::readPng(goldenPath(name));
+        render::ImageDifference d = render::compareImages(image, golden, kGoldenThreshold);
+        std::printf("%s against golden: PSNR %.2f dB, %.4f%% pixels differ\n", name.c_str(), d.psnr,
+                    100.0 * d.differingShare);
+        EXPECT_TRUE(matchesGolden(image, golden))
+            << "PSNR " << d.psnr << " dB, differing share " << d.differingShare << " (frame written to "
+            << SIERRA_TEST_OUTPUT_DIR << "/" << name << ")";
+    }
+
+    terrain::Heightfield field_;
+    std::optional<render::TerrainRenderer> terrain_;
+    std::optional<render::FrameTarget> target_;
+    render::DrawStats stats_;
+};
+
+// Mean RGB of a band of rows [y0, y1).
+glm::vec3 meanColour(const gpu::Image& image, int y0, int y1) {
+    glm::dvec3 sum(0.0);
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const uint8_t* p = &image.rgba[(size_t(y) * image.width + x) * 4];
+            sum += glm::dvec3(p[0], p[1], p[2]);
+        }
+    return glm::vec3(sum / double((y1 - y0) * image.width));
+}
+
+TEST_F(Golden, FullGridFrameMatchesReference) {
+    gpu::Image frame = renderFrame(render::Lod::Full);
+    // Sky on top, terrain below: the frame is upright and not blank.
+    glm::vec3 top = meanColour(frame, 0, 10);
+    glm::vec3 sky = terrain_->skyColour() * 255.0f;
+    EXPECT_LT(glm::length(top - sky), 6.0f) << "top rows are not sky";
+    glm::vec3 bottom = meanColour(frame, kHeight - 40, kHeight);
+    EXPECT_GT(glm::length(bottom - sky), 40.0f) << "bottom rows show no terrain";
+    checkAgainstGolden(frame, "default_full.png");
+}
+
+TEST_F(Golden, SbtFrameMatchesReferenceAndFullGrid) {
+    gpu::Image sbt = renderFrame(render::Lod::Sbt, 1.0f);
+    uint64_t sbtTriangles = stats_.triangles;
+    gpu::Image full = renderFrame(render::Lod::Full);
+    uint64_t fullTriangles = stats_.triangles;
+    render::ImageDifference d = render::compareImages(sbt, full, 8);
+    std::printf("SBT (tau 1 px, %llu triangles) against full grid (%llu): PSNR %.2f dB, %.4f%% pixels differ\n",
+                (unsigned long long)sbtTriangles, (unsigned long long)fullTriangles, d.psnr,
+                100.0 * d.differingShare);
+    EXPECT_GE(d.psnr, 35.0);
+    EXPECT_LT(sbtTriangles * 10, fullTriangles) << "the SBT mesh should be far smaller than the grid";
+    checkAgainstGolden(sbt, "default_sbt.png");
+}
+
+TEST_F(Golden, ComparisonRejectsBlackFlippedAndMiscolouredFrames) {
+    gpu::Image frame = renderFrame(render::Lod::Sbt);
+    ASSERT_TRUE(matchesGolden(frame, frame));
+
+    gpu::Image black = frame;
+    for (size_t p = 0; p < black.rgba.size(); p += 4) black.rgba[p] = black.rgba[p + 1] = black.rgba[p + 2] = 0;
+    EXPECT_FALSE(matchesGolden(black, frame));
+
+    gpu::Image flipped = frame;
+    size_t row = size_t(kWidth) * 4;
+    for (int y = 0; y < kHeight; ++y)
+        std::copy_n(&frame.rgba[size_t(kHeight - 1 - y) * row], row, &flipped.rgba[size_t(y) * row]);
+    EXPECT_FALSE(matchesGolden(flipped, frame));
+
+    gpu::Image swapped = frame;  // RGB -> BGR
+    for (size_t p = 0; p < swapped.rgba.size(); p += 4) std::swap(swapped.rgba[p], swapped.rgba[p + 2]);
+    EXPECT_FALSE(matchesGolden(swapped, frame));
+}
+
+TEST_F(Golden, SbtFrameIsCoarserWithLargerTau) {
+    renderFrame(render::Lod::Sbt, 1.0f);
+    uint64_t fine = stats_.triangles;
+    renderFrame(render::Lod::Sbt, 8.0f);
+    uint64_t coarse = stats_.triangles;
+    EXPECT_LT(coarse * 2, fine);
+    EXPECT_GT(coarse, 2u);
+}
+
+TEST_F(Golden, DebugSnapshotDrawsAPanelOverTheFrame) {
+    gpu::Image plain = renderFrame(render::Lod::Sbt);
+    render::DebugOverlay overlay;
+    render::DebugPanel panel;
+    panel.rows = {{"triangles", "12345"}, {"frame", "1.0 ms"}};
+    panel.frameTimesMs = {1.0f, 2.0f, 1.5f};
+    render::Camera camera = render::defaultCamera(terrain_->bounds());
+    target_->begin(terrain_->skyColour());
+    terrain_->draw(camera, kWidth, kHeight, {});
+    target_->resolve();
+    overlay.draw(panel, kWidth, kHeight);
+    gpu::Image snapshot = gpu::readFramebuffer(kWidth, kHeight);
+    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/debug_snapshot.png", snapshot);
+
+    // The panel (top-left) changes many pixels; far from it nothing changes.
+    int changedInPanel = 0, changedElsewhere = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            size_t p = (size_t(y) * kWidth + x) * 4;
+            bool changed = std::abs(int(plain.rgba[p]) - int(snapshot.rgba[p])) +
+                               std::abs(int(plain.rgba[p + 1]) - int(snapshot.rgba[p + 1])) >
+                           30;
+            if (x < 120 && y < 60) changedInPanel += changed;
+            if (x > 420) changedElsewhere += changed;
+        }
+    EXPECT_GT(changedInPanel, 120 * 60 / 2) << "no panel drawn";
+    EXPECT_EQ(changedElsewhere, 0);
+}
+
+}  // namespace
