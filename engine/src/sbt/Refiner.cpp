@@ -242,13 +242,14 @@ struct TopWalker {
     }
 };
 
-// Orientation in the (i, j) plane of the first non-degenerate triangle of the
-// strip s[0..count), decoded by GL's rule: > 0 counter-clockwise.
-int64_t firstOrientation(const uint32_t* s, int64_t count, uint32_t side) {
+// The first non-degenerate triangle (s[k], s[k+1], s[k+2]) of the strip
+// s[0..count): its offset k and its orientation in the (i, j) plane as written
+// (> 0 counter-clockwise); 0 when the strip draws nothing.
+int64_t firstTriangle(const uint32_t* s, int64_t count, uint32_t side, int64_t* offset) {
     for (int64_t k = 0; k + 2 < count; ++k) {
         uint32_t v0 = s[k], v1 = s[k + 1], v2 = s[k + 2];
         if (v0 == v1 || v1 == v2 || v0 == v2) continue;
-        if (k & 1) std::swap(v0, v1);
+        *offset = k;
         int64_t i0 = v0 % side, j0 = v0 / side, i1 = v1 % side, j1 = v1 / side,
                 i2 = v2 % side, j2 = v2 / side;
         return (i1 - i0) * (j2 - j0) - (j1 - j0) * (i2 - i0);
@@ -298,7 +299,7 @@ Refiner::Refiner(const terrain::Heightfield& field, const VertexErrors& errors, 
     n_ = n;
     side_ = field.width();
     chunkLevel_ = desc.chunkLevel >= 0 ? std::min(desc.chunkLevel, 2 * n - 1)
-                                       : std::clamp(2 * n - 8, 0, 7);
+                                       : std::clamp(2 * n - 10, 0, 6);
 }
 
 Refiner::~Refiner() = default;
@@ -375,29 +376,52 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         },
         threads);
 
-    // Join in chunk order; a strip whose first triangle would decode
-    // counter-clockwise in (i, j) drops its leading duplicate vertex, which flips
-    // the GL parity of the whole strip (every strip starts with a, a).
+    // Join in chunk order. Every strip starts with its entry vertex twice (a, a);
+    // dropping one copy flips the GL parity of the whole strip, which is how each
+    // strip is made to decode clockwise in (i, j). A strip whose entry is the
+    // previous strip's last vertex and whose first triangle shares an edge with
+    // the previous one (consecutive subtrees on the curve, no culled gap between
+    // them) continues that strip through degenerate triangles instead of a restart.
     size_t total = 0;
-    int strips = 0;
-    for (int c = 0; c < chunkCount; ++c) {
-        total += size_t(chunks_[c].used) + 1;
-        strips += int(chunks_[c].starts.size());
-    }
+    for (int c = 0; c < chunkCount; ++c) total += size_t(chunks_[c].used) + 2;
     out.indices.resize(total);
-    uint32_t* dst = out.indices.data();
+    uint32_t* const first = out.indices.data();
+    uint32_t* dst = first;
+    uint32_t* stripStart = first;
     int64_t leaves = 0;
+    int strips = 0;
+    const uint32_t side = uint32_t(side_);
     for (int c = 0; c < chunkCount; ++c) {
         Chunk& ch = chunks_[c];
         leaves += ch.leaves;
         const uint32_t* src = ch.buffer.data();
         for (size_t s = 0; s < ch.starts.size(); ++s) {
-            int64_t begin = ch.starts[s];
-            int64_t end = s + 1 < ch.starts.size() ? int64_t(ch.starts[s + 1]) - 1 : ch.used;
-            if (firstOrientation(src + begin, end - begin, uint32_t(side_)) > 0) ++begin;
-            if (dst != out.indices.data()) *dst++ = kRestartIndex;
-            std::memcpy(dst, src + begin, size_t(end - begin) * sizeof(uint32_t));
-            dst += end - begin;
+            const int64_t begin = ch.starts[s];
+            const int64_t end = s + 1 < ch.starts.size() ? int64_t(ch.starts[s + 1]) - 1 : ch.used;
+            int64_t k0 = 0;  // first non-degenerate triangle, relative to begin
+            const int64_t g = firstTriangle(src + begin, end - begin, side, &k0);
+            if (g == 0) continue;  // nothing drawn
+            bool merge = false;
+            if (dst - stripStart >= 3 && dst[-1] == src[begin]) {
+                int shared = 0;
+                for (int x = 0; x < 3; ++x)
+                    for (int y = 0; y < 3; ++y) shared += dst[-1 - x] == src[begin + k0 + y];
+                merge = shared == 2;
+            }
+            // decoded clockwise iff (g > 0) == (position odd)
+            const int64_t want = g > 0 ? 1 : 0;
+            int64_t drop;
+            if (merge) {
+                const int64_t p0 = dst - stripStart;  // where src[begin + drop] lands
+                drop = ((p0 + k0 - 1) & 1) == want ? 1 : 0;
+            } else {
+                if (dst != first) *dst++ = kRestartIndex;
+                stripStart = dst;
+                drop = (k0 & 1) == want ? 0 : 1;
+                ++strips;
+            }
+            std::memcpy(dst, src + begin + drop, size_t(end - begin - drop) * sizeof(uint32_t));
+            dst += end - begin - drop;
         }
     }
     out.indices.resize(size_t(dst - out.indices.data()));

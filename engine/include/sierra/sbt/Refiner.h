@@ -15,8 +15,9 @@
 // Threads: the tree is cut at a fixed level (RefinerDesc::chunkLevel) into
 // disjoint subtrees taken in Sierpinski order; each is refined on its own into
 // its own strip and the strips are joined in that order with primitive restart
-// (kRestartIndex). The cut does not depend on the thread count, so the output
-// is byte-identical for any number of threads.
+// (kRestartIndex), or continued through degenerate triangles where consecutive
+// subtrees meet along the curve. The cut does not depend on the thread count,
+// so the output is byte-identical for any number of threads.
 //
 // Winding: every decoded triangle (GL rule: odd positions swap their first two
 // vertices) is clockwise in the (i, j) plane, which is counter-clockwise seen
@@ -71,7 +72,7 @@ std::array<Plane, 6> frustumPlanes(const float viewProjection[16]);
 
 struct RefinerDesc {
     int threads = 0;      // 0 = sierra::defaultThreadCount()
-    int chunkLevel = -1;  // level of the parallel subtrees; -1 = clamp(2n - 8, 0, 7)
+    int chunkLevel = -1;  // level of the parallel subtrees; -1 = clamp(2n - 10, 0, 6)
 };
 
 class Refiner {

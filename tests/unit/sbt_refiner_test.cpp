@@ -1,0 +1,453 @@
+// Vertex errors, fixed-error and view-dependent refinement, strips: checked
+// against brute-force recursions and mesh invariants.
+#include <sierra/sbt/Addressing.h>
+#include <sierra/sbt/Refiner.h>
+#include <sierra/sbt/VertexErrors.h>
+#include <sierra/terrain/DiamondSquare.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <vector>
+
+namespace {
+
+namespace sbt = sierra::sbt;
+using sierra::terrain::Heightfield;
+using Tri = std::array<uint32_t, 3>;
+
+Heightfield fractal(int size, uint64_t seed, float roughness = 1.0f) {
+    return sierra::terrain::generateDiamondSquare({.size = size, .seed = seed, .roughness = roughness});
+}
+
+// Smooth, real-looking terrain: a sum of Gaussian hills.
+Heightfield gaussians(int size, uint64_t seed) {
+    Heightfield f(size, size);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    struct Hill { double x, z, s, h; };
+    std::vector<Hill> hills;
+    for (int k = 0; k < 12; ++k) hills.push_back({u(rng), u(rng), 0.05 + 0.2 * u(rng), 2.0 * u(rng) - 0.7});
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i) {
+            double x = double(i) / (size - 1), z = double(j) / (size - 1), h = 0;
+            for (const Hill& hl : hills)
+                h += hl.h * std::exp(-((x - hl.x) * (x - hl.x) + (z - hl.z) * (z - hl.z)) / (hl.s * hl.s));
+            f.at(i, j) = float(h * 40.0);
+        }
+    return f;
+}
+
+struct Node {
+    uint32_t a, q, b;
+    int level;
+};
+
+// Brute-force recursion over the tree, leaves in Sierpinski order.
+template <typename Split>
+void leaves(int side, Split&& split, std::vector<Node>& out) {
+    const int n = std::countr_zero(unsigned(side - 1));
+    auto rec = [&](auto&& self, uint32_t a, uint32_t q, uint32_t b, int l) -> void {
+        uint32_t m = (a + b) / 2;
+        if (l < 2 * n && split(m, l)) {
+            self(self, a, m, q, l + 1);
+            self(self, q, m, b, l + 1);
+        } else {
+            out.push_back({a, q, b, l});
+        }
+    };
+    uint32_t S = side - 1;
+    rec(rec, 0, S * side, S * side + S, 0);
+    rec(rec, S * side + S, S, 0, 0);
+}
+
+std::vector<Tri> sortedTris(std::vector<Tri> tris) {
+    for (Tri& t : tris) std::sort(t.begin(), t.end());
+    std::sort(tris.begin(), tris.end());
+    return tris;
+}
+std::vector<Tri> sortedTris(const std::vector<Node>& nodes) {
+    std::vector<Tri> tris;
+    for (const Node& n : nodes) tris.push_back({n.a, n.q, n.b});
+    return sortedTris(tris);
+}
+
+int64_t cross2(const Tri& t, int side) {
+    int64_t i0 = t[0] % side, j0 = t[0] / side, i1 = t[1] % side, j1 = t[1] / side, i2 = t[2] % side,
+            j2 = t[2] / side;
+    return (i1 - i0) * (j2 - j0) - (j1 - j0) * (i2 - i0);
+}
+
+// Mesh invariants: clockwise winding in (i, j); every edge shared by two
+// triangles with opposite directions or on the border (when `full`); no vertex
+// inside another triangle's edge (no T-junction); areas sum to the square.
+void expectConforming(const std::vector<Tri>& tris, int side, bool full) {
+    const int S = side - 1;
+    std::map<std::pair<uint32_t, uint32_t>, int> directed;
+    std::vector<uint8_t> isVertex(size_t(side) * side, 0);
+    int64_t area2 = 0;
+    for (const Tri& t : tris) {
+        int64_t c = cross2(t, side);
+        ASSERT_LT(c, 0) << "every decoded triangle is clockwise in (i, j)";
+        area2 += -c;
+        for (int k = 0; k < 3; ++k) {
+            ++directed[{t[k], t[(k + 1) % 3]}];
+            isVertex[t[k]] = 1;
+        }
+    }
+    if (full) EXPECT_EQ(area2, 2 * int64_t(S) * S) << "areas sum to the square";
+    for (const auto& [e, count] : directed) {
+        ASSERT_EQ(count, 1) << "an edge used twice in the same direction";
+        if (directed.count({e.second, e.first})) continue;
+        if (!full) continue;
+        int i0 = e.first % side, j0 = e.first / side, i1 = e.second % side, j1 = e.second / side;
+        bool border = (i0 == i1 && (i0 == 0 || i0 == S)) || (j0 == j1 && (j0 == 0 || j0 == S));
+        ASSERT_TRUE(border) << "hanging interior edge (" << i0 << "," << j0 << ")-(" << i1 << "," << j1 << ")";
+    }
+    for (const auto& [e, count] : directed) {
+        int i0 = e.first % side, j0 = e.first / side, i1 = e.second % side, j1 = e.second / side;
+        int g = std::gcd(std::abs(i1 - i0), std::abs(j1 - j0));
+        for (int s = 1; s < g; ++s) {
+            int i = i0 + (i1 - i0) / g * s, j = j0 + (j1 - j0) / g * s;
+            ASSERT_FALSE(isVertex[size_t(j) * side + i]) << "T-junction at (" << i << "," << j << ")";
+        }
+    }
+}
+
+// Consecutive triangles of a strip share an edge (Sierpinski order).
+void expectConsecutiveShareEdge(const std::vector<uint32_t>& indices) {
+    std::vector<uint32_t> strip;
+    auto check = [&] {
+        std::vector<uint32_t> s = strip;
+        s.push_back(sbt::kRestartIndex);
+        auto tris = sbt::decodeStrip(s);
+        for (size_t k = 1; k < tris.size(); ++k) {
+            int shared = 0;
+            for (uint32_t a : tris[k - 1])
+                for (uint32_t b : tris[k]) shared += a == b;
+            ASSERT_EQ(shared, 2);
+        }
+        strip.clear();
+    };
+    for (uint32_t v : indices) {
+        if (v == sbt::kRestartIndex) check();
+        else strip.push_back(v);
+    }
+    check();
+}
+
+TEST(SbtErrors, SaturatedAndNestedByBruteForce) {
+    for (int trial = 0; trial < 4; ++trial) {
+        Heightfield f = trial % 2 ? fractal(33, trial) : gaussians(33, trial);
+        f.setSpacing(1.5f, 0.75f);
+        f.setVerticalScale(trial + 0.5f);
+        sbt::VertexErrors ve = sbt::computeVertexErrors(f, 2);
+        const int side = f.width(), n = 5;
+        sbt::Addressing ad(n);
+        auto pos = [&](sbt::GridVertex v) {
+            return std::array<double, 3>{v.i * double(f.spacingX()), double(f.at(v.i, v.j)) * double(f.verticalScale()),
+                                         v.j * double(f.spacingZ())};
+        };
+        auto dist = [&](sbt::GridVertex a, sbt::GridVertex b) {
+            auto p = pos(a), q = pos(b);
+            return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                             (p[2] - q[2]) * (p[2] - q[2]));
+        };
+        // brute force, level by level from the finest, over every triangle
+        std::vector<double> e(size_t(side) * side, 0.0), r(size_t(side) * side, 0.0);
+        for (int l = ad.finestLevel() - 1; l >= 0; --l)
+            for (int row = 0; row < sbt::Addressing::rows(l); ++row)
+                for (int col = 0; col < sbt::Addressing::cols(l); ++col) {
+                    sbt::TriangleId t{l, row, col};
+                    sbt::GridVertex m = ad.splitVertex(t), a = ad.vertex(t, 1), b = ad.vertex(t, 2);
+                    size_t mi = size_t(m.j) * side + m.i;
+                    double raw = std::fabs(double(f.worldHeight(m.i, m.j)) -
+                                           0.5 * (double(f.worldHeight(a.i, a.j)) + double(f.worldHeight(b.i, b.j))));
+                    e[mi] = std::max(e[mi], raw);
+                    for (int k = 0; k < 3; ++k) r[mi] = std::max(r[mi], dist(m, ad.vertex(t, k)));
+                    if (l + 1 < ad.finestLevel()) {
+                        for (sbt::TriangleId c : {sbt::Addressing::leftChild(t), sbt::Addressing::rightChild(t)}) {
+                            sbt::GridVertex cm = ad.splitVertex(c);
+                            size_t ci = size_t(cm.j) * side + cm.i;
+                            e[mi] = std::max(e[mi], e[ci]);
+                            r[mi] = std::max(r[mi], dist(m, cm) + r[ci]);
+                            // the stored arrays satisfy the definitions directly
+                            EXPECT_GE(ve.error[mi], ve.error[ci]);
+                            EXPECT_GE(double(ve.radius[mi]), dist(m, cm) + double(ve.radius[ci]));
+                        }
+                    }
+                    for (int k = 0; k < 3; ++k) EXPECT_GE(double(ve.radius[mi]), dist(m, ad.vertex(t, k)));
+                }
+        for (size_t k = 0; k < e.size(); ++k) {
+            EXPECT_NEAR(ve.error[k], e[k], 1e-5 * (1 + e[k]));
+            EXPECT_NEAR(ve.radius[k], r[k], 1e-5 * (1 + r[k]));
+        }
+    }
+}
+
+TEST(SbtErrors, SameForAnyThreadCountAndRejectsBadGrids) {
+    Heightfield f = fractal(129, 7);
+    auto a = sbt::computeVertexErrors(f, 1), b = sbt::computeVertexErrors(f, 4);
+    EXPECT_EQ(a.error, b.error);
+    EXPECT_EQ(a.radius, b.radius);
+    EXPECT_THROW(sbt::computeVertexErrors(Heightfield(100, 100)), sierra::Error);
+    EXPECT_THROW(sbt::computeVertexErrors(Heightfield(33, 17)), sierra::Error);
+}
+
+TEST(SbtErrors, MorphBaseIsTheHypotenuseMean) {
+    Heightfield f = fractal(17, 3);
+    f.setVerticalScale(2.0f);
+    auto base = sbt::buildMorphBase(f, 2);
+    for (int j = 0; j < 17; ++j)
+        for (int i = 0; i < 17; ++i) {
+            int ai, aj, bi, bj;
+            float expected = sbt::hypotenuseEndpoints(i, j, 4, &ai, &aj, &bi, &bj)
+                                 ? 0.5f * (f.worldHeight(ai, aj) + f.worldHeight(bi, bj))
+                                 : f.worldHeight(i, j);
+            EXPECT_FLOAT_EQ(base[size_t(j) * 17 + i], expected);
+        }
+}
+
+TEST(SbtFixed, PlaneAtZeroErrorGivesTwoTriangles) {
+    Heightfield f(65, 65);
+    for (int j = 0; j < 65; ++j)
+        for (int i = 0; i < 65; ++i) f.at(i, j) = float(2 * i + 3 * j);
+    auto ve = sbt::computeVertexErrors(f);
+    sbt::Refiner refiner(f, ve);
+    sbt::StripMesh mesh;
+    refiner.refineFixed(0.0f, mesh);
+    EXPECT_EQ(mesh.triangleCount, 2);
+    auto tris = sbt::decodeStrip(mesh.indices);
+    ASSERT_EQ(tris.size(), 2u);
+    expectConforming(tris, 65, true);
+    EXPECT_NEAR(sbt::maxVerticalDistance(f, tris), 0.0, 1e-4);
+}
+
+TEST(SbtFixed, MeshesMatchBruteForceAndConform) {
+    struct Case { Heightfield f; const char* name; };
+    std::vector<Case> cases;
+    cases.push_back({fractal(65, 11), "fractal"});
+    cases.push_back({gaussians(65, 5), "gaussians"});
+    cases.push_back({fractal(9, 2), "small"});
+    for (Case& cs : cases) {
+        const int side = cs.f.width();
+        auto ve = sbt::computeVertexErrors(cs.f);
+        sbt::Refiner refiner(cs.f, ve, {.threads = 2});
+        float emax = *std::max_element(ve.error.begin(), ve.error.end());
+        std::vector<float> epsilons = {-1.0f, 0.0f};
+        for (int k = 0; k <= 16; ++k) epsilons.push_back(emax * std::pow(0.7f, float(k)));
+        sbt::StripMesh mesh;
+        for (float eps : epsilons) {
+            SCOPED_TRACE(std::string(cs.name) + " eps " + std::to_string(eps));
+            refiner.refineFixed(eps, mesh);
+            std::vector<Node> expected;
+            leaves(side, [&](uint32_t m, int) { return ve.error[m] > eps; }, expected);
+            ASSERT_EQ(mesh.triangleCount, int64_t(expected.size()));
+            auto tris = sbt::decodeStrip(mesh.indices);
+            ASSERT_EQ(sortedTris(tris), sortedTris(expected)) << "the strip decodes to the leaf set";
+            expectConforming(tris, side, true);
+            expectConsecutiveShareEdge(mesh.indices);
+            // every leaf's split vertex is within eps; every split one above it
+            for (const Node& nd : expected) {
+                if (nd.level < 2 * std::countr_zero(unsigned(side - 1)))
+                    EXPECT_LE(ve.error[(nd.a + nd.b) / 2], eps);
+            }
+            std::vector<Node> parents;
+            leaves(side, [&](uint32_t m, int) { return ve.error[m] > eps; }, parents);
+            if (eps < 0) {
+                EXPECT_EQ(mesh.triangleCount, 2 * int64_t(side - 1) * (side - 1));
+                EXPECT_NEAR(sbt::maxVerticalDistance(cs.f, tris), 0.0, 1e-3);
+            }
+        }
+    }
+}
+
+TEST(SbtFixed, SplitTrianglesAreAboveEpsilon) {
+    Heightfield f = gaussians(33, 9);
+    auto ve = sbt::computeVertexErrors(f);
+    sbt::Refiner refiner(f, ve);
+    sbt::StripMesh mesh;
+    for (float eps : {0.01f, 0.1f, 1.0f, 5.0f}) {
+        refiner.refineFixed(eps, mesh);
+        std::set<Tri> leafSet;
+        for (Tri t : sbt::decodeStrip(mesh.indices)) {
+            std::sort(t.begin(), t.end());
+            leafSet.insert(t);
+        }
+        // walk the full tree: a triangle is split iff it is not a leaf of the mesh
+        // and it contains leaves; its split vertex must then be above eps
+        auto rec = [&](auto&& self, uint32_t a, uint32_t q, uint32_t b, int l) -> void {
+            Tri t{a, q, b};
+            std::sort(t.begin(), t.end());
+            if (leafSet.count(t)) return;
+            ASSERT_LT(l, 10);
+            EXPECT_GT(ve.error[(a + b) / 2], eps);
+            uint32_t m = (a + b) / 2;
+            self(self, a, m, q, l + 1);
+            self(self, q, m, b, l + 1);
+        };
+        rec(rec, 0, 32 * 33, 32 * 33 + 32, 0);
+        rec(rec, 32 * 33 + 32, 32, 0, 0);
+    }
+}
+
+TEST(SbtFixed, IdenticalForOneTwoFourThreads) {
+    Heightfield f = fractal(257, 21);
+    auto ve = sbt::computeVertexErrors(f);
+    for (float eps : {-1.0f, 0.5f, 3.0f}) {
+        std::vector<uint32_t> reference;
+        for (int threads : {1, 2, 4}) {
+            sbt::Refiner refiner(f, ve, {.threads = threads});
+            sbt::StripMesh mesh;
+            refiner.refineFixed(eps, mesh);
+            if (threads == 1) reference = mesh.indices;
+            else EXPECT_EQ(mesh.indices, reference) << threads << " threads, eps " << eps;
+        }
+    }
+}
+
+TEST(SbtFixed, IndicesPerTriangleAtMost1Point7) {
+    for (int size : {129, 257}) {
+        Heightfield f = size == 129 ? gaussians(size, 4) : fractal(size, 4);
+        auto ve = sbt::computeVertexErrors(f);
+        sbt::Refiner refiner(f, ve);
+        sbt::StripMesh mesh;
+        float emax = *std::max_element(ve.error.begin(), ve.error.end());
+        for (float eps : {-1.0f, 0.0f, emax * 0.001f, emax * 0.01f, emax * 0.05f}) {
+            refiner.refineFixed(eps, mesh);
+            if (mesh.triangleCount < 1000) continue;
+            EXPECT_LE(mesh.indicesPerTriangle(), 1.7) << size << " eps " << eps << " triangles "
+                                                      << mesh.triangleCount;
+        }
+    }
+}
+
+// --- view-dependent ---------------------------------------------------------
+
+struct Camera {
+    std::array<float, 3> eye;
+    std::array<float, 16> viewProj;  // column-major
+};
+
+Camera randomCamera(std::mt19937_64& rng, float extent, float height, float aspect, float fovy) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    Camera cam;
+    cam.eye = {extent * (1.6f * u(rng) - 0.3f), height * (0.2f + 2.0f * u(rng)), extent * (1.6f * u(rng) - 0.3f)};
+    std::array<float, 3> target = {extent * u(rng), 0.0f, extent * u(rng)};
+    std::array<float, 3> f = {target[0] - cam.eye[0], target[1] - cam.eye[1], target[2] - cam.eye[2]};
+    float fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (float& x : f) x /= fl;
+    std::array<float, 3> up = {0, 1, 0};
+    std::array<float, 3> s = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
+    float sl = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    for (float& x : s) x /= sl;
+    std::array<float, 3> uu = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
+    float view[16] = {s[0], uu[0], -f[0], 0, s[1], uu[1], -f[1], 0, s[2], uu[2], -f[2], 0,
+                      -(s[0] * cam.eye[0] + s[1] * cam.eye[1] + s[2] * cam.eye[2]),
+                      -(uu[0] * cam.eye[0] + uu[1] * cam.eye[1] + uu[2] * cam.eye[2]),
+                      (f[0] * cam.eye[0] + f[1] * cam.eye[1] + f[2] * cam.eye[2]), 1};
+    float zn = 0.5f, zf = extent * 4.0f, t = 1.0f / std::tan(fovy / 2);
+    float proj[16] = {t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (zf + zn) / (zn - zf), -1, 0, 0, 2 * zf * zn / (zn - zf), 0};
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) {
+            float v = 0;
+            for (int k = 0; k < 4; ++k) v += proj[k * 4 + r] * view[c * 4 + k];
+            cam.viewProj[c * 4 + r] = v;
+        }
+    return cam;
+}
+
+TEST(SbtView, RandomCamerasConformBoundErrorAndCullOnlyOutside) {
+    std::mt19937_64 rng(123);
+    for (int trial = 0; trial < 24; ++trial) {
+        const int side = trial % 3 == 0 ? 129 : 65;
+        Heightfield f = trial % 2 ? fractal(side, trial, 1.0f) : gaussians(side, trial);
+        if (trial % 2) f.setVerticalScale(40.0f);
+        f.setSpacing(1.0f + 0.1f * (trial % 4), 1.0f);
+        auto ve = sbt::computeVertexErrors(f);
+        sbt::Refiner refiner(f, ve, {.threads = 1 + trial % 3});
+        const float extent = (side - 1) * f.spacingX();
+        auto [lo, hi] = f.range();
+        Camera cam = randomCamera(rng, extent, (hi - lo) * f.verticalScale() + 10.0f, 16.0f / 9.0f, 1.0f);
+        sbt::ViewParams vp;
+        vp.eye = cam.eye;
+        vp.lambda = sbt::projectionLambda(1080.0f, 1.0f);
+        vp.tau = std::uniform_real_distribution<float>(0.5f, 16.0f)(rng);
+        vp.planes = sbt::frustumPlanes(cam.viewProj.data());
+        SCOPED_TRACE("trial " + std::to_string(trial));
+
+        auto posOf = [&](uint32_t v) {
+            uint32_t i = v % side, j = v / side;
+            return std::array<double, 3>{i * double(f.spacingX()), double(f.at(i, j)) * double(f.verticalScale()),
+                                         j * double(f.spacingZ())};
+        };
+        const double kE = double(vp.lambda) / double(vp.tau);
+        auto active = [&](uint32_t m) {
+            auto p = posOf(m);
+            double dx = p[0] - vp.eye[0], dy = p[1] - vp.eye[1], dz = p[2] - vp.eye[2];
+            double reach = kE * double(ve.error[m]) + double(ve.radius[m]);
+            return reach * reach > dx * dx + dy * dy + dz * dz;
+        };
+        // no culling: the whole conforming mesh, exactly the brute-force leaves
+        vp.cull = false;
+        sbt::StripMesh all;
+        refiner.refineView(vp, all);
+        std::vector<Node> expected;
+        leaves(side, [&](uint32_t m, int) { return active(m); }, expected);
+        auto allTris = sbt::decodeStrip(all.indices);
+        ASSERT_EQ(sortedTris(allTris), sortedTris(expected));
+        expectConforming(allTris, side, true);
+        expectConsecutiveShareEdge(all.indices);
+        const int n = std::countr_zero(unsigned(side - 1));
+        for (const Node& nd : expected) {
+            if (nd.level == 2 * n) continue;
+            uint32_t m = (nd.a + nd.b) / 2;
+            auto p = posOf(m);
+            double d = std::sqrt((p[0] - vp.eye[0]) * (p[0] - vp.eye[0]) + (p[1] - vp.eye[1]) * (p[1] - vp.eye[1]) +
+                                 (p[2] - vp.eye[2]) * (p[2] - vp.eye[2]));
+            double r = ve.radius[m];
+            ASSERT_GT(d, r - 1e-6) << "an inactive vertex cannot hold the eye in its sphere";
+            if (d > r) EXPECT_LE(vp.lambda * ve.error[m] / (d - r), vp.tau * (1 + 1e-5));
+        }
+        // culling: a subset of the same mesh; what is missing is outside a plane
+        vp.cull = true;
+        sbt::StripMesh visible;
+        refiner.refineView(vp, visible);
+        auto visTris = sbt::decodeStrip(visible.indices);
+        EXPECT_EQ(visible.triangleCount, int64_t(visTris.size()));
+        expectConforming(visTris, side, false);
+        expectConsecutiveShareEdge(visible.indices);
+        auto allSorted = sortedTris(allTris), visSorted = sortedTris(visTris);
+        std::vector<Tri> culled;
+        std::set_difference(allSorted.begin(), allSorted.end(), visSorted.begin(), visSorted.end(),
+                            std::back_inserter(culled));
+        ASSERT_EQ(culled.size() + visSorted.size(), allSorted.size()) << "visible is a subset";
+        for (const Tri& t : culled) {
+            bool outside = false;
+            for (const sbt::Plane& pl : vp.planes) {
+                bool allOut = true;
+                for (uint32_t v : t) {
+                    auto p = posOf(v);
+                    allOut = allOut && pl.a * p[0] + pl.b * p[1] + pl.c * p[2] + pl.d < 0;
+                }
+                outside = outside || allOut;
+            }
+            ASSERT_TRUE(outside) << "a culled triangle is entirely outside one frustum plane";
+        }
+        // identical for 1, 2 and 4 threads
+        for (int threads : {1, 2, 4}) {
+            refiner.setThreads(threads);
+            sbt::StripMesh again;
+            refiner.refineView(vp, again);
+            EXPECT_EQ(again.indices, visible.indices);
+        }
+    }
+}
+
+}  // namespace
