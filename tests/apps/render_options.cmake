@@ -1,0 +1,15 @@
+# Options that change what sierra-render writes.
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake.inc)
+run_app(sequence EXPECT_OK COMMAND ${RENDER} --generate 129 --size 160x90 --frames 3 --orbit --out seq/f.png --no-debug)
+expect_file(${WORK_DIR}/seq/f_0000.png)
+expect_file(${WORK_DIR}/seq/f_0002.png)
+expect_no_file(${WORK_DIR}/seq/f_0003.png)
+run_app(full EXPECT_OK COMMAND ${RENDER} --generate 129 --size 160x90 --lod full --wireframe --msaa 0 --out full.png --debug-out dbg.png)
+expect_file(${WORK_DIR}/full.png)
+expect_file(${WORK_DIR}/dbg.png)
+run_app(camera EXPECT_OK COMMAND ${RENDER} --generate 65 --size 160x90 --camera-pos 0 60 0 --camera-target 32 0 32 --fov 60 --tau 2 --sea-level 0 --out cam.png --no-debug)
+expect_file(${WORK_DIR}/cam.png)
+# A heightmap written by the library loads back and renders.
+file(WRITE ${WORK_DIR}/small.pgm "P2\n3 2\n255\n0 10 20\n30 40 250\n")
+run_app(pgm EXPECT_OK COMMAND ${RENDER} --heightmap small.pgm --size 160x90 --out pgm.png --no-debug)
+expect_file(${WORK_DIR}/pgm.png)
