@@ -94,19 +94,29 @@ int run(const Options& o) {
     bool sequence = cameras.size() > 1;
     std::vector<float> frameMs;
     render::DrawStats last;
+    // Sequences read back through pixel-buffer objects: frame k is copied while
+    // frame k + 1 is refined and drawn, and written once it arrives.
+    gpu::PixelReader reader(width, height);
+    gpu::Image image;
+    int written = 0;
+    auto writeNext = [&](const gpu::Image& frame) {
+        std::string path = sequence ? render::sequencePath(o.out, written) : o.out;
+        render::writePng(path, frame);
+        if (sequence)
+            log::info("frame ", written + 1, "/", cameras.size(), ": ", frameMs[size_t(written)], " ms -> ", path);
+        ++written;
+    };
     for (size_t k = 0; k < cameras.size(); ++k) {
         Stopwatch frame;
         target.begin(terrain.skyColour());
         last = terrain.draw(cameras[k], width, height, draw);
-        gpu::Image image = target.read();
+        target.resolve();
+        bool ready = reader.start(image);
         terrain.collectGpuTime(last);
         frameMs.push_back(float(frame.ms()));
-        std::string path = sequence ? render::sequencePath(o.out, int(k)) : o.out;
-        render::writePng(path, image);
-        if (sequence)
-            log::info("frame ", k + 1, "/", cameras.size(), ": ", last.triangles, " triangles, ", frameMs.back(),
-                      " ms -> ", path);
+        if (ready) writeNext(image);
     }
+    if (reader.finish(image)) writeNext(image);
     log::info(lodName(lod), " frame: ", last.triangles, " triangles, ", last.indices, " indices (",
               last.indicesPerTriangle(), " per triangle), refine ", last.refineMs, " ms, upload ", last.uploadMs,
               " ms, GPU draw ", last.drawMs, " ms, frame ", frameMs.back(), " ms");
