@@ -1,13 +1,15 @@
 #pragma once
-// The subcommands of sierra-bench, each registering itself on the app.
+// Subcommands of sierra-bench. Each adds itself to the app; its callback
+// throws sierra::Error on bad input (main prints it and exits non-zero).
 
 #include <CLI/CLI.hpp>
 
 namespace sierra::apps {
 
-// `static`: the fixed-error SBT mesh of a heightfield (no GL).
+// sierra-bench static: the fixed-error SBT mesh of one heightfield (see StaticCommand.cpp).
 void addStaticCommand(CLI::App& app);
-// `frames`: view-dependent frames along a camera path, timed per stage.
+
+// sierra-bench frames: per-frame, per-stage timings along a camera path.
 void addFramesCommand(CLI::App& app);
 
 }  // namespace sierra::apps

@@ -1,0 +1,120 @@
+// Micro-benchmarks of the SBT CPU stages: the error pass, fixed-error
+// refinement + strip emission, view-dependent refinement. items_per_second is
+// output triangles per second (grid samples per second for the error pass).
+#include <sierra/sbt/Refiner.h>
+#include <sierra/sbt/VertexErrors.h>
+#include <sierra/terrain/DiamondSquare.h>
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+namespace {
+
+namespace sbt = sierra::sbt;
+
+struct Terrain {
+    sierra::terrain::Heightfield field;
+    sbt::VertexErrors errors;
+};
+
+// One fractal per size, built once (roughness 1, seed 1, heights scaled to a
+// relief of about a tenth of the extent).
+const Terrain& terrain(int size) {
+    static std::map<int, std::unique_ptr<Terrain>> cache;
+    auto& slot = cache[size];
+    if (!slot) {
+        slot = std::make_unique<Terrain>();
+        slot->field = sierra::terrain::generateDiamondSquare({.size = size, .seed = 1, .roughness = 1.0f});
+        auto [lo, hi] = slot->field.range();
+        slot->field.setVerticalScale(0.1f * float(size - 1) / std::max(1e-6f, hi - lo));
+        slot->errors = sbt::computeVertexErrors(slot->field);
+    }
+    return *slot;
+}
+
+void BM_ErrorPass(benchmark::State& state) {
+    const int size = int(state.range(0));
+    const int threads = int(state.range(1));
+    const Terrain& t = terrain(size);
+    for (auto _ : state) {
+        auto ve = sbt::computeVertexErrors(t.field, threads);
+        benchmark::DoNotOptimize(ve.error.data());
+    }
+    state.SetItemsProcessed(state.iterations() * t.field.sampleCount());
+    state.counters["threads"] = threads;
+}
+BENCHMARK(BM_ErrorPass)->ArgsProduct({{513, 1025, 2049}, {1, 2}})->Unit(benchmark::kMillisecond);
+
+// Arg 2: epsilon as a fraction of the terrain's relief in thousandths (-1 = full grid).
+void BM_RefineFixed(benchmark::State& state) {
+    const int size = int(state.range(0));
+    const int threads = int(state.range(2));
+    const Terrain& t = terrain(size);
+    auto [lo, hi] = t.field.range();
+    const float relief = (hi - lo) * t.field.verticalScale();
+    const float eps = state.range(1) < 0 ? -1.0f : relief * float(state.range(1)) / 1000.0f;
+    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
+    sbt::StripMesh mesh;
+    refiner.refineFixed(eps, mesh);  // grow buffers once
+    for (auto _ : state) {
+        refiner.refineFixed(eps, mesh);
+        benchmark::DoNotOptimize(mesh.indices.data());
+    }
+    state.SetItemsProcessed(state.iterations() * mesh.triangleCount);
+    state.counters["triangles"] = double(mesh.triangleCount);
+    state.counters["idx_per_tri"] = mesh.indicesPerTriangle();
+    state.counters["threads"] = threads;
+}
+BENCHMARK(BM_RefineFixed)
+    ->ArgsProduct({{1025, 2049}, {-1, 0, 1, 5}, {1, 2}})
+    ->Unit(benchmark::kMillisecond);
+
+// A camera 1/8 of the extent above the middle of the south edge, looking at the
+// centre, 1920x1080, 60 degree vertical field of view, tau 1 px.
+void BM_RefineView(benchmark::State& state) {
+    const int size = int(state.range(0));
+    const int threads = int(state.range(1));
+    const bool cull = state.range(2) != 0;
+    const Terrain& t = terrain(size);
+    const float extent = float(size - 1);
+    sbt::ViewParams vp;
+    vp.eye = {0.5f * extent, 0.125f * extent + t.field.worldHeight(size / 2, 0), -0.05f * extent};
+    vp.lambda = sbt::projectionLambda(1080.0f, 1.0471976f);
+    vp.tau = 1.0f;
+    vp.cull = cull;
+    // frustum: looking towards +z and slightly down; planes through the eye
+    const float aspect = 16.0f / 9.0f, tanY = std::tan(0.5f * 1.0471976f), tanX = tanY * aspect;
+    const float pitch = -0.35f, cp = std::cos(pitch), sp = std::sin(pitch);
+    auto rot = [&](float x, float y, float z) {  // camera (x right, y up, z forward) to world
+        return std::array<float, 3>{x, y * cp + z * sp, -y * sp + z * cp};
+    };
+    auto plane = [&](std::array<float, 3> nrm) {
+        float len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        for (float& c : nrm) c /= len;
+        return sbt::Plane{nrm[0], nrm[1], nrm[2], -(nrm[0] * vp.eye[0] + nrm[1] * vp.eye[1] + nrm[2] * vp.eye[2])};
+    };
+    vp.planes = {plane(rot(1, 0, tanX)), plane(rot(-1, 0, tanX)), plane(rot(0, 1, tanY)),
+                 plane(rot(0, -1, tanY)), plane(rot(0, 0, 1)), plane(rot(0, 0, 1))};
+    // far plane: inside while the distance along the view is below 4 extents
+    vp.planes[5] = sbt::Plane{-vp.planes[4].a, -vp.planes[4].b, -vp.planes[4].c,
+                              -vp.planes[4].d + 4.0f * extent};
+    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
+    sbt::StripMesh mesh;
+    refiner.refineView(vp, mesh);
+    for (auto _ : state) {
+        refiner.refineView(vp, mesh);
+        benchmark::DoNotOptimize(mesh.indices.data());
+    }
+    state.SetItemsProcessed(state.iterations() * mesh.triangleCount);
+    state.counters["triangles"] = double(mesh.triangleCount);
+    state.counters["idx_per_tri"] = mesh.indicesPerTriangle();
+    state.counters["threads"] = threads;
+}
+BENCHMARK(BM_RefineView)->ArgsProduct({{2049}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
