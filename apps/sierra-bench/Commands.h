@@ -1,15 +1,13 @@
 #pragma once
-// Subcommands of sierra-bench. Each adds itself to the app; its callback
-// throws sierra::Error on bad input (main prints it and exits non-zero).
+// The subcommands of sierra-bench, each registering itself on the app.
 
 #include <CLI/CLI.hpp>
 
 namespace sierra::apps {
 
-// sierra-bench static: the fixed-error SBT mesh of one heightfield (see StaticCommand.cpp).
+// `static`: the fixed-error SBT mesh of a heightfield (no GL).
 void addStaticCommand(CLI::App& app);
-
-// sierra-bench frames: per-frame, per-stage timings along a camera path.
+// `frames`: view-dependent frames along a camera path, timed per stage.
 void addFramesCommand(CLI::App& app);
 
 }  // namespace sierra::apps
