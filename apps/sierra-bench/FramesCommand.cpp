@@ -6,6 +6,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Log.h>
+#include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
