@@ -11,12 +11,10 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
+#include <sierra/render/Scene.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
-#include <sierra/terrain/DiamondSquare.h>
 #include <sierra/terrain/FileIO.h>
-#include <sierra/terrain/HeightfieldIO.h>
-#include <sierra/terrain/Padding.h>
 
 #include <nlohmann/json.hpp>
 
@@ -39,6 +37,10 @@ struct StaticOptions {
     float maxError = 0.0f;
     int repeat = 20;
     int threads = 0;
+    int rawWidth = 0;
+    int rawHeight = 0;
+    float spacing = 0.0f;        // 0 = automatic (1; SRTM 90 or 30 m)
+    float verticalScale = 1.0f;  // stored height -> world height
     std::string obj;
     std::string json;
 };
@@ -97,21 +99,20 @@ void runStatic(const StaticOptions& o) {
     if (o.repeat < 1) throw Error(msg("static: --repeat must be >= 1, got ", o.repeat));
     if (o.threads < 0) throw Error(msg("static: --threads must be >= 0 (0 = all cores), got ", o.threads));
 
-    terrain::Heightfield field;
+    // The same loading, padding and generation as every Sierra app, but heights
+    // stay in the file's units unless --vertical-scale says otherwise: the
+    // error bound is then in the data's own units.
+    render::TerrainSource terrainSource{.heightmap = o.heightmap,
+                                        .generateSize = o.generate ? o.generate : 1025,
+                                        .seed = o.seed,
+                                        .roughness = o.roughness,
+                                        .rawWidth = o.rawWidth,
+                                        .rawHeight = o.rawHeight,
+                                        .spacing = o.spacing,
+                                        .verticalScale = o.verticalScale};
     std::string source;
-    if (o.generate) {
-        if (o.generate < 3 || o.generate > 16385 || ((o.generate - 1) & (o.generate - 2)) != 0)
-            throw Error(msg("static: --generate needs a size 2^n + 1 between 3 and 16385 (e.g. 1025), got ",
-                            o.generate));
-        if (!(o.roughness > 0.0f)) throw Error(msg("static: --roughness must be > 0, got ", o.roughness));
-        field = terrain::generateDiamondSquare({.size = o.generate, .seed = o.seed, .roughness = o.roughness});
-        source = msg("diamond-square ", o.generate, " seed ", o.seed, " roughness ", o.roughness);
-    } else {
-        field = terrain::loadHeightfield(o.heightmap);
-        source = o.heightmap;
-    }
+    terrain::Heightfield field = render::loadTerrain(terrainSource, &source);
     const int inputW = field.width(), inputH = field.height();
-    if (!sbt::isSbtGrid(field)) field = terrain::padToPowerOfTwoPlusOne(field);
     const int threads = o.threads > 0 ? o.threads : defaultThreadCount();
 
     Stopwatch sw;
@@ -188,6 +189,11 @@ void addStaticCommand(CLI::App& app) {
     cmd->add_option("--max-error", opts->maxError,
                     "Split while the saturated vertex error exceeds this (world height units; < 0 = full grid)")
         ->required();
+    cmd->add_option("--raw-width", opts->rawWidth, "Width of a .r16/.r32 heightmap");
+    cmd->add_option("--raw-height", opts->rawHeight, "Height of a .r16/.r32 heightmap");
+    cmd->add_option("--spacing", opts->spacing, "World units between samples (0 = automatic: 1, SRTM 90/30 m)");
+    cmd->add_option("--vertical-scale", opts->verticalScale,
+                    "Stored height to world height (default 1: errors in the data's units; 0 = automatic)");
     cmd->add_option("--repeat", opts->repeat, "Timed extraction runs (default 20)");
     cmd->add_option("--threads", opts->threads, "Threads (default 0 = all cores)");
     cmd->add_option("--obj", opts->obj, "Write the mesh as Wavefront OBJ (x = column, y = height, z = row)");
