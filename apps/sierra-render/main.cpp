@@ -137,7 +137,7 @@ int run(const Options& o) {
             {"error pass", msg(terrain.errorPassMs(), " ms")},
             {"refine + strip", msg(last.refineMs, " ms")},
             {"upload", msg(last.uploadMs, " ms, ", last.bytesUploaded, " bytes")},
-            {"GPU draw", msg(last.drawMs, " ms")},
+            {"draw (GL timer)", msg(last.drawMs, " ms")},
             {"frame", msg(frameMs.back(), " ms")},
             {"camera", msg(cam.position.x, ", ", cam.position.y, ", ", cam.position.z)},
         };

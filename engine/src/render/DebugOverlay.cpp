@@ -69,7 +69,7 @@ void DebugOverlay::layout(const DebugPanel& panel) {
         }
         ImGui::EndTable();
     }
-    if (!panel.frameTimesMs.empty()) {
+    if (panel.frameTimesMs.size() >= 2) {
         float top = *std::max_element(panel.frameTimesMs.begin(), panel.frameTimesMs.end());
         ImGui::PlotLines("frame ms", panel.frameTimesMs.data(), int(panel.frameTimesMs.size()), 0,
                          nullptr, 0.0f, top * 1.1f, ImVec2(260.0f, 60.0f));

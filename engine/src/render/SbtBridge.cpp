@@ -23,6 +23,7 @@ SbtBridge::~SbtBridge() = default;
 std::span<const float> SbtBridge::errors() const { return state_->errors.error; }
 std::span<const float> SbtBridge::radii() const { return state_->errors.radius; }
 std::span<const float> SbtBridge::morphBase() const { return state_->morphBase; }
+void SbtBridge::releaseMorphBase() { std::vector<float>().swap(state_->morphBase); }
 
 uint64_t SbtBridge::refineView(const SbtView& view, std::vector<uint32_t>& out, int threads) {
     sbt::ViewParams params;

@@ -31,6 +31,8 @@ public:
     std::span<const float> errors() const;     // world units, per sample
     std::span<const float> radii() const;      // world units, per sample
     std::span<const float> morphBase() const;  // world heights, per sample
+    // Frees the morph base once it is on the GPU (4 bytes per sample).
+    void releaseMorphBase();
 
     // Refines for the view and writes the strip (restart 0xFFFFFFFF) into out;
     // returns the triangle count.

@@ -158,6 +158,7 @@ TerrainRenderer TerrainRenderer::create(const TerrainDesc& desc) {
         state->data = gpu::Texture::create({.format = GL_RGBA32F, .width = side, .height = side,
                                             .filter = GL_NEAREST});
         state->data.upload(GL_RGBA, GL_FLOAT, texels.data());
+        state->sbt->releaseMorphBase();
         std::vector<float> heights(field.samples().begin(), field.samples().end());
         for (float& v : heights) v *= vs;
         state->heights = gpu::Texture::create({.format = GL_R32F, .width = side, .height = side});

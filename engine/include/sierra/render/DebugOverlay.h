@@ -13,7 +13,7 @@ namespace sierra::render {
 struct DebugPanel {
     std::string title = "Sierra";
     std::vector<std::pair<std::string, std::string>> rows;  // label, value
-    std::vector<float> frameTimesMs;                        // plotted when non-empty
+    std::vector<float> frameTimesMs;                        // plotted from two frames on
 };
 
 class DebugOverlay {
