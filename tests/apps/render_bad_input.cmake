@@ -13,3 +13,8 @@ run_app(bad_lod EXPECT_FAIL MESSAGE "lod" COMMAND ${RENDER} --lod medium)
 foreach(f a.png b.png c.png d.png e.png f.png out/frame.png)
   expect_no_file(${WORK_DIR}/${f})
 endforeach()
+# No EGL vendor at all (GLVND finds no driver): the cause and the packages.
+run_app(no_egl EXPECT_FAIL MESSAGE "libegl-mesa0"
+        COMMAND ${CMAKE_COMMAND} -E env __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json
+                ${RENDER} --generate 65 --out g.png)
+expect_no_file(${WORK_DIR}/g.png)
