@@ -56,15 +56,6 @@ Stats stats(const std::vector<FrameRecord>& records, double FrameRecord::*field)
     return {median(v), quantile(v, 0.95), quantile(v, 0.99)};
 }
 
-std::pair<int, int> parseFrameSize(const std::string& text) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
-        h <= 0 || w > 16384 || h > 16384)
-        throw Error(msg("--size '", text, "': expected WIDTHxHEIGHT, each 1..16384"));
-    return {w, h};
-}
-
 // Draws one frame and reads it back; fills the timing fields of `record`.
 gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& target, const render::Camera& camera,
                       const render::DrawOptions& draw, FrameRecord& record) {
@@ -91,7 +82,7 @@ gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& tar
 }
 
 void runFrames(const FramesOptions& o) {
-    auto [width, height] = parseFrameSize(o.size);
+    auto [width, height] = render::parseFrameSize(o.size);
     render::Lod lod = render::parseLod(o.lod);
     SIERRA_CHECK(o.tau > 0.0f, "--tau must be positive pixels, got ", o.tau);
     SIERRA_CHECK(o.path == "orbit" || o.path == "flyover", "--path must be orbit or flyover, got ", o.path);

@@ -41,15 +41,6 @@ struct Options {
     bool listDevices = false;
 };
 
-std::pair<int, int> parseSize(const std::string& text) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
-        h <= 0 || w > 16384 || h > 16384)
-        throw Error(msg("--size '", text, "': expected WIDTHxHEIGHT, each 1..16384, e.g. 1920x1080"));
-    return {w, h};
-}
-
 glm::vec3 toVec3(const std::vector<float>& v) { return {v[0], v[1], v[2]}; }
 
 int run(const Options& o) {
@@ -61,7 +52,7 @@ int run(const Options& o) {
                         d.drmFile.empty() ? "" : (" " + d.drmFile).c_str(), d.extensions.c_str());
         return 0;
     }
-    auto [width, height] = parseSize(o.size);
+    auto [width, height] = render::parseFrameSize(o.size);
     render::Lod lod = render::parseLod(o.lod);
     if (!(o.tau > 0.0f)) throw Error(msg("--tau must be positive pixels, got ", o.tau));
 
@@ -193,7 +184,7 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
         if (!rawSize.empty()) {
-            auto [w, h] = parseSize(rawSize);
+            auto [w, h] = render::parseFrameSize(rawSize, "--raw-size");
             o.source.rawWidth = w;
             o.source.rawHeight = h;
         }

@@ -75,6 +75,16 @@ std::string mapLog(const std::string& log, const std::vector<std::string>& files
     return result;
 }
 
+// The info log of a shader or program, through the matching pair of getters.
+template <typename GetIv, typename GetLog>
+std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
+    GLint length = 0;
+    getIv(object, GL_INFO_LOG_LENGTH, &length);
+    std::string log(size_t(std::max(length, 1)), '\0');
+    getLog(object, GLsizei(log.size()), nullptr, log.data());
+    return log.c_str();  // drop the terminating zero the driver wrote
+}
+
 GLuint compile(GLenum stage, std::string_view file, std::string_view defines) {
     Preprocessed source = preprocess(file, defines);
     GLuint shader = glCreateShader(stage);
@@ -84,12 +94,9 @@ GLuint compile(GLenum stage, std::string_view file, std::string_view defines) {
     GLint ok = 0;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        GLint length = 0;
-        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        glGetShaderInfoLog(shader, length, nullptr, log.data());
+        std::string log = infoLog(shader, glGetShaderiv, glGetShaderInfoLog);
         glDeleteShader(shader);
-        throw Error(msg("shader ", file, " failed to compile:\n", mapLog(log.c_str(), source.files)));
+        throw Error(msg("shader ", file, " failed to compile:\n", mapLog(log, source.files)));
     }
     return shader;
 }
@@ -127,13 +134,8 @@ Program Program::create(const ProgramDesc& desc) {
     }
     GLint ok = 0;
     glGetProgramiv(id, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(id, GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(id, length, nullptr, log.data());
-        throw Error(msg("program ", names, " failed to link:\n", log.c_str()));
-    }
+    if (!ok)
+        throw Error(msg("program ", names, " failed to link:\n", infoLog(id, glGetProgramiv, glGetProgramInfoLog)));
     return program;
 }
 

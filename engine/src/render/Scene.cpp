@@ -7,9 +7,19 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 
 namespace sierra::render {
+
+std::pair<int, int> parseFrameSize(const std::string& text, const std::string& option) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
+        h <= 0 || w > 16384 || h > 16384)
+        throw Error(msg(option, " '", text, "': expected WIDTHxHEIGHT, each 1..16384, e.g. 1920x1080"));
+    return {w, h};
+}
 
 terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description) {
     terrain::Heightfield field;

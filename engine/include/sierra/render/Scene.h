@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 
 namespace sierra::render {
 
@@ -20,6 +21,9 @@ struct TerrainSource {
     float spacing = 0.0f;        // world units between samples; 0 = automatic
     float verticalScale = 0.0f;  // stored height -> world height; 0 = automatic
 };
+
+// Parses "WIDTHxHEIGHT" (each 1..16384); throws sierra::Error naming `option`.
+std::pair<int, int> parseFrameSize(const std::string& text, const std::string& option = "--size");
 
 // The terrain ready for the SBT. Automatic spacing is 1 (SRTM: 90 m for 1201
 // wide tiles, 30 m for 3601), automatic vertical scale makes the relief 20% of
