@@ -17,6 +17,7 @@ in vec3 vWorld;
 out vec4 fragColour;
 
 void main() {
+    if (overPadding(vWorld)) discard;
     vec2 texel = 1.0 / vec2(uSide);
     vec2 uv = (vWorld.xz / uSpacing + 0.5) * texel;
     float h = texture(uHeights, uv).r;

@@ -11,6 +11,12 @@ layout(binding = 2) uniform sampler2D uHeights;
 uniform int uSide;       // samples per side, 2^n + 1
 uniform vec2 uSpacing;   // world distance between samples along x and z
 uniform float uSeaLevel; // world height of the water surface
+uniform vec2 uValidMax;  // world x, z of the last real sample; beyond it lies padding
+
+// True for fragments over the padding added to reach (2^n+1)^2 samples.
+bool overPadding(vec3 world) {
+    return any(greaterThan(world.xz, uValidMax + 1e-3 * uSpacing));
+}
 
 vec3 gridToWorld(ivec2 ij, float height) {
     return vec3(float(ij.x) * uSpacing.x, height, float(ij.y) * uSpacing.y);

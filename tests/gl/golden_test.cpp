@@ -11,6 +11,7 @@
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/Scene.h>
 #include <sierra/render/TerrainRenderer.h>
+#include <sierra/terrain/Padding.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -79,15 +80,16 @@ protected:
     render::DrawStats stats_;
 };
 
-// Mean RGB of a band of rows [y0, y1).
-glm::vec3 meanColour(const gpu::Image& image, int y0, int y1) {
+// Mean RGB of rows [y0, y1) and columns [x0, x1) (default: whole rows).
+glm::vec3 meanColour(const gpu::Image& image, int y0, int y1, int x0 = 0, int x1 = -1) {
+    if (x1 < 0) x1 = image.width;
     glm::dvec3 sum(0.0);
     for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < image.width; ++x) {
+        for (int x = x0; x < x1; ++x) {
             const uint8_t* p = &image.rgba[(size_t(y) * image.width + x) * 4];
             sum += glm::dvec3(p[0], p[1], p[2]);
         }
-    return glm::vec3(sum / double((y1 - y0) * image.width));
+    return glm::vec3(sum / double((y1 - y0) * (x1 - x0)));
 }
 
 TEST_F(Golden, FullGridFrameMatchesReference) {
@@ -170,6 +172,42 @@ TEST_F(Golden, DebugSnapshotDrawsAPanelOverTheFrame) {
         }
     EXPECT_GT(changedInPanel, 120 * 60 / 2) << "no panel drawn";
     EXPECT_EQ(changedElsewhere, 0);
+}
+
+}  // namespace
+
+namespace {
+
+class Padding : public test::GlTest {};
+
+// A 65x33 field padded to 65x65: seen from straight above, the padded half of
+// the square shows sky, the real half shows terrain.
+TEST_F(Padding, PaddedSamplesAreNotDrawn) {
+    terrain::Heightfield real(65, 33, 0.0f);
+    for (int j = 0; j < 33; ++j)
+        for (int i = 0; i < 65; ++i) real.at(i, j) = float(i % 7 + j % 5);
+    terrain::Heightfield field = terrain::padToPowerOfTwoPlusOne(real);
+    ASSERT_EQ(field.width(), 65);
+    auto terrain = render::TerrainRenderer::create({.field = &field, .seaLevel = -100.0f});
+    EXPECT_FLOAT_EQ(terrain.bounds().max.z, 32.0f);
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight});
+    render::Camera camera;
+    camera.position = {32.0f, 120.0f, 32.001f};
+    camera.target = {32.0f, 0.0f, 32.0f};
+    camera.up = {0.0f, 0.0f, -1.0f};  // +z (rows) down the image
+    camera.nearPlane = 1.0f;
+    camera.farPlane = 1000.0f;
+    target.begin(terrain.skyColour());
+    terrain.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full, .fogDensity = 0.0f});
+    gpu::Image image = target.read();
+    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/padding.png", image);
+    glm::vec3 sky = terrain.skyColour() * 255.0f;
+    // Rows 0..32 (real) above the image centre, rows 33..64 (padding) below.
+    int cx = kWidth / 2;
+    glm::vec3 upper = meanColour(image, kHeight / 2 - 50, kHeight / 2 - 10, cx - 60, cx + 60);
+    glm::vec3 lower = meanColour(image, kHeight / 2 + 10, kHeight / 2 + 50, cx - 60, cx + 60);
+    EXPECT_GT(glm::length(upper - sky), 30.0f) << "real samples missing";
+    EXPECT_LT(glm::length(lower - sky), 2.0f) << "padding drawn";
 }
 
 }  // namespace

@@ -52,7 +52,7 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
             scale = 1.0f;
         } else {
             auto [lo, hi] = field.range();
-            float extent = float(field.width() - 1) * spacing;
+            float extent = float(std::max(originalWidth, originalHeight) - 1) * spacing;
             scale = hi > lo ? 0.2f * extent / (hi - lo) : 1.0f;
         }
     }

@@ -45,6 +45,7 @@ float automaticSeaLevel(const terrain::Heightfield& field) {
 struct TerrainUniforms {
     GLint side, spacing, viewProj, eye, lambdaOverTau;
     GLint rampRange, seaLevel, sunDir, skyColour, fogDensity, ambient;
+    GLint validMax;
     GLint colour;  // wire only
     void locate(const gpu::Program& p) {
         side = p.uniform("uSide");
@@ -58,6 +59,7 @@ struct TerrainUniforms {
         skyColour = p.uniform("uSkyColour");
         fogDensity = p.uniform("uFogDensity");
         ambient = p.uniform("uAmbient");
+        validMax = p.uniform("uValidMax");
         colour = p.uniform("uColour");
     }
 };
@@ -69,6 +71,7 @@ struct TerrainRenderer::State {
     float seaLevel = 0.0f;       // stored units
     float worldSeaLevel = 0.0f;  // world units
     glm::vec2 worldRange{0.0f};
+    glm::vec2 validMax{0.0f};  // world x, z of the last real (unpadded) sample
     SceneBounds bounds;
     std::string summary;
     double errorPassMs = 0.0;
@@ -104,6 +107,7 @@ struct TerrainRenderer::State {
         glUniformMatrix4fv(u.viewProj, 1, GL_FALSE, glm::value_ptr(camera.viewProjection(aspect)));
         glUniform3fv(u.eye, 1, glm::value_ptr(camera.position));
         glUniform1f(u.seaLevel, worldSeaLevel);
+        glUniform2fv(u.validMax, 1, glm::value_ptr(validMax));
     }
 };
 
@@ -127,7 +131,18 @@ TerrainRenderer TerrainRenderer::create(const TerrainDesc& desc) {
     state->worldSeaLevel = state->seaLevel * vs;
     state->worldRange = {lo * vs, hi * vs};
     state->bounds.min = {0.0f, lo * vs, 0.0f};
-    state->bounds.max = {float(side - 1) * field.spacingX(), hi * vs, float(side - 1) * field.spacingZ()};
+    // Padding (edge clamped to (2^n+1)^2) lies beyond the last real row and
+    // column: it is refined like the rest but not shown, and the camera frames
+    // only the real samples.
+    glm::ivec2 lastReal{side - 1, side - 1};
+    if (field.hasMask()) {
+        lastReal = {0, 0};
+        for (int j = 0; j < side; ++j)
+            for (int i = 0; i < side; ++i)
+                if (field.valid(i, j)) lastReal = glm::max(lastReal, glm::ivec2(i, j));
+    }
+    state->validMax = {float(lastReal.x) * field.spacingX(), float(lastReal.y) * field.spacingZ()};
+    state->bounds.max = {state->validMax.x, hi * vs, state->validMax.y};
     state->summary = msg(side, "x", side, " samples, spacing ", field.spacingX(), "x", field.spacingZ(),
                          ", heights ", lo * vs, "..", hi * vs, " (world units), sea level ",
                          state->worldSeaLevel);
@@ -255,7 +270,8 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(1.0f, 1.0f);
     }
-    glDrawElements(mode, GLsizei(stats.indices), GL_UNSIGNED_INT, reinterpret_cast<const void*>(byteOffset));
+    GL_CHECK(glDrawElements(mode, GLsizei(stats.indices), GL_UNSIGNED_INT,
+                            reinterpret_cast<const void*>(byteOffset)));
     if (options.wireframe) {
         glDisable(GL_POLYGON_OFFSET_FILL);
         s.setCommon(s.wire, s.wireU, camera, aspect);
@@ -263,7 +279,8 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
         glUniform4f(s.wireU.colour, 0.08f, 0.08f, 0.1f, 1.0f);
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         glDepthFunc(GL_LEQUAL);
-        glDrawElements(mode, GLsizei(stats.indices), GL_UNSIGNED_INT, reinterpret_cast<const void*>(byteOffset));
+        GL_CHECK(glDrawElements(mode, GLsizei(stats.indices), GL_UNSIGNED_INT,
+                                reinterpret_cast<const void*>(byteOffset)));
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
         glDepthFunc(GL_LESS);
     }
