@@ -48,14 +48,15 @@ void BM_ErrorPass(benchmark::State& state) {
 }
 BENCHMARK(BM_ErrorPass)->ArgsProduct({{513, 1025, 2049}, {1, 2}})->Unit(benchmark::kMillisecond);
 
-// Arg 2: epsilon as a fraction of the terrain's relief in thousandths (-1 = full grid).
+// Arg 1: epsilon as a fraction of the terrain's relief in ten-thousandths
+// (5 = 0.05%, 100 = 1%; -1 = full grid). Arg 2: threads.
 void BM_RefineFixed(benchmark::State& state) {
     const int size = int(state.range(0));
     const int threads = int(state.range(2));
     const Terrain& t = terrain(size);
     auto [lo, hi] = t.field.range();
     const float relief = (hi - lo) * t.field.verticalScale();
-    const float eps = state.range(1) < 0 ? -1.0f : relief * float(state.range(1)) / 1000.0f;
+    const float eps = state.range(1) < 0 ? -1.0f : relief * float(state.range(1)) / 10000.0f;
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
     sbt::StripMesh mesh;
     refiner.refineFixed(eps, mesh);  // grow buffers once
@@ -69,7 +70,7 @@ void BM_RefineFixed(benchmark::State& state) {
     state.counters["threads"] = threads;
 }
 BENCHMARK(BM_RefineFixed)
-    ->ArgsProduct({{1025, 2049}, {-1, 0, 1, 5}, {1, 2}})
+    ->ArgsProduct({{1025, 2049}, {-1, 0, 5, 10, 20, 50, 100}, {1, 2}})
     ->Unit(benchmark::kMillisecond);
 
 // A camera 1/8 of the extent above the middle of the south edge, looking at the

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
@@ -265,6 +266,33 @@ TEST(SbtFixed, MeshesMatchBruteForceAndConform) {
                 EXPECT_NEAR(sbt::maxVerticalDistance(cs.f, tris), 0.0, 1e-3);
             }
         }
+    }
+}
+
+// The refiner decides splits on 16-bit keys and reads the float error only when
+// the key of epsilon ties; epsilons equal to errors, one float either side of
+// them, and the special values must still give exactly the float rule.
+TEST(SbtFixed, KeyTiesFallBackToTheExactError) {
+    Heightfield f = fractal(129, 21);
+    const int side = f.width();
+    auto ve = sbt::computeVertexErrors(f);
+    sbt::Refiner refiner(f, ve, {.threads = 2});
+    std::vector<float> epsilons = {std::numeric_limits<float>::quiet_NaN(),
+                                   std::numeric_limits<float>::infinity(), -0.0f,
+                                   -std::numeric_limits<float>::infinity()};
+    std::mt19937 rng(3);
+    for (int k = 0; k < 12; ++k) {
+        float e = ve.error[rng() % ve.error.size()];
+        epsilons.insert(epsilons.end(), {e, std::nextafter(e, 0.0f), std::nextafter(e, INFINITY)});
+    }
+    sbt::StripMesh mesh;
+    for (float eps : epsilons) {
+        SCOPED_TRACE("eps " + std::to_string(eps));
+        refiner.refineFixed(eps, mesh);
+        std::vector<Node> expected;
+        leaves(side, [&](uint32_t m, int) { return ve.error[m] > eps; }, expected);
+        ASSERT_EQ(mesh.triangleCount, int64_t(expected.size()));
+        ASSERT_EQ(sortedTris(sbt::decodeStrip(mesh.indices)), sortedTris(expected));
     }
 }
 

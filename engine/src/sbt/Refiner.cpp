@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <type_traits>
@@ -18,6 +19,7 @@ struct Refiner::Op {
     uint8_t level;   // level of the triangle, or the parity of an append
     uint8_t mask;    // planes still to test below (view mode)
     uint64_t a, q, b;  // vertices (linear index in fixed mode, packed (i, j) in view mode)
+    uint64_t node;     // tree index of the triangle (see splitKeys_), subtrees only
 };
 
 struct Refiner::Chunk {
@@ -32,6 +34,21 @@ namespace {
 constexpr unsigned kAllPlanes = 0x3f;
 constexpr unsigned kCulled = 0x80;
 
+// Split keys: the top 16 bits of a non-negative float's bit pattern (sign 0,
+// 8 exponent bits, 7 mantissa bits: bfloat16 rounded towards zero). The map is
+// monotone, so for e, eps >= 0:  key(e) > key(eps) implies e > eps and
+// key(e) < key(eps) implies e <= eps; only equal keys need the exact float.
+inline uint32_t floatKey(float x) { return std::bit_cast<uint32_t>(x) >> 16; }
+
+// The key epsilon is compared with, as a signed int so that "everything
+// splits" (eps < 0) and "nothing splits" (eps NaN) need no special case in the
+// hot loop: -1 is below every key, 0x10000 above every key.
+inline int32_t epsilonKey(float eps) {
+    if (std::isnan(eps)) return 0x10000;
+    if (eps < 0.0f) return -1;
+    return int32_t(floatKey(eps + 0.0f));  // + 0.0f: -0 becomes +0
+}
+
 // The recursion state of one chunk. kView selects the vertex representation:
 // a linear index j * side + i in fixed mode (the midpoint of a and b is
 // (a + b) / 2 because both coordinate sums are even), packed (i | j << 32) in
@@ -44,9 +61,12 @@ struct Walker {
     const float* err;
     const float* rad;
     const float* height;
+    const uint16_t* keys;  // splitKeys_ (fixed mode)
+    uint64_t splitNodes;   // triangles of levels 0..2n-1 = size of keys
     uint32_t side;
     int finest;
     float eps;
+    int32_t epsKey;
     double ex, ey, ez, sx, sz, vs, kE;
     Plane planes[6];
 
@@ -169,12 +189,60 @@ struct Walker {
         ++leaves;
     }
 
+    // Fixed mode on the split keys: does triangle `node` (tree index, see
+    // Refiner::splitKeys_) with hypotenuse (a, b) split? The exact float is read
+    // only when the keys tie. kAll: epsilon < 0, every triangle splits.
+    template <bool kAll>
+    inline bool splits(uint64_t node, uint32_t a, uint32_t b) const {
+        if constexpr (kAll) return true;
+        const int32_t k = keys[node];
+        return k > epsKey || (k == epsKey && err[(a + b) >> 1] > eps);
+    }
+    inline void leaf(uint32_t q, int l) {
+        append(q, l & 1);
+        ++leaves;
+    }
+    // Triangle `node` with entry a, apex q, exit b at level l.
+    void refineKeyed(uint32_t a, uint32_t q, uint32_t b, int l, uint64_t node) {
+        ensure(4);
+        if (epsKey < 0) {
+            if (node < splitNodes) descend<true>(a, q, b, l, node);
+            else leaf(q, l);
+        } else {
+            if (node < splitNodes && splits<false>(node, a, b)) descend<false>(a, q, b, l, node);
+            else leaf(q, l);
+        }
+    }
+    // A triangle that splits: children that are leaves are emitted here rather
+    // than through a call (half of all visited triangles are leaves).
+    template <bool kAll>
+    void descend(uint32_t a, uint32_t q, uint32_t b, int l, uint64_t node) {
+        const uint32_t m = (a + b) >> 1;
+        const uint64_t left = 2 * node + 2, right = left + 1;
+        const bool inner = right < splitNodes;  // children can split
+        ensure(4);
+        if (inner && splits<kAll>(left, a, q))
+            descend<kAll>(a, m, q, l + 1, left);
+        else
+            leaf(m, l + 1);
+        ensure(6);
+        append(q, l & 1);
+        if (inner && splits<kAll>(right, q, b))
+            descend<kAll>(q, m, b, l + 1, right);
+        else
+            leaf(m, l + 1);
+    }
+
     void execute(const Refiner::Op* op, const Refiner::Op* end) {
         for (; op != end; ++op) {
             switch (op->kind) {
                 case Refiner::Op::kSubtree:
                     if (!kView && needStart) start(index(V(op->a)));
-                    refine(V(op->a), V(op->q), V(op->b), op->level, op->mask);
+                    if (!kView && keys)
+                        refineKeyed(uint32_t(op->a), uint32_t(op->q), uint32_t(op->b), op->level,
+                                    op->node);
+                    else
+                        refine(V(op->a), V(op->q), V(op->b), op->level, op->mask);
                     break;
                 case Refiner::Op::kLeaf:
                     if (needStart) start(index(V(op->a)));
@@ -201,13 +269,13 @@ struct TopWalker {
     std::vector<Refiner::Op>* ops;
 
     void push(Refiner::Op::Kind kind, int level, unsigned mask, uint64_t a, uint64_t q,
-              uint64_t b) {
-        ops->push_back(Refiner::Op{kind, uint8_t(level), uint8_t(mask), a, q, b});
+              uint64_t b, uint64_t node = 0) {
+        ops->push_back(Refiner::Op{kind, uint8_t(level), uint8_t(mask), a, q, b, node});
     }
 
-    void refine(V a, V q, V b, int l, unsigned mask) {
+    void refine(V a, V q, V b, int l, unsigned mask, uint64_t node) {
         if (l == chunkLevel) {
-            push(Refiner::Op::kSubtree, l, mask, a, q, b);
+            push(Refiner::Op::kSubtree, l, mask, a, q, b, node);
             return;
         }
         if (l < w->finest) {
@@ -232,9 +300,9 @@ struct TopWalker {
                 split = w->err[mi] > w->eps;
             }
             if (split) {
-                refine(a, m, q, l + 1, mask);
+                refine(a, m, q, l + 1, mask, 2 * node + 2);
                 push(Refiner::Op::kAppend, l & 1, 0, w->index(q), 0, 0);
-                refine(q, m, b, l + 1, mask);
+                refine(q, m, b, l + 1, mask, 2 * node + 3);
                 return;
             }
         }
@@ -300,6 +368,48 @@ Refiner::Refiner(const terrain::Heightfield& field, const VertexErrors& errors, 
     side_ = field.width();
     chunkLevel_ = desc.chunkLevel >= 0 ? std::min(desc.chunkLevel, 2 * n - 1)
                                        : std::clamp(2 * n - 10, 0, 6);
+    buildSplitKeys();
+}
+
+// Keys of every triangle of levels 0..2n-1 in tree order: a top-down pass over
+// the whole tree, subtrees at a fixed level spread over the threads.
+void Refiner::buildSplitKeys() {
+    const float* err = errors_->error.data();
+    for (float e : errors_->error)
+        if (std::isnan(e) || std::signbit(e)) return;  // keys would not be monotone: exact path
+    const uint64_t nodes = (uint64_t(2) << (2 * n_)) - 2;
+    splitKeys_.resize(nodes);
+    uint16_t* keys = splitKeys_.data();
+    auto fill = [&](auto&& self, uint32_t a, uint32_t q, uint32_t b, uint64_t node) -> void {
+        if (node >= nodes) return;
+        const uint32_t m = (a + b) >> 1;
+        keys[node] = uint16_t(floatKey(err[m]));
+        self(self, a, m, q, 2 * node + 2);
+        self(self, q, m, b, 2 * node + 3);
+    };
+    // the top levels serially, recording the triangles of level `cut`
+    const int cut = std::min(2 * n_ - 1, 6);
+    struct Sub { uint32_t a, q, b; uint64_t node; };
+    std::vector<Sub> subs;
+    auto top = [&](auto&& self, uint32_t a, uint32_t q, uint32_t b, int l, uint64_t node) -> void {
+        if (l == cut) {
+            subs.push_back({a, q, b, node});
+            return;
+        }
+        const uint32_t m = (a + b) >> 1;
+        keys[node] = uint16_t(floatKey(err[m]));
+        self(self, a, m, q, l + 1, 2 * node + 2);
+        self(self, q, m, b, l + 1, 2 * node + 3);
+    };
+    const uint32_t side = uint32_t(side_), S = side - 1;
+    top(top, 0, S * side, S * side + S, 0, 0);
+    top(top, S * side + S, S, 0, 0, 1);
+    parallelChunks(
+        0, int64_t(subs.size()), int(subs.size()),
+        [&](int64_t lo, int64_t hi, int) {
+            for (int64_t k = lo; k < hi; ++k) fill(fill, subs[k].a, subs[k].q, subs[k].b, subs[k].node);
+        },
+        threads_ > 0 ? threads_ : defaultThreadCount());
 }
 
 Refiner::~Refiner() = default;
@@ -325,6 +435,9 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     proto.side = uint32_t(side_);
     proto.finest = 2 * n_;
     proto.eps = epsilon;
+    proto.epsKey = epsilonKey(epsilon);
+    proto.keys = splitKeys_.empty() ? nullptr : splitKeys_.data();
+    proto.splitNodes = splitKeys_.size();
     unsigned rootMask = 0;
     if constexpr (kView) {
         proto.ex = view->eye[0], proto.ey = view->eye[1], proto.ez = view->eye[2];
@@ -348,9 +461,9 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
 
     ops_.clear();
     TopWalker<kView> top{&proto, chunkLevel_, &ops_};
-    top.refine(v00, v0S, vSS, 0, rootMask);
+    top.refine(v00, v0S, vSS, 0, rootMask, 0);
     top.push(Op::kAppend, 0, 0, proto.index(vSS), 0, 0);
-    top.refine(vSS, vS0, v00, 0, rootMask);
+    top.refine(vSS, vS0, v00, 0, rootMask, 1);
     top.push(Op::kAppend, 0, 0, proto.index(v00), 0, 0);
 
     // Chunks: cut before every subtree op (the ops before the first form chunk 0).

@@ -109,6 +109,7 @@ public:
 private:
     template <bool kView>
     void run(const ViewParams* view, float epsilon, StripMesh& out);
+    void buildSplitKeys();
 
     const terrain::Heightfield* field_;
     const VertexErrors* errors_;
@@ -118,6 +119,16 @@ private:
     int chunkLevel_ = 0;
     std::vector<Op> ops_;
     std::vector<Chunk> chunks_;
+    // Split keys for refineFixed: per triangle of levels 0..2n-1, the top 16 bits
+    // of its split vertex's error (a monotone, conservative bfloat16), in tree
+    // order: the two level-0 triangles are nodes 0 and 1, the children of node k
+    // are 2k + 2 (left) and 2k + 3 (right), so every level is contiguous and in
+    // Sierpinski order, and the recursion reads each level front to back instead
+    // of hopping across the row-major error array. A key above (below) the key of
+    // epsilon decides the split exactly; equal keys fall back to the float error.
+    // Memory: 2 * (2^(2n+1) - 2) bytes, about 4 bytes per grid sample, on top of
+    // the 8 of VertexErrors. Empty (exact path only) when an error is NaN or negative.
+    std::vector<uint16_t> splitKeys_;
 };
 
 // Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate
