@@ -48,25 +48,22 @@ void parallelChunks(int64_t begin, int64_t end, int chunkCount,
         }
         return;
     }
-    std::atomic<int> next{0};
+    // OpenMP keeps its worker threads between calls, so a frame pays no thread
+    // creation. Chunks are handed out one at a time (dynamic schedule); an
+    // exception cannot leave a parallel region, so the first one is kept and
+    // rethrown after it.
     std::exception_ptr failure;
     std::mutex failureMutex;
-    auto worker = [&] {
-        for (int c = next++; c < chunkCount; c = next++) {
-            try {
-                auto [lo, hi] = chunkRange(c);
-                body(lo, hi, c);
-            } catch (...) {
-                std::lock_guard lock(failureMutex);
-                if (!failure) failure = std::current_exception();
-            }
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (int c = 0; c < chunkCount; ++c) {
+        try {
+            auto [lo, hi] = chunkRange(c);
+            body(lo, hi, c);
+        } catch (...) {
+            std::lock_guard lock(failureMutex);
+            if (!failure) failure = std::current_exception();
         }
-    };
-    std::vector<std::thread> pool;
-    pool.reserve(threads - 1);
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
+    }
     if (failure) std::rethrow_exception(failure);
 }
 

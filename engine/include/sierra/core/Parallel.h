@@ -1,5 +1,5 @@
 #pragma once
-// parallelFor over an index range on std::threads. The range is cut into
+// parallelFor over an index range on OpenMP's thread pool. The range is cut into
 // contiguous chunks, one per thread, so per-chunk results joined in chunk order
 // do not depend on scheduling.
 
