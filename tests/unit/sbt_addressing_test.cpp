@@ -184,7 +184,9 @@ TEST(SbtAddressing, SierpinskiTraversalIsAContinuousCurve) {
                 int shared = 0;
                 for (int a = 0; a < 3; ++a)
                     for (int b = 0; b < 3; ++b) shared += ad.vertex(t, a) == ad.vertex(u, b);
-                if (order.size() > 1) EXPECT_EQ(shared, 2) << "consecutive leaves share an edge";
+                if (order.size() > 1) {
+                    EXPECT_EQ(shared, 2) << "consecutive leaves share an edge";
+                }
             }
         }
     }

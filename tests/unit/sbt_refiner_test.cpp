@@ -102,7 +102,9 @@ void expectConforming(const std::vector<Tri>& tris, int side, bool full) {
             isVertex[t[k]] = 1;
         }
     }
-    if (full) EXPECT_EQ(area2, 2 * int64_t(S) * S) << "areas sum to the square";
+    if (full) {
+        EXPECT_EQ(area2, 2 * int64_t(S) * S) << "areas sum to the square";
+    }
     for (const auto& [e, count] : directed) {
         ASSERT_EQ(count, 1) << "an edge used twice in the same direction";
         if (directed.count({e.second, e.first})) continue;
@@ -256,8 +258,9 @@ TEST(SbtFixed, MeshesMatchBruteForceAndConform) {
             expectConsecutiveShareEdge(mesh.indices);
             // every leaf's split vertex is within eps; every split one above it
             for (const Node& nd : expected) {
-                if (nd.level < 2 * std::countr_zero(unsigned(side - 1)))
+                if (nd.level < 2 * std::countr_zero(unsigned(side - 1))) {
                     EXPECT_LE(ve.error[(nd.a + nd.b) / 2], eps);
+                }
             }
             std::vector<Node> parents;
             leaves(side, [&](uint32_t m, int) { return ve.error[m] > eps; }, parents);
@@ -441,7 +444,9 @@ TEST(SbtView, RandomCamerasConformBoundErrorAndCullOnlyOutside) {
                                  (p[2] - vp.eye[2]) * (p[2] - vp.eye[2]));
             double r = ve.radius[m];
             ASSERT_GT(d, r - 1e-6) << "an inactive vertex cannot hold the eye in its sphere";
-            if (d > r) EXPECT_LE(vp.lambda * ve.error[m] / (d - r), vp.tau * (1 + 1e-5));
+            if (d > r) {
+                EXPECT_LE(vp.lambda * ve.error[m] / (d - r), vp.tau * (1 + 1e-5));
+            }
         }
         // culling: a subset of the same mesh; what is missing is outside a plane
         vp.cull = true;
