@@ -24,7 +24,7 @@ std::pair<int, int> parseFrameSize(const std::string& text, const std::string& o
 terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description) {
     terrain::Heightfield field;
     std::string what;
-    bool srtm = false;
+    bool metric = false;
     if (source.heightmap.empty()) {
         field = terrain::generateDiamondSquare(
             {.size = source.generateSize, .seed = source.seed, .roughness = source.roughness});
@@ -35,7 +35,9 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
                                          {.rawWidth = source.rawWidth, .rawHeight = source.rawHeight});
         std::string ext = std::filesystem::path(source.heightmap).extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-        srtm = ext == ".hgt";
+        // SRTM and GeoTIFF carry metres: their loaders set the ground spacing,
+        // and heights need no exaggeration.
+        metric = ext == ".hgt" || ext == ".tif" || ext == ".tiff";
         what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
     }
     int originalWidth = field.width(), originalHeight = field.height();
@@ -43,12 +45,11 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
     if (field.width() != originalWidth || field.height() != originalHeight)
         what += msg(", padded to ", field.width(), "x", field.height());
 
-    float spacing = source.spacing;
-    if (spacing <= 0.0f) spacing = srtm ? (originalWidth == 1201 ? 90.0f : 30.0f) : 1.0f;
-    field.setSpacing(spacing, spacing);
+    if (source.spacing > 0.0f) field.setSpacing(source.spacing, source.spacing);
+    float spacing = std::max(field.spacingX(), field.spacingZ());
     float scale = source.verticalScale;
     if (scale <= 0.0f) {
-        if (srtm) {
+        if (metric) {
             scale = 1.0f;
         } else {
             auto [lo, hi] = field.range();
@@ -57,7 +58,7 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
         }
     }
     field.setVerticalScale(scale);
-    what += msg(", spacing ", spacing, ", vertical scale ", scale);
+    what += msg(", spacing ", field.spacingX(), "x", field.spacingZ(), ", vertical scale ", scale);
     if (description) *description = what;
     return field;
 }

@@ -430,7 +430,11 @@ Heightfield loadGdal(const std::string& path) {
     };
     std::unique_ptr<GDALDataset, Closer> data(
         GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-    if (!data) throw Error(msg("cannot open ", path, " with GDAL: ", CPLGetLastErrorMsg()));
+    if (!data) {
+        std::string reason = CPLGetLastErrorMsg();
+        throw Error(msg("cannot open ", path, " with GDAL: ",
+                        reason.empty() ? "not a raster format GDAL recognises" : reason));
+    }
     const int width = data->GetRasterXSize(), height = data->GetRasterYSize();
     checkSize(path, width, height, "GeoTIFF");
     GDALRasterBand* band = data->GetRasterBand(1);
