@@ -368,7 +368,6 @@ Refiner::Refiner(const terrain::Heightfield& field, const VertexErrors& errors, 
     side_ = field.width();
     chunkLevel_ = desc.chunkLevel >= 0 ? std::min(desc.chunkLevel, 2 * n - 1)
                                        : std::clamp(2 * n - 10, 0, 6);
-    buildSplitKeys();
 }
 
 // Keys of every triangle of levels 0..2n-1 in tree order: a top-down pass over
@@ -414,7 +413,15 @@ void Refiner::buildSplitKeys() {
 
 Refiner::~Refiner() = default;
 
-void Refiner::refineFixed(float epsilon, StripMesh& out) { run<false>(nullptr, epsilon, out); }
+void Refiner::refineFixed(float epsilon, StripMesh& out) {
+    // The keys serve only this mode: a refiner used for views never pays their
+    // 4 bytes per sample.
+    if (!keysBuilt_ && epsilon >= 0.0f) {  // epsilon < 0 splits everything: no keys read
+        buildSplitKeys();
+        keysBuilt_ = true;
+    }
+    run<false>(nullptr, epsilon, out);
+}
 
 void Refiner::refineView(const ViewParams& view, StripMesh& out) {
     SIERRA_CHECK(view.tau > 0 && std::isfinite(view.tau), "refineView: tau must be > 0 pixels, got ",

@@ -129,6 +129,7 @@ private:
     // Memory: 2 * (2^(2n+1) - 2) bytes, about 4 bytes per grid sample, on top of
     // the 8 of VertexErrors. Empty (exact path only) when an error is NaN or negative.
     std::vector<uint16_t> splitKeys_;
+    bool keysBuilt_ = false;  // built by the first refineFixed() with epsilon >= 0
 };
 
 // Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate
