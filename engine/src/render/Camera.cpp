@@ -2,7 +2,10 @@
 
 #include <sierra/core/Error.h>
 
+#include <sierra/sbt/Refiner.h>
+
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -16,11 +19,13 @@ glm::mat4 Camera::projection(float aspect) const {
 }
 
 std::array<glm::vec4, 6> Camera::frustumPlanes(float aspect) const {
-    // Gribb-Hartmann extraction from the rows of the clip matrix.
-    glm::mat4 m = glm::transpose(viewProjection(aspect));
-    std::array<glm::vec4, 6> planes = {m[3] + m[0], m[3] - m[0], m[3] + m[1],
-                                       m[3] - m[1], m[3] + m[2], m[3] - m[2]};
-    for (glm::vec4& p : planes) p /= glm::length(glm::vec3(p));
+    // The SBT's extraction (Gribb-Hartmann, same plane order), so the planes the
+    // renderer reasons with are exactly the ones refinement culls by.
+    glm::mat4 m = viewProjection(aspect);
+    std::array<sbt::Plane, 6> sbtPlanes = sbt::frustumPlanes(glm::value_ptr(m));
+    std::array<glm::vec4, 6> planes;
+    for (size_t k = 0; k < 6; ++k)
+        planes[k] = {sbtPlanes[k].a, sbtPlanes[k].b, sbtPlanes[k].c, sbtPlanes[k].d};
     return planes;
 }
 
