@@ -118,6 +118,11 @@ TerrainRenderer TerrainRenderer::create(const TerrainDesc& desc) {
     SIERRA_CHECK(field.width() == field.height() && side >= 3 && ((side - 1) & (side - 2)) == 0,
                  "the terrain renderer needs a (2^n+1)^2 grid, got ", field.width(), "x",
                  field.height(), " (pad it with padToPowerOfTwoPlusOne)");
+    GLint maxTexture = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    SIERRA_CHECK(side <= maxTexture, "a ", side, "x", side, " grid needs ", side,
+                 "-texel textures; this GL (", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+                 ") allows at most ", maxTexture, " per side");
     auto state = std::make_unique<State>();
     state->field = &state->surface;
     state->side = side;
