@@ -5,6 +5,7 @@
 #include "Commands.h"
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
 #include <sierra/core/Log.h>
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
@@ -17,7 +18,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <fstream>
 #include <memory>
 
 namespace sierra::apps {
@@ -202,14 +202,7 @@ void runFrames(const FramesOptions& o) {
                             {"bytes", r.bytes}, {"psnr", o.compareFull ? r.psnr : 0.0}});
     j["per_frame"] = perFrame;
     if (!o.json.empty()) {
-        std::string temp = o.json + ".tmp";
-        {
-            std::ofstream out(temp);
-            if (!out) throw Error(msg("cannot write ", o.json));
-            out << j.dump(2) << "\n";
-            if (!out) throw Error(msg("cannot write ", o.json));
-        }
-        if (std::rename(temp.c_str(), o.json.c_str()) != 0) throw Error(msg("cannot write ", o.json));
+        writeFileAtomic(o.json, j.dump(2) + "\n");
         std::printf("wrote %s\n", o.json.c_str());
     }
 }

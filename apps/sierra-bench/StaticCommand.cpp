@@ -9,19 +9,17 @@
 #include "Commands.h"
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/Scene.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
-#include <sierra/terrain/FileIO.h>
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,35 +58,15 @@ void writeObj(const std::string& path, const terrain::Heightfield& field,
                 order.push_back(v);
                 remap[v] = uint32_t(order.size());
             }
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(msg("cannot write ", path, ": cannot create ", tmp));
-        out << "# sierra-bench static: fixed-error SBT mesh, " << tris.size() << " triangles\n";
-        char line[96];
+    writeFileAtomic(path, [&](std::FILE* out) {
+        std::fprintf(out, "# sierra-bench static: fixed-error SBT mesh, %zu triangles\n", tris.size());
         for (uint32_t v : order) {
             int i = int(v % uint32_t(side)), j = int(v / uint32_t(side));
-            int len = std::snprintf(line, sizeof line, "v %.6g %.6g %.6g\n", i * double(field.spacingX()),
-                                    double(field.worldHeight(i, j)), j * double(field.spacingZ()));
-            out.write(line, len);
+            std::fprintf(out, "v %.6g %.6g %.6g\n", i * double(field.spacingX()), double(field.worldHeight(i, j)),
+                         j * double(field.spacingZ()));
         }
-        for (const auto& t : tris) {
-            int len = std::snprintf(line, sizeof line, "f %u %u %u\n", remap[t[0]], remap[t[1]], remap[t[2]]);
-            out.write(line, len);
-        }
-        out.flush();
-        if (!out) {
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            throw Error(msg("cannot write ", path, ": write to ", tmp, " failed (disk full?)"));
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw Error(msg("cannot write ", path, ": rename from ", tmp, " failed: ", ec.message()));
-    }
+        for (const auto& t : tris) std::fprintf(out, "f %u %u %u\n", remap[t[0]], remap[t[1]], remap[t[2]]);
+    });
 }
 
 void runStatic(const StaticOptions& o) {
@@ -170,7 +148,7 @@ void runStatic(const StaticOptions& o) {
             {"max_vertical_distance", maxDistance},
         };
         std::string text = j.dump(2) + "\n";
-        terrain::writeFileAtomic(o.json, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+        writeFileAtomic(o.json, text);
     }
 }
 

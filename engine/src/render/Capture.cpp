@@ -1,6 +1,7 @@
 #include <sierra/render/Capture.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -9,7 +10,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <unistd.h>
 
 namespace sierra::render {
 
@@ -25,16 +25,15 @@ void writePng(const std::string& path, const gpu::Image& image) {
     std::vector<uint8_t> rgb(size_t(image.width) * image.height * 3);
     for (size_t p = 0, n = size_t(image.width) * image.height; p < n; ++p)
         for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = image.rgba[p * 4 + c];
-    std::string temp = path + ".tmp-" + std::to_string(::getpid());
-    if (!stbi_write_png(temp.c_str(), image.width, image.height, 3, rgb.data(), image.width * 3)) {
-        std::remove(temp.c_str());
-        throw Error(msg("cannot write ", path, ": writing the PNG failed (is the directory writable?)"));
-    }
-    fs::rename(temp, target, ec);
-    if (ec) {
-        std::remove(temp.c_str());
-        throw Error(msg("cannot write ", path, ": ", ec.message()));
-    }
+    std::vector<uint8_t> png;
+    auto append = [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<uint8_t>*>(context);
+        const auto* bytes = static_cast<const uint8_t*>(data);
+        out->insert(out->end(), bytes, bytes + size);
+    };
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, rgb.data(), image.width * 3))
+        throw Error(msg("cannot write ", path, ": PNG encoding failed"));
+    writeFileAtomic(path, png);
 }
 
 gpu::Image readPng(const std::string& path) {
