@@ -133,9 +133,8 @@ int run(const Options& o) {
             {"camera", msg(cam.position.x, ", ", cam.position.y, ", ", cam.position.z)},
         };
         panel.frameTimesMs = frameMs;
-        target.begin(terrain.skyColour());
-        terrain.draw(cam, width, height, draw);
-        target.resolve();
+        // The pbuffer still holds the last frame (its read-back was queued
+        // before): the panel is drawn over it, with no second render.
         overlay.draw(panel, width, height);
         render::writePng(o.debugOut, gpu::readFramebuffer(width, height));
         log::info("wrote debug snapshot ", o.debugOut);
