@@ -12,7 +12,7 @@
 #include <sierra/core/Files.h>
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
-#include <sierra/render/Scene.h>
+#include <sierra/scene/Terrain.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
 
@@ -80,16 +80,16 @@ void runStatic(const StaticOptions& o) {
     // The same loading, padding and generation as every Sierra app, but heights
     // stay in the file's units unless --vertical-scale says otherwise: the
     // error bound is then in the data's own units.
-    render::TerrainSource terrainSource{.heightmap = o.heightmap,
-                                        .generateSize = o.generate ? o.generate : 1025,
-                                        .seed = o.seed,
-                                        .roughness = o.roughness,
-                                        .rawWidth = o.rawWidth,
-                                        .rawHeight = o.rawHeight,
-                                        .spacing = o.spacing,
-                                        .verticalScale = o.verticalScale};
+    scene::TerrainSource terrainSource{.heightmap = o.heightmap,
+                                       .generateSize = o.generate ? o.generate : 1025,
+                                       .seed = o.seed,
+                                       .roughness = o.roughness,
+                                       .rawWidth = o.rawWidth,
+                                       .rawHeight = o.rawHeight,
+                                       .spacing = o.spacing,
+                                       .verticalScale = o.verticalScale};
     std::string source;
-    terrain::Heightfield field = render::loadTerrain(terrainSource, &source);
+    terrain::Heightfield field = scene::loadTerrain(terrainSource, &source);
     const int inputW = field.width(), inputH = field.height();
     const int threads = o.threads > 0 ? o.threads : defaultThreadCount();
 
