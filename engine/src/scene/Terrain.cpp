@@ -11,6 +11,8 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <vector>
 
 namespace sierra::scene {
 namespace {
@@ -102,15 +104,9 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
     } else {
         field = terrain::loadHeightfield(source.heightmap,
                                          {.rawWidth = source.rawWidth, .rawHeight = source.rawHeight});
-        std::string ext = std::filesystem::path(source.heightmap).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-        // SRTM and GeoTIFF carry metres: their loaders set the ground spacing,
-        // and heights need no exaggeration.
-        metric = ext == ".hgt" || ext == ".tif" || ext == ".tiff";
         what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
     }
-    if (source.heightUnits == HeightUnits::Metres) metric = true;
-    if (source.heightUnits == HeightUnits::None) metric = false;
+    metric = metricHeights(source);
     int originalWidth = field.width(), originalHeight = field.height();
     field = terrain::padToPowerOfTwoPlusOne(field);
     if (field.width() != originalWidth || field.height() != originalHeight)
@@ -132,6 +128,41 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
     what += msg(", spacing ", field.spacingX(), "x", field.spacingZ(), ", vertical scale ", scale);
     if (description) *description = what;
     return field;
+}
+
+bool metricHeights(const TerrainSource& source) {
+    if (source.heightUnits != HeightUnits::Auto) return source.heightUnits == HeightUnits::Metres;
+    if (source.heightmap.empty()) return false;
+    std::string ext = std::filesystem::path(source.heightmap).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    // SRTM and GeoTIFF carry metres: their loaders set the ground spacing, and
+    // heights need no exaggeration.
+    return ext == ".hgt" || ext == ".tif" || ext == ".tiff";
+}
+
+float heightQuantile(const terrain::Heightfield& field, double share) {
+    SIERRA_CHECK(share >= 0.0 && share <= 1.0, "a height quantile needs a share in [0, 1], got ", share);
+    std::vector<float> heights;
+    heights.reserve(size_t(field.sampleCount()));
+    for (int j = 0; j < field.height(); ++j)
+        for (int i = 0; i < field.width(); ++i)
+            if (field.valid(i, j)) heights.push_back(field.at(i, j));
+    if (heights.empty()) return 0.0f;
+    auto nth = heights.begin() + std::ptrdiff_t(std::min(heights.size() - 1, size_t(double(heights.size()) * share)));
+    std::nth_element(heights.begin(), nth, heights.end());
+    return *nth;
+}
+
+float resolveSeaLevel(const TerrainSource& source, const terrain::Heightfield& field) {
+    constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
+    switch (source.seaLevel.mode) {
+    case SeaLevel::Mode::Value: return source.seaLevel.value;
+    case SeaLevel::Mode::None: return kNone;
+    case SeaLevel::Mode::Auto: break;
+    }
+    if (source.heightmap.empty()) return heightQuantile(field, 0.3);
+    if (metricHeights(source) && field.range().first < 0.0f) return 0.0f;
+    return kNone;
 }
 
 }  // namespace sierra::scene

@@ -83,4 +83,18 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
 // module cannot honour yet.
 terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description = nullptr);
 
+// True when the source's heights are metres: height units `m`, or automatic
+// with an SRTM (.hgt) or GeoTIFF file.
+bool metricHeights(const TerrainSource& source);
+
+// The height below which `share` (0..1) of the valid samples lie.
+float heightQuantile(const terrain::Heightfield& field, double share);
+
+// The sea level to draw, in stored height units, or NaN for no water. A value
+// is taken as given; automatic water appears only on generated terrain (the
+// height below which 30% of the samples lie, a coast on any fractal) and on
+// metric data that reaches below 0 (topobathymetry: sea level 0); a loaded
+// unitless heightmap, or land above 0 m, gets none.
+float resolveSeaLevel(const TerrainSource& source, const terrain::Heightfield& field);
+
 }  // namespace sierra::scene
