@@ -126,6 +126,9 @@ TEST_F(SceneOptionsTest, RemainingOptionsLandInTheirFields) {
     EXPECT_FALSE(s.path.range);
     EXPECT_EQ(parse({"--sea-level", "auto"}).terrain.seaLevel.mode, SeaLevel::Mode::Auto);
     EXPECT_EQ(parse({"--height-units", "none"}).terrain.heightUnits, HeightUnits::None);
+    // Given twice, the last one counts.
+    EXPECT_EQ(parse({"--tau", "1", "--tau", "2"}).lod.tau, 2.0f);
+    EXPECT_EQ(parse({"--fog", "0.5", "--fog", "auto"}).lighting.fog, std::nullopt);
 }
 
 TEST_F(SceneOptionsTest, CommandLineOverridesOnlyWhatItGives) {

@@ -112,7 +112,8 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             "Heightmap to load: .png (8/16-bit grey), .pgm, .r16/.r32 (with --raw-size), .hgt, .npy (.tif with GDAL)",
             g, "FILE", d.terrain.heightmap.empty() ? "" : d.terrain.heightmap, 1,
             [](Scene& s, Words w) { s.terrain.heightmap = w[0]; });
-        heightmap->check(CLI::ExistingFile);
+        // The check alone, without its "FILE" appended to the type name in --help.
+        heightmap->check(CLI::Validator(CLI::ExistingFile).description(""));
         auto* generate = add("--generate", "Generate a diamond-square terrain of N x N samples, N = 2^n + 1", g, "N",
                              msg(d.terrain.generateSize), 1, [](Scene& s, Words w) {
                                  s.terrain.heightmap.clear();
