@@ -36,11 +36,34 @@ struct Ground {
     bool water;    // below sea level (with water on)
 };
 
+// The height at a ground position by a cubic B-spline through the samples
+// (four bilinear fetches): contours such as the coast come out round at any
+// grid resolution, where bilinear interpolation draws them as cell-sized
+// diamonds and squares.
+float smoothHeight(vec2 xz) {
+    vec2 p = xz / uSpacingValid.xy;  // in samples
+    vec2 cell = floor(p);
+    vec2 f = p - cell;
+    vec2 f2 = f * f, f3 = f2 * f;
+    // B-spline weights of the 4 samples along each axis.
+    vec2 w0 = (1.0 - 3.0 * f + 3.0 * f2 - f3) / 6.0;
+    vec2 w1 = (4.0 - 6.0 * f2 + 3.0 * f3) / 6.0;
+    vec2 w2 = (1.0 + 3.0 * f + 3.0 * f2 - 3.0 * f3) / 6.0;
+    vec2 w3 = f3 / 6.0;
+    vec2 g0 = w0 + w1, g1 = w2 + w3;
+    vec2 texel = 1.0 / vec2(uGrid.x);
+    // Bilinear fetches between samples -1..0 and 1..2 weigh each pair exactly.
+    vec2 t0 = (cell - 1.0 + w1 / g0 + 0.5) * texel;
+    vec2 t1 = (cell + 1.0 + w3 / g1 + 0.5) * texel;
+    return g0.y * (g0.x * texture(uHeights, vec2(t0.x, t0.y)).r + g1.x * texture(uHeights, vec2(t1.x, t0.y)).r) +
+           g1.y * (g0.x * texture(uHeights, vec2(t0.x, t1.y)).r + g1.x * texture(uHeights, vec2(t1.x, t1.y)).r);
+}
+
 Ground groundAt(vec2 xz) {
     vec2 texel = 1.0 / vec2(uGrid.x);
     vec2 uv = (xz / uSpacingValid.xy + 0.5) * texel;
     Ground g;
-    g.height = texture(uHeights, uv).r;
+    g.height = smoothHeight(xz);
     float dx = texture(uHeights, uv + vec2(texel.x, 0.0)).r - texture(uHeights, uv - vec2(texel.x, 0.0)).r;
     float dz = texture(uHeights, uv + vec2(0.0, texel.y)).r - texture(uHeights, uv - vec2(0.0, texel.y)).r;
     g.normal = normalize(vec3(-dx / (2.0 * uSpacingValid.x), 1.0, -dz / (2.0 * uSpacingValid.y)));

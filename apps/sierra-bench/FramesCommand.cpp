@@ -86,7 +86,7 @@ void runFrames(const FramesOptions& o) {
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(), context.platform().c_str());
     render::TerrainRenderer terrain =
-        render::TerrainRenderer::create({.field = &field, .seaLevel = seaLevel, .threads = sc.lod.threads});
+        render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
     std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());

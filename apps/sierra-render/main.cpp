@@ -53,7 +53,7 @@ int run(const scene::Scene& s) {
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(), ")");
     render::TerrainRenderer terrain =
-        render::TerrainRenderer::create({.field = &field, .seaLevel = seaLevel, .threads = s.lod.threads});
+        render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
     log::info("terrain on the GPU: ", terrain.summary());
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});

@@ -1,6 +1,7 @@
 #include <sierra/render/SceneView.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/scene/Terrain.h>
 
 namespace sierra::render {
 
@@ -80,6 +81,15 @@ Lighting sceneLighting(const scene::LightingDesc& l, bool transparent) {
     out.sky = {l.sky.r, l.sky.g, l.sky.b};
     out.transparent = transparent;
     return out;
+}
+
+TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& field, float seaLevel) {
+    return {.field = &field,
+            .seaLevel = seaLevel,
+            .threads = s.lod.threads,
+            .metric = scene::metricHeights(s.terrain),
+            .treeLine = s.style.treeLine,
+            .snowLine = s.style.snowLine};
 }
 
 DrawOptions sceneDrawOptions(const scene::Scene& s) {

@@ -63,6 +63,7 @@ static_assert(sizeof(TerrainUniformData) == 48, "TerrainUniformData must match s
 struct TerrainGpu::State {
     int side = 0;
     glm::vec2 spacing{1.0f};
+    float verticalScale = 1.0f;
     float seaLevel = std::numeric_limits<float>::quiet_NaN();
     float worldSeaLevel = std::numeric_limits<float>::quiet_NaN();
     glm::vec2 worldRange{0.0f};
@@ -94,6 +95,7 @@ TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
     auto s = std::make_unique<State>();
     s->side = side;
     s->spacing = {field.spacingX(), field.spacingZ()};
+    s->verticalScale = field.verticalScale();
 
     auto [lo, hi] = field.range();
     if (hi <= lo) hi = lo + 1.0f;
@@ -192,6 +194,7 @@ float TerrainGpu::seaLevel() const { return state_->seaLevel; }
 float TerrainGpu::worldSeaLevel() const { return state_->worldSeaLevel; }
 int TerrainGpu::side() const { return state_->side; }
 glm::vec2 TerrainGpu::spacing() const { return state_->spacing; }
+float TerrainGpu::verticalScale() const { return state_->verticalScale; }
 double TerrainGpu::errorPassMs() const { return state_->errorPassMs; }
 const std::string& TerrainGpu::summary() const { return state_->summary; }
 

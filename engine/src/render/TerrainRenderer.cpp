@@ -24,7 +24,8 @@ struct TerrainRenderer::State {
 
 TerrainRenderer TerrainRenderer::create(const TerrainDesc& desc) {
     TerrainGpu terrain = TerrainGpu::create({.field = desc.field, .seaLevel = desc.seaLevel, .threads = desc.threads});
-    auto shaded = TerrainPass::create(terrain, {.surface = desc.surface});
+    auto shaded = TerrainPass::create(terrain, {.surface = desc.surface, .metric = desc.metric,
+                                                .treeLine = desc.treeLine, .snowLine = desc.snowLine});
     auto state = std::unique_ptr<State>(new State{
         .terrain = std::move(terrain),
         .stream = SbtStream::create(),

@@ -281,6 +281,10 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
 
     if (groups & kStyleOptions) {
         addFlag("--wireframe", "Overlay the triangulation", "Style", [](Scene& s, Words) { s.style.wireframe = true; });
+        add("--tree-line", "Metric heights: metres above which rock replaces vegetation", "Style", "M",
+            show(d.style.treeLine), 1, [](Scene& s, Words w) { s.style.treeLine = parseFloat(w[0], "--tree-line"); });
+        add("--snow-line", "Metric heights: metres above which snow lies", "Style", "M", show(d.style.snowLine), 1,
+            [](Scene& s, Words w) { s.style.snowLine = parseFloat(w[0], "--snow-line"); });
     }
 }
 

@@ -102,6 +102,14 @@ void validateLighting(const LightingDesc& l) {
             fail("lighting.sky", "--sky", msg("channels must be 0..1, got ", l.sky.r, ",", l.sky.g, ",", l.sky.b));
 }
 
+void validateStyle(const StyleDesc& s) {
+    if (!(s.treeLine > 0.0f) || !std::isfinite(s.treeLine))
+        fail("style.tree_line", "--tree-line", msg("must be a finite height > 0 m, got ", s.treeLine));
+    if (!(s.snowLine >= s.treeLine) || !std::isfinite(s.snowLine))
+        fail("style.snow_line", "--snow-line",
+             msg("must be finite and at least the tree line (", s.treeLine, " m), got ", s.snowLine));
+}
+
 void validateLod(const LodDesc& l) {
     if (!(l.tau > 0.0f) || !std::isfinite(l.tau))
         fail("lod.tau", "--tau", msg("must be a finite number of pixels > 0, got ", l.tau));
@@ -167,6 +175,7 @@ void validateScene(const Scene& scene) {
     validatePath(scene.path, scene.camera);
     validateLighting(scene.lighting);
     validateLod(scene.lod);
+    validateStyle(scene.style);
     validateOutput(scene.output);
 }
 

@@ -269,6 +269,8 @@ void readOutput(ObjectReader& r, OutputDesc& o) {
 
 void readStyle(ObjectReader& r, StyleDesc& s) {
     r.field("wireframe", [&](const Json& v, const std::string& k) { s.wireframe = r.toBool(v, k); });
+    r.field("tree_line", [&](const Json& v, const std::string& k) { s.treeLine = r.toFloat(v, k); });
+    r.field("snow_line", [&](const Json& v, const std::string& k) { s.snowLine = r.toFloat(v, k); });
 }
 
 }  // namespace
@@ -364,7 +366,9 @@ Json sceneToJson(const Scene& s) {
         {"width", o.width}, {"height", o.height}, {"msaa", o.msaa}, {"frame", o.frame},
         {"debug", o.debug}, {"depth", o.depth},   {"alpha", o.alpha},
     };
-    Json style = {{"wireframe", s.style.wireframe}};
+    Json style = {{"wireframe", s.style.wireframe},
+                  {"tree_line", number(s.style.treeLine)},
+                  {"snow_line", number(s.style.snowLine)}};
     return {{"terrain", terrain}, {"camera", camera}, {"path", path},   {"lighting", lighting},
             {"lod", lod},         {"output", output}, {"style", style}};
 }

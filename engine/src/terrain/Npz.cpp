@@ -2,7 +2,7 @@
 
 #include <sierra/core/Error.h>
 
-#include <stb/stb_image.h>
+#include <zlib.h>
 
 #include <array>
 #include <cstring>
@@ -105,10 +105,19 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
             if (m.compressed != m.size) throw fail(msg("corrupt .npz: stored member ", m.name, " changes size"));
             std::memcpy(out.data(), &bytes[data], out.size());
         } else {
-            int got = stbi_zlib_decode_noheader_buffer(reinterpret_cast<char*>(out.data()), int(out.size()),
-                                                       reinterpret_cast<const char*>(&bytes[data]),
-                                                       int(m.compressed));
-            if (got != int(m.size)) throw fail(msg("member ", m.name, " does not inflate to its declared size"));
+            // Raw deflate (no zlib header) into a buffer of exactly the declared size.
+            z_stream z{};
+            if (inflateInit2(&z, -MAX_WBITS) != Z_OK) throw fail("cannot start zlib's inflate");
+            z.next_in = const_cast<Bytef*>(&bytes[data]);
+            z.avail_in = uInt(m.compressed);
+            z.next_out = out.data();
+            z.avail_out = uInt(out.size());
+            int rc = inflate(&z, Z_FINISH);
+            uint64_t produced = z.total_out;
+            inflateEnd(&z);
+            if (rc != Z_STREAM_END || produced != m.size)
+                throw fail(msg("member ", m.name, " does not inflate to its declared size (",
+                               rc == Z_STREAM_END ? "size differs" : "corrupt deflate data", ")"));
         }
         if (crc32(out.data(), out.size()) != m.crc) throw fail(msg("member ", m.name, " fails its CRC check"));
         return out;

@@ -22,6 +22,11 @@ namespace sierra::render {
 std::vector<Camera> sceneCameras(const scene::Scene& scene, const SceneBounds& bounds);
 
 DrawOptions sceneDrawOptions(const scene::Scene& scene);
+
+// The renderer's description of the scene's terrain: `field` as loaded by
+// scene::loadTerrain, the sea level from scene::resolveSeaLevel, metric
+// colouring when its heights are metres.
+TerrainDesc sceneTerrainDesc(const scene::Scene& scene, const terrain::Heightfield& field, float seaLevel);
 Lighting sceneLighting(const scene::LightingDesc& lighting, bool transparent);
 
 glm::vec3 toGlm(const scene::Vec3& v);

@@ -53,6 +53,7 @@ public:
     float worldSeaLevel() const;     // world units; NaN without water
     int side() const;                // samples per side
     glm::vec2 spacing() const;       // world units between samples along x and z
+    float verticalScale() const;     // stored height -> world height
     double errorPassMs() const;      // time spent building errors and radii
     const std::string& summary() const;  // one line: grid, spacing, height range, sea level
 

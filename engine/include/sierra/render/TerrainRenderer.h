@@ -30,6 +30,9 @@ struct TerrainDesc {
     float seaLevel = std::numeric_limits<float>::quiet_NaN();
     int threads = 0;                      // CPU threads for the error pass, 0 = default
     std::string surface = "hypsometric";  // the terrain pass's surface function
+    bool metric = false;                  // heights in metres: absolute-elevation colours
+    float treeLine = 2000.0f;             // metres (metric only)
+    float snowLine = 3000.0f;             // metres (metric only)
 };
 
 struct Lighting {

@@ -122,6 +122,11 @@ struct OutputDesc {
 
 struct StyleDesc {
     bool wireframe = false;  // overlay the triangulation
+    // Metric heights are coloured by absolute elevation (metres): vegetation up
+    // to the tree line, rock above it, snow above the snow line. Unitless
+    // heights use a ramp over their own range instead.
+    float treeLine = 2000.0f;  // metres, > 0
+    float snowLine = 3000.0f;  // metres, >= treeLine
     bool operator==(const StyleDesc&) const = default;
 };
 

@@ -20,14 +20,19 @@ std::unique_ptr<TerrainPass> TerrainPass::create(const TerrainGpu& terrain, cons
     gpu::IncludeAlias alias{"surface.glsl", surfaceFile};
     pass->program_ = gpu::Program::create({.vertex = "terrain.vert", .fragment = "terrain.frag",
                                            .aliases = std::span<const gpu::IncludeAlias>(&alias, 1)});
-    glm::vec2 range = terrain.worldRange();
+    // The ramp spans the terrain's heights in stored units (the shader looks it
+    // up by world height over the same range, linearly), so metric stops stay
+    // in metres whatever the vertical scale.
+    glm::vec2 range = terrain.worldRange() / terrain.verticalScale();
     // Without water the ramp's sea level sits below the lowest height, so no
     // sample is coloured as sea or beach.
-    float sea = terrain.hasWater() ? terrain.worldSeaLevel() : range.x - (range.y - range.x);
-    terrain::ColourRamp ramp({.scheme = terrain::RampScheme::Hypsometric,
+    float sea = terrain.hasWater() ? terrain.seaLevel() : range.x - (range.y - range.x);
+    terrain::ColourRamp ramp({.scheme = desc.metric ? terrain::RampScheme::Elevation : terrain::RampScheme::Hypsometric,
                               .minHeight = range.x,
                               .maxHeight = range.y,
-                              .seaLevel = sea});
+                              .seaLevel = sea,
+                              .treeLine = desc.treeLine,
+                              .snowLine = desc.snowLine});
     std::vector<uint8_t> table = ramp.table(kRampEntries);
     pass->ramp_ = gpu::Texture::create({.target = GL_TEXTURE_1D, .format = GL_RGBA8, .width = kRampEntries});
     pass->ramp_.upload(GL_RGBA, GL_UNSIGNED_BYTE, table.data());

@@ -14,6 +14,11 @@ namespace sierra::render {
 
 struct TerrainPassDesc {
     std::string surface = "hypsometric";  // shaders/surface_<surface>.glsl
+    // Heights in metres: colour by absolute elevation with these lines (see
+    // terrain::RampScheme::Elevation); otherwise a ramp over the terrain's range.
+    bool metric = false;
+    float treeLine = 2000.0f;  // metres
+    float snowLine = 3000.0f;  // metres
 };
 
 class TerrainPass final : public Pass {
