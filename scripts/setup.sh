@@ -14,6 +14,7 @@ packages=(
   libglm-dev libstb-dev libimgui-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev glslang-tools
+  python-matplotlib-data
 )
 
 missing=()
