@@ -4,10 +4,13 @@
 
 #include "Commands.h"
 
+#include "AppMain.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/core/Log.h>
 #include <sierra/core/Parallel.h>
+#include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
@@ -19,7 +22,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <limits>
 #include <memory>
 
 namespace sierra::apps {
@@ -109,23 +115,34 @@ void runFrames(const FramesOptions& o) {
     }
 
     std::vector<FrameRecord> records;
+    Progress progress(o.compareFull ? "frames (and full-grid references)" : "frames", int64_t(cameras.size()));
+    // Saved frames carry their index in the whole sequence; full-grid
+    // references go beside them as NAME_full_0000.png.
+    std::string fullFrames;
+    if (!o.saveFrames.empty()) {
+        std::filesystem::path p(o.saveFrames);
+        fullFrames = (p.parent_path() / (p.stem().string() + "_full" + p.extension().string())).string();
+    }
     for (size_t k = 0; k < cameras.size(); ++k) {
         FrameRecord r;
         gpu::Image image = timedFrame(terrain, target, cameras[k], draw, r);
-        if (!o.saveFrames.empty()) render::writePng(render::sequencePath(o.saveFrames, int(k)), image);
+        if (!o.saveFrames.empty()) render::writePng(render::sequencePath(o.saveFrames, first + int(k)), image);
+        std::string detail = msg(fixed(r.total, 1), " ms, ", r.triangles, " triangles");
         if (o.compareFull) {
             FrameRecord full;
             gpu::Image reference = timedFrame(terrain, target, cameras[k], fullDraw, full);
+            if (!fullFrames.empty()) render::writePng(render::sequencePath(fullFrames, first + int(k)), reference);
             render::ImageDifference d = render::compareImages(image, reference, 8);
             r.psnr = d.psnr;
             r.differing = d.differingShare;
             r.fullTotal = full.total;
+            detail += msg(", full grid ", fixed(full.total, 1), " ms, PSNR ",
+                          std::isfinite(d.psnr) ? fixed(d.psnr, 2) + " dB" : std::string("identical"));
         }
         records.push_back(r);
-        std::fprintf(stderr, "\rframe %zu/%zu: %.1f ms, %llu triangles", k + 1, cameras.size(), r.total,
-                     (unsigned long long)r.triangles);
+        progress.update(int64_t(k + 1), detail);
     }
-    std::fprintf(stderr, "\n");
+    progress.finish();
 
     Stats refine = stats(records, &FrameRecord::refine), upload = stats(records, &FrameRecord::upload),
           drawS = stats(records, &FrameRecord::draw), gpuS = stats(records, &FrameRecord::gpu),
@@ -139,9 +156,10 @@ void runFrames(const FramesOptions& o) {
     double bytes = medianOf(&FrameRecord::bytes);
     double indices = medianOf(&FrameRecord::indices);
 
-    std::printf("sierra-bench frames: %s, %dx%d, %s path, %zu frames, lod %s, tau %g px, msaa %d, threads %d\n",
+    std::printf("sierra-bench frames: %s, %dx%d, %s path, %zu frames, lod %s, tau %g px, geomorph %s, msaa %d, "
+                "threads %d\n",
                 description.c_str(), width, height, pathText.c_str(), cameras.size(), lodText.c_str(), draw.tau,
-                sc.output.msaa, sc.lod.threads ? sc.lod.threads : defaultThreadCount());
+                draw.geomorph ? "on" : "off", sc.output.msaa, sc.lod.threads ? sc.lod.threads : defaultThreadCount());
     std::printf("renderer: %s\n", context.renderer().c_str());
     std::printf("%-22s %10s %10s %10s\n", "stage (ms)", "median", "p95", "p99");
     auto row = [](const char* name, Stats s) {
@@ -184,23 +202,36 @@ void runFrames(const FramesOptions& o) {
         Stats full = stats(records, &FrameRecord::fullTotal);
         Stats psnr = stats(records, &FrameRecord::psnr);
         Stats differing = stats(records, &FrameRecord::differing);
-        double minPsnr = 1e9;
-        for (const FrameRecord& r : records) minPsnr = std::min(minPsnr, r.psnr);
+        // A frame identical to its reference has an infinite PSNR: say so in
+        // words here and as null in the JSON (which has no infinity).
+        double minPsnr = std::numeric_limits<double>::infinity();
+        int identical = 0;
+        for (const FrameRecord& r : records) {
+            minPsnr = std::min(minPsnr, r.psnr);
+            identical += std::isinf(r.psnr);
+        }
+        auto dB = [](double v) { return std::isfinite(v) ? fixed(v, 2) + " dB" : std::string("identical"); };
         std::printf("full-grid frame (ms): median %.3f, p95 %.3f\n", full.median, full.p95);
         std::printf("frame time ratio %s / full (medians): %.4f (1/%.1f)\n", lodText.c_str(),
                     total.median / full.median, full.median / total.median);
-        std::printf("PSNR against full grid: median %.2f dB, min %.2f dB; differing pixels: median %.3f%%\n",
-                    psnr.median, minPsnr, 100.0 * differing.median);
+        std::printf("PSNR against full grid: median %s, min %s; %d of %zu frames identical; differing pixels: "
+                    "median %.3f%%\n",
+                    dB(psnr.median).c_str(), dB(minPsnr).c_str(), identical, records.size(),
+                    100.0 * differing.median);
+        auto psnrJson = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
         j["full_frame"] = toJson(full);
         j["frame_ratio"] = total.median / full.median;
-        j["psnr"] = {{"median", psnr.median}, {"min", minPsnr}};
+        j["psnr"] = {{"median", psnrJson(psnr.median)}, {"min", psnrJson(minPsnr)}, {"identical_frames", identical},
+                     {"note", "dB against the full grid; null = identical frames"}};
         j["differing_share_median"] = differing.median;
     }
     nlohmann::json perFrame = nlohmann::json::array();
     for (const FrameRecord& r : records)
         perFrame.push_back({{"refine", r.refine}, {"upload", r.upload}, {"draw", r.draw}, {"gpu", r.gpu},
                             {"read_back", r.readBack}, {"frame", r.total}, {"triangles", r.triangles},
-                            {"bytes", r.bytes}, {"psnr", o.compareFull ? r.psnr : 0.0}});
+                            {"bytes", r.bytes},
+                            {"psnr", o.compareFull && std::isfinite(r.psnr) ? nlohmann::json(r.psnr)
+                                                                            : nlohmann::json(nullptr)}});
     j["per_frame"] = perFrame;
     if (!o.json.empty()) {
         writeFileAtomic(o.json, j.dump(2) + "\n");
@@ -230,7 +261,7 @@ void addFramesCommand(CLI::App& app) {
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");
     cmd->add_option("--save-frames", o->saveFrames, "Write every frame as PNG (NAME_0000.png, ...)");
     cmd->callback([o] {
-        o->registrar->apply();
+        asUsage([&] { o->registrar->apply(); });
         if (o->registrar->printConfigRequested()) return;
         runFrames(*o);
     });

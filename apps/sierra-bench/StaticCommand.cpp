@@ -11,6 +11,8 @@
 // and the true maximum vertical distance between the grid and the mesh.
 #include "Commands.h"
 
+#include "AppMain.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/core/Parallel.h>
@@ -163,9 +165,9 @@ void addStaticCommand(CLI::App& app) {
     cmd->add_option("--obj", o.obj, "Write the mesh as Wavefront OBJ (x = column, y = height, z = row)");
     cmd->add_option("--json", o.json, "Write the figures as JSON");
     cmd->callback([state, maxError] {
-        state->sceneOptions->apply();
+        asUsage([&] { state->sceneOptions->apply(); });
         if (state->sceneOptions->printConfigRequested()) return;
-        if (maxError->count() == 0) throw Error("static: --max-error E is required (world height units)");
+        if (maxError->count() == 0) throw UsageError("static: --max-error E is required (world height units)");
         runStatic(state->options);
     });
 }

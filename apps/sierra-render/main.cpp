@@ -7,6 +7,7 @@
 #include <sierra/core/Files.h>
 #include <sierra/core/Log.h>
 #include <sierra/core/Npy.h>
+#include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
@@ -16,6 +17,8 @@
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Options.h>
 #include <sierra/scene/Terrain.h>
+
+#include "AppMain.h"
 
 #include <CLI/CLI.hpp>
 
@@ -73,7 +76,7 @@ int run(const scene::Scene& s) {
         render::writePng(path, frame, s.output.alpha);
         if (sequence)
             log::info("frame ", written, " (", written - first + 1, "/", last - first + 1,
-                      "): ", frameMs[size_t(written - first)], " ms -> ", path);
+                      "): ", fixed(frameMs[size_t(written - first)], 1), " ms -> ", path);
         ++written;
     };
     for (int k = first; k <= last; ++k) {
@@ -96,8 +99,9 @@ int run(const scene::Scene& s) {
     }
     if (reader.finish(image)) writeNext(image);
     log::info(render::lodName(draw.lod), " frame: ", stats.triangles, " triangles, ", stats.indices, " indices (",
-              stats.indicesPerTriangle(), " per triangle), refine ", stats.refineMs, " ms, upload ",
-              stats.uploadMs, " ms, draw (GL timer) ", stats.drawMs, " ms, frame ", frameMs.back(), " ms");
+              fixed(stats.indicesPerTriangle()), " per triangle), refine + strip ", fixed(stats.refineMs),
+              " ms, upload ", fixed(stats.uploadMs), " ms, draw (GL timer) ", fixed(stats.drawMs), " ms, frame ",
+              fixed(frameMs.back(), 1), " ms");
     log::info("wrote ", framePath(s.output.frame, first),
               last > first ? " .. " + framePath(s.output.frame, last) : std::string());
 
@@ -128,7 +132,7 @@ int run(const scene::Scene& s) {
         render::writePng(s.output.debug, gpu::readFramebuffer(width, height));
         log::info("wrote debug snapshot ", s.output.debug);
     }
-    log::info("done in ", total.ms(), " ms");
+    log::info("done in ", fixed(total.ms(), 1), " ms");
     return 0;
 }
 
@@ -136,30 +140,21 @@ int run(const scene::Scene& s) {
 
 int main(int argc, char** argv) {
     scene::Scene scene;
-    CLI::App app{"sierra-render: renders terrain off-screen (EGL) to PNG.\n"
+    CLI::App app{"Renders terrain off-screen (EGL) to PNG.\n"
                  "With no arguments: a generated 1025x1025 fractal terrain to out/frame.png and an ImGui\n"
-                 "debug snapshot to out/debug.png. Every option is also a key of a scene file (--config)."};
+                 "debug snapshot to out/debug.png. Every option is also a key of a scene file (--config).",
+                 "sierra-render"};
     scene::SceneOptions options(app, scene, scene::kAllOptions);
     bool devices = false;
     app.add_flag("--list-devices", devices, "List the EGL devices and exit");
-    try {
-        app.parse(argc, argv);
-        options.apply();
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sierra-render: error: %s\n", e.what());
-        return 2;
-    }
-    if (options.printConfigRequested()) return 0;
-    try {
-        if (devices) {
-            listDevices();
-            return 0;
-        }
-        return run(scene);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sierra-render: error: %s\n", e.what());
-        return 1;
-    }
+    return apps::runMain(
+        app, argc, argv, [&] { options.apply(); },
+        [&] {
+            if (options.printConfigRequested()) return 0;
+            if (devices) {
+                listDevices();
+                return 0;
+            }
+            return run(scene);
+        });
 }
