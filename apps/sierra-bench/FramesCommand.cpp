@@ -255,7 +255,7 @@ void addFramesCommand(CLI::App& app) {
     o->registrar = std::make_unique<scene::SceneOptions>(
         *cmd, o->scene,
         scene::kTerrainOptions | scene::kCameraOptions | scene::kPathOptions | scene::kLightingOptions |
-            scene::kLodOptions | scene::kStyleOptions | (scene::kOutputOptions));
+            scene::kLodOptions | scene::kStyleOptions | scene::kFrameOptions);
     cmd->add_flag("--compare-full", o->compareFull,
                   "Also render the full grid from each camera: frame-time ratio, PSNR, differing pixels");
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");

@@ -109,7 +109,7 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
         const std::string g = "Terrain";
         auto* heightmap = add(
             "--heightmap",
-            "Heightmap to load: .png (8/16-bit grey), .pgm, .r16/.r32 (with --raw-size), .hgt, .npy (.tif with GDAL)",
+            "Heightmap to load: .png (8/16-bit grey), .pgm, .r16/.r32 (with --raw-size), .hgt, .npy, .npz (.tif with GDAL)",
             g, "FILE", d.terrain.heightmap.empty() ? "" : d.terrain.heightmap, 1,
             [](Scene& s, Words w) { s.terrain.heightmap = w[0]; });
         // The check alone, without its "FILE" appended to the type name in --help.
@@ -254,8 +254,8 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             [](Scene& s, Words w) { s.lod.threads = parseInt(w[0], "--threads"); });
     }
 
-    if (groups & kOutputOptions) {
-        const std::string g = "Output";
+    if (groups & kFrameOptions) {
+        const std::string g = "Frame";
         add("--size", "Frame size in pixels", g, "WxH", msg(d.output.width, "x", d.output.height), 1,
             [](Scene& s, Words w) {
                 auto [width, height] = parseFrameSize(w[0], "--size");
@@ -264,6 +264,10 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             });
         add("--msaa", "Samples per pixel: 0 (off), 2, 4 or 8", g, "N", msg(d.output.msaa), 1,
             [](Scene& s, Words w) { s.output.msaa = parseInt(w[0], "--msaa", "0, 2, 4 or 8"); });
+    }
+
+    if (groups & kOutputOptions) {
+        const std::string g = "Output";
         add("--out", "Frame PNG (sequences: NAME_0000.png, ...)", g, "FILE.png", d.output.frame, 1,
             [](Scene& s, Words w) { s.output.frame = w[0]; });
         add("--depth-out", "Linear eye-space depth per pixel, float32 .npy (NaN where no terrain)", g, "FILE.npy",

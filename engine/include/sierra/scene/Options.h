@@ -46,13 +46,15 @@ enum OptionGroup : unsigned {
     kLightingOptions = 1u << 3,
     // --lod sbt|full, --tau PX, --no-geomorph, --no-cull, --threads N
     kLodOptions = 1u << 4,
-    // --size WxH, --msaa 0|2|4|8, --out FILE.png, --depth-out FILE.npy, --alpha
+    // --out FILE.png, --depth-out FILE.npy, --alpha
     kOutputOptions = 1u << 5,
     // --debug-out FILE.png, --no-debug
     kDebugOptions = 1u << 6,
     // --wireframe
     kStyleOptions = 1u << 7,
-    kAllOptions = (1u << 8) - 1,
+    // --size WxH, --msaa 0|2|4|8
+    kFrameOptions = 1u << 8,
+    kAllOptions = (1u << 9) - 1,
 };
 
 class SceneOptions {
