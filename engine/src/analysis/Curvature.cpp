@@ -244,6 +244,8 @@ CurvatureField computeCurvature(const terrain::Heightfield& field, const Curvatu
     CurvatureField out;
     out.width = w;
     out.height = h;
+    out.spacingX = g.spacingX;
+    out.spacingZ = g.spacingZ;
     out.values.resize(g.y.size() * kDirectionCount);
     float* data = out.values.data();
     auto run = [&]<CurvatureMethod kMethod>() {

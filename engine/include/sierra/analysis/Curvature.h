@@ -99,6 +99,8 @@ void validate(const CurvatureOptions& options);
 struct CurvatureField {
     int width = 0;
     int height = 0;
+    float spacingX = 1.0f;  // the heightfield's, for directions in world space
+    float spacingZ = 1.0f;
     std::vector<float> values;
 
     float at(int i, int j, int direction) const {
