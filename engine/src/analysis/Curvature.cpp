@@ -101,13 +101,18 @@ void axisRange(int c, int size, int back, int forward, int& lo, int& hi) {
 
 struct Kernel {
     const detail::WorldGrid* g = nullptr;
-    const float* gx = nullptr;  // surface gradient dy/dx per vertex (normal methods)
-    const float* gz = nullptr;  // dy/dz
+    // Surface gradient dy/dx, dy/dz (normal methods) of the rows a chunk
+    // needs, from row index gradBase on: vertex k is at gx[k - gradBase].
+    const float* gx = nullptr;
+    const float* gz = nullptr;
+    int64_t gradBase = 0;
     CurvatureOptions opt;
     DirectionSetup dir[kDirectionCount];
 
     // Slope of the tangent plane at index k along direction d.
-    float slope(int64_t k, const DirectionSetup& d) const { return gx[k] * d.ux + gz[k] * d.uz; }
+    float slope(int64_t k, const DirectionSetup& d) const {
+        return gx[k - gradBase] * d.ux + gz[k - gradBase] * d.uz;
+    }
 
     static float equation1(float ypp, float yp) {
         float t = 1.0f + yp * yp;
@@ -117,7 +122,7 @@ struct Kernel {
     // Near (m = 1) or reinforcement (m = distance) measure at centre index k;
     // ypp receives the signed second derivative (or a value of its sign).
     template <CurvatureMethod kMethod>
-    float measure(int64_t k, const DirectionSetup& d, int m, float& ypp) const {
+    [[gnu::always_inline]] float measure(int64_t k, const DirectionSetup& d, int m, float& ypp) const {
         const int64_t s = d.offset * m;
         const float invStep = d.invLength / float(m);
         if constexpr (kMethod == CurvatureMethod::TwoNormal) {
@@ -130,64 +135,127 @@ struct Kernel {
             float t = 1.0f + sv * sv;
             return 0.5f * (std::fabs(sv - sp) + std::fabs(sn - sv)) * invStep / (t * std::sqrt(t));
         } else if constexpr (kMethod == CurvatureMethod::ThreeVertex) {
-            const float* y = g->y.data();
-            float s1 = (y[k] - y[k - s]) * invStep, s2 = (y[k + s] - y[k]) * invStep;
+            const float yp = g->at(k - s), yv = g->at(k), yn = g->at(k + s);
+            float s1 = (yv - yp) * invStep, s2 = (yn - yv) * invStep;
             ypp = (s2 - s1) * invStep;
             return equation1(ypp, 0.5f * (s1 + s2));
         } else {
-            const float* y = g->y.data();
             float hx = float(d.di * m) * g->spacingX, hz = float(d.dj * m) * g->spacingZ;
-            float a = y[k - s] - y[k], b = y[k + s] - y[k];
+            const float yv = g->at(k);
+            float a = g->at(k - s) - yv, b = g->at(k + s) - yv;
             // e1 = (-hx, a, -hz), e2 = (hx, b, hz)
             float dot = -hx * hx + a * b - hz * hz;
             float cosTheta = dot / std::sqrt((hx * hx + hz * hz + a * a) * (hx * hx + hz * hz + b * b));
             ypp = a + b;  // sign of y''
-            return std::clamp(1.0f + cosTheta, 0.0f, 1.0f);
+            // Clamp to [0, 1]; std::max(v, 0) and std::min(v, 1) keep a NaN v
+            // (no data) and map to min/max instructions.
+            return std::min(std::max(1.0f + cosTheta, 0.0f), 1.0f);
         }
+    }
+
+    // Level control and sign on a finished magnitude.
+    float finish(float value, float ypp) const {
+        if (opt.levels.enabled) {
+            float t = std::clamp((value - opt.levels.black) / (opt.levels.white - opt.levels.black), 0.0f, 1.0f);
+            value = std::pow(t, 1.0f / opt.levels.gamma);
+        }
+        return opt.signedValues && ypp < 0.0f ? -value : value;
+    }
+
+    // Direction d at vertices [iLo, iHi) of row j, all with their stencils
+    // inside the grid (no clamping): plain loops, one per option set, that
+    // the compiler vectorises. Writes buf[i]; levels are applied afterwards.
+    template <CurvatureMethod kMethod>
+    void interior(int j, int iLo, int iHi, const DirectionSetup& ds, float* buf) const {
+        const int64_t row = int64_t(j) * g->width;
+        const float scale = opt.scale;
+        const int dist = opt.distance;
+        const bool sign = opt.signedValues && !opt.levels.enabled;
+        if (opt.output == CurvatureOutput::SecondDerivative) {
+            for (int i = iLo; i < iHi; ++i) {
+                float ypp;
+                measure<kMethod>(row + i, ds, 1, ypp);
+                buf[i] = ypp;
+            }
+        } else {
+            // sign * value as a product: a select here keeps GCC 12 from
+            // if-converting the larger loop bodies.
+            for (int i = iLo; i < iHi; ++i) {
+                float ypp;
+                float v = measure<kMethod>(row + i, ds, 1, ypp) * scale;
+                buf[i] = v * (sign && ypp < 0.0f ? -1.0f : 1.0f);
+            }
+            if (dist > 1) {
+                for (int i = iLo; i < iHi; ++i) {
+                    float farYpp;
+                    buf[i] *= measure<kMethod>(row + i, ds, dist, farYpp);
+                }
+            }
+        }
+        if (opt.levels.enabled && opt.output == CurvatureOutput::Curvature) {
+            // Recompute the sign of y'' only here, where pow is scalar anyway.
+            for (int i = iLo; i < iHi; ++i) {
+                float ypp;
+                measure<kMethod>(row + i, ds, 1, ypp);
+                buf[i] = finish(buf[i], ypp);
+            }
+        }
+    }
+
+    // One vertex, one direction, with the border clamp.
+    template <CurvatureMethod kMethod>
+    float clamped(int i, int j, const DirectionSetup& ds) const {
+        const int ci = std::clamp(i, ds.loI, ds.hiI), cj = std::clamp(j, ds.loJ, ds.hiJ);
+        const int64_t c = int64_t(cj) * g->width + ci;
+        float ypp = 0.0f;
+        float value = measure<kMethod>(c, ds, 1, ypp);
+        if (opt.output == CurvatureOutput::SecondDerivative) return ypp;
+        if (opt.distance > 1) {
+            float farYpp;
+            value *= measure<kMethod>(c, ds, opt.distance, farYpp);
+        }
+        return finish(value * opt.scale, ypp);
     }
 
     template <CurvatureMethod kMethod>
     void rows(int j0, int j1, float* out) const {
-        const int w = g->width;
-        const bool levels = opt.levels.enabled;
-        const float black = opt.levels.black, invRange = 1.0f / (opt.levels.white - opt.levels.black);
-        const float invGamma = 1.0f / opt.levels.gamma;
-        const bool rawSecond = opt.output == CurvatureOutput::SecondDerivative;
+        const int w = g->width, h = g->height;
+        std::vector<float> buf(size_t(w) * kDirectionCount);
         for (int j = j0; j < j1; ++j) {
-            for (int i = 0; i < w; ++i) {
-                const int64_t v = int64_t(j) * w + i;
-                float* o = out + v * kDirectionCount;
-                if (std::isnan(g->y[size_t(v)])) {
-                    for (int d = 0; d < kDirectionCount; ++d) o[d] = NAN;
-                    continue;
+            const bool interiorRow = j >= reach && j < h - reach;
+            const int iLo = interiorRow ? reach : w, iHi = interiorRow ? w - reach : w;
+            for (int d = 0; d < kDirectionCount; ++d) {
+                float* b = buf.data() + size_t(d) * size_t(w);
+                if (iLo < iHi) interior<kMethod>(j, iLo, iHi, dir[d], b);
+                for (int i = 0; i < w; ++i) {
+                    if (i == iLo && iLo < iHi) i = iHi;
+                    if (i >= w) break;
+                    b[i] = clamped<kMethod>(i, j, dir[d]);
                 }
-                for (int d = 0; d < kDirectionCount; ++d) {
-                    const DirectionSetup& ds = dir[d];
-                    const int ci = std::clamp(i, ds.loI, ds.hiI), cj = std::clamp(j, ds.loJ, ds.hiJ);
-                    const int64_t c = int64_t(cj) * w + ci;
-                    float ypp = 0.0f;
-                    float value = measure<kMethod>(c, ds, 1, ypp);
-                    if (rawSecond) {
-                        o[d] = ypp;
-                        continue;
-                    }
-                    if (opt.distance > 1) {
-                        float farYpp;
-                        value *= measure<kMethod>(c, ds, opt.distance, farYpp);
-                    }
-                    value *= opt.scale;
-                    if (levels) value = std::pow(std::clamp((value - black) * invRange, 0.0f, 1.0f), invGamma);
-                    if (opt.signedValues && ypp < 0.0f) value = -value;
-                    o[d] = value;
+            }
+            float* o = out + int64_t(j) * w * kDirectionCount;
+            for (int i = 0; i < w; ++i) {
+                if (std::isnan(g->raw[size_t(j) * size_t(w) + size_t(i)])) {
+                    for (int d = 0; d < kDirectionCount; ++d) o[i * kDirectionCount + d] = NAN;
+                } else {
+                    for (int d = 0; d < kDirectionCount; ++d) o[i * kDirectionCount + d] = buf[size_t(d) * size_t(w) + size_t(i)];
                 }
             }
         }
     }
+
+    int reach = 1;  // largest stencil reach in steps: no clamping within it of the border
 };
 
 }  // namespace
 
 CurvatureField computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options) {
+    CurvatureField out;
+    computeCurvature(field, options, out);
+    return out;
+}
+
+void computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options, CurvatureField& out) {
     validate(options);
     SIERRA_CHECK(!field.empty(), "curvature: the heightfield is empty");
     const int minSide = 2 * options.distance + 1;
@@ -196,7 +264,8 @@ CurvatureField computeCurvature(const terrain::Heightfield& field, const Curvatu
                  options.distance, " (each side needs at least ", std::max(3, minSide), " samples)");
 
     const int threads = options.threads;
-    detail::WorldGrid g = detail::makeWorldGrid(field, threads);
+    detail::WorldGrid g;
+    detail::makeWorldGrid(field, threads, g);
     const int w = g.width, h = g.height;
 
     Kernel kernel;
@@ -204,6 +273,7 @@ CurvatureField computeCurvature(const terrain::Heightfield& field, const Curvatu
     kernel.opt = options;
     const int back = options.method == CurvatureMethod::TwoNormal ? 0 : options.distance;
     const int forward = options.method == CurvatureMethod::TwoNormal ? 1 : options.distance;
+    kernel.reach = std::max(1, options.distance);
     for (int d = 0; d < kDirectionCount; ++d) {
         DirectionSetup& s = kernel.dir[d];
         s.di = kDirectionSteps[size_t(d)][0];
@@ -218,38 +288,53 @@ CurvatureField computeCurvature(const terrain::Heightfield& field, const Curvatu
         axisRange(s.dj, h, back, forward, s.loJ, s.hiJ);
     }
 
-    // The normal methods need the slope of each vertex's tangent plane: keep
-    // the gradient (-nx/ny, -nz/ny), from which any direction's slope is a dot
-    // product. Normalising the normal first would cancel out.
-    std::vector<float> gx, gz;
-    const bool normalBased =
-        options.method == CurvatureMethod::TwoNormal || options.method == CurvatureMethod::ThreeNormal;
-    if (normalBased) {
-        gx.resize(g.y.size());
-        gz.resize(g.y.size());
-        detail::dispatchNormalMethod(options.normals, [&]<NormalMethod kNormals>() {
-            detail::forRows(w, h, threads, [&](int j0, int j1) {
-                detail::forNormalSums<kNormals>(g, j0, j1, [&](int i, int j, detail::V3 s) {
-                    size_t k = size_t(j) * size_t(w) + size_t(i);
-                    float inv = 1.0f / s.y;
-                    gx[k] = -s.x * inv;
-                    gz[k] = -s.z * inv;
-                });
-            });
-        });
-        kernel.gx = gx.data();
-        kernel.gz = gz.data();
-    }
-
-    CurvatureField out;
     out.width = w;
     out.height = h;
     out.spacingX = g.spacingX;
     out.spacingZ = g.spacingZ;
-    out.values.resize(g.y.size() * kDirectionCount);
+    out.values.resize(size_t(field.sampleCount()) * kDirectionCount);
     float* data = out.values.data();
+    const bool normalBased =
+        options.method == CurvatureMethod::TwoNormal || options.method == CurvatureMethod::ThreeNormal;
+
     auto run = [&]<CurvatureMethod kMethod>() {
-        detail::forRows(w, h, threads, [&](int j0, int j1) { kernel.rows<kMethod>(j0, j1, data); });
+        detail::forRows(w, h, threads, [&](int j0, int j1) {
+            if (!normalBased) {
+                kernel.rows<kMethod>(j0, j1, data);
+                return;
+            }
+            // The normal methods need the slope of the tangent plane at each
+            // stencil vertex: keep the gradient (-nx/ny, -nz/ny), from which
+            // any direction's slope is a dot product (normalising the normal
+            // first would cancel out). Only the rows this chunk's stencils
+            // reach (clamped centres included), in a per-thread buffer that
+            // stays warm in cache and is reused by the next call.
+            const int r = kernel.reach;
+            const int lo = std::max(0, std::min(j0, h - 1 - r) - r);
+            const int hi = std::min(h - 1, std::max(j1 - 1, r) + r);
+            const size_t n = size_t(hi - lo + 1) * size_t(w);
+            thread_local std::vector<float> gradient;
+            if (gradient.size() < 2 * n) gradient.resize(2 * n);
+            float* gx = gradient.data();
+            float* gz = gx + n;
+            detail::dispatchNormalMethod(options.normals, [&]<NormalMethod kNormals>() {
+                detail::forNormalRows<kNormals>(
+                    g, lo, hi + 1, [&](int j, const float* ox, const float* oy, const float* oz) {
+                        float* __restrict rx = gx + size_t(j - lo) * size_t(w);
+                        float* __restrict rz = gz + size_t(j - lo) * size_t(w);
+                        for (int i = 0; i < w; ++i) {
+                            float inv = 1.0f / oy[i];
+                            rx[i] = -ox[i] * inv;
+                            rz[i] = -oz[i] * inv;
+                        }
+                    });
+            });
+            Kernel local = kernel;
+            local.gx = gx;
+            local.gz = gz;
+            local.gradBase = int64_t(lo) * w;
+            local.rows<kMethod>(j0, j1, data);
+        });
     };
     switch (options.method) {
         case CurvatureMethod::TwoNormal: run.template operator()<CurvatureMethod::TwoNormal>(); break;
@@ -257,7 +342,6 @@ CurvatureField computeCurvature(const terrain::Heightfield& field, const Curvatu
         case CurvatureMethod::ThreeVertex: run.template operator()<CurvatureMethod::ThreeVertex>(); break;
         case CurvatureMethod::EdgeAngle: run.template operator()<CurvatureMethod::EdgeAngle>(); break;
     }
-    return out;
 }
 
 }  // namespace sierra::analysis

@@ -24,38 +24,45 @@ NormalMethod parseNormalMethod(const std::string& name) {
 
 namespace detail {
 
-WorldGrid makeWorldGrid(const terrain::Heightfield& field, int threads) {
+void makeWorldGrid(const terrain::Heightfield& field, int threads, WorldGrid& g) {
     SIERRA_CHECK(!field.empty(), "curvature analysis needs a non-empty heightfield");
-    WorldGrid g;
     g.width = field.width();
     g.height = field.height();
     g.spacingX = field.spacingX();
     g.spacingZ = field.spacingZ();
     g.hasNoData = field.hasMask();
-    g.y.resize(size_t(field.sampleCount()));
-    const float scale = field.verticalScale();
+    g.scale = field.verticalScale();
     auto samples = field.samples();
+    if (!g.hasNoData) {
+        g.raw = samples.data();
+        return;
+    }
+    g.storage.resize(samples.size());
     auto mask = field.mask();
     forRows(g.width, g.height, threads, [&](int j0, int j1) {
         for (size_t k = size_t(j0) * size_t(g.width); k < size_t(j1) * size_t(g.width); ++k)
-            g.y[k] = (mask.empty() || mask[k]) ? samples[k] * scale : NAN;
+            g.storage[k] = mask[k] ? samples[k] : NAN;
     });
-    return g;
+    g.raw = g.storage.data();
 }
 
 }  // namespace detail
 
 NormalField computeNormals(const terrain::Heightfield& field, NormalMethod method, int threads) {
-    detail::WorldGrid g = detail::makeWorldGrid(field, threads);
+    detail::WorldGrid g;
+    detail::makeWorldGrid(field, threads, g);
     NormalField out;
     out.width = g.width;
     out.height = g.height;
-    out.normals.resize(g.y.size());
+    out.normals.resize(size_t(field.sampleCount()));
     detail::dispatchNormalMethod(method, [&]<NormalMethod kMethod>() {
         detail::forRows(g.width, g.height, threads, [&](int j0, int j1) {
-            detail::forNormalSums<kMethod>(g, j0, j1, [&](int i, int j, detail::V3 s) {
-                detail::V3 n = detail::normalized(s);
-                out.normals[size_t(j) * size_t(g.width) + size_t(i)] = {n.x, n.y, n.z};
+            detail::forNormalRows<kMethod>(g, j0, j1, [&](int j, const float* ox, const float* oy, const float* oz) {
+                Vec3* o = out.normals.data() + size_t(j) * size_t(g.width);
+                for (int i = 0; i < g.width; ++i) {
+                    detail::V3 n = detail::normalized({ox[i], oy[i], oz[i]});
+                    o[i] = {n.x, n.y, n.z};
+                }
             });
         });
     });

@@ -117,5 +117,8 @@ struct CurvatureField {
 // options or a grid smaller than the stencil (2 * distance + 1 samples a side,
 // at least 3).
 CurvatureField computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options = {});
+// The same into `out`, reusing its storage (no page faults for a field of the
+// same size: a 2049^2 field is 64 MiB).
+void computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options, CurvatureField& out);
 
 }  // namespace sierra::analysis
