@@ -99,6 +99,64 @@ void axisRange(int c, int size, int back, int forward, int& lo, int& hi) {
     }
 }
 
+// Everything one direction's measure reads, as plain values: built as a
+// local in each loop, so the compiler knows no store to the output changes
+// them and vectorises the loops without reloading or alias checks.
+struct View {
+    const float* raw = nullptr;  // stored heights (world = raw * yScale)
+    float yScale = 1.0f;
+    const float* gx = nullptr;  // gradient rows, vertex k at gx[k - gradBase]
+    const float* gz = nullptr;
+    int64_t gradBase = 0;
+    int64_t offset = 0;  // index step of the direction
+    float invLength = 1.0f;
+    float ux = 0.0f, uz = 0.0f;
+    float hx = 0.0f, hz = 0.0f;  // world step along x and z
+
+    // Slope of the tangent plane at index k along the direction.
+    float slope(int64_t k) const { return gx[k - gradBase] * ux + gz[k - gradBase] * uz; }
+    float y(int64_t k) const { return raw[k] * yScale; }
+};
+
+inline float equation1(float ypp, float yp) {
+    float t = 1.0f + yp * yp;
+    return std::fabs(ypp) / (t * std::sqrt(t));
+}
+
+// Near (m = 1) or reinforcement (m = distance) measure at centre index k;
+// ypp receives the signed second derivative (or a value of its sign).
+template <CurvatureMethod kMethod>
+[[gnu::always_inline]] inline float measure(const View& v, int64_t k, int m, float& ypp) {
+    const int64_t s = v.offset * m;
+    const float invStep = v.invLength / float(m);
+    if constexpr (kMethod == CurvatureMethod::TwoNormal) {
+        float sv = v.slope(k), sn = v.slope(k + s);
+        ypp = (sn - sv) * invStep;
+        return equation1(ypp, sv);
+    } else if constexpr (kMethod == CurvatureMethod::ThreeNormal) {
+        float sp = v.slope(k - s), sv = v.slope(k), sn = v.slope(k + s);
+        ypp = 0.5f * (sn - sp) * invStep;  // the mean of the two pairs' y''
+        float t = 1.0f + sv * sv;
+        return 0.5f * (std::fabs(sv - sp) + std::fabs(sn - sv)) * invStep / (t * std::sqrt(t));
+    } else if constexpr (kMethod == CurvatureMethod::ThreeVertex) {
+        const float yp = v.y(k - s), yv = v.y(k), yn = v.y(k + s);
+        float s1 = (yv - yp) * invStep, s2 = (yn - yv) * invStep;
+        ypp = (s2 - s1) * invStep;
+        return equation1(ypp, 0.5f * (s1 + s2));
+    } else {
+        const float hx = v.hx * float(m), hz = v.hz * float(m);
+        const float yv = v.y(k);
+        float a = v.y(k - s) - yv, b = v.y(k + s) - yv;
+        // e1 = (-hx, a, -hz), e2 = (hx, b, hz)
+        float dot = -hx * hx + a * b - hz * hz;
+        float cosTheta = dot / std::sqrt((hx * hx + hz * hz + a * a) * (hx * hx + hz * hz + b * b));
+        ypp = a + b;  // sign of y''
+        // Clamp to [0, 1]; std::max(v, 0) and std::min(v, 1) keep a NaN
+        // (no data) and map to min/max instructions.
+        return std::min(std::max(1.0f + cosTheta, 0.0f), 1.0f);
+    }
+}
+
 struct Kernel {
     const detail::WorldGrid* g = nullptr;
     // Surface gradient dy/dx, dy/dz (normal methods) of the rows a chunk
@@ -109,48 +167,10 @@ struct Kernel {
     CurvatureOptions opt;
     DirectionSetup dir[kDirectionCount];
 
-    // Slope of the tangent plane at index k along direction d.
-    float slope(int64_t k, const DirectionSetup& d) const {
-        return gx[k - gradBase] * d.ux + gz[k - gradBase] * d.uz;
-    }
-
-    static float equation1(float ypp, float yp) {
-        float t = 1.0f + yp * yp;
-        return std::fabs(ypp) / (t * std::sqrt(t));
-    }
-
-    // Near (m = 1) or reinforcement (m = distance) measure at centre index k;
-    // ypp receives the signed second derivative (or a value of its sign).
-    template <CurvatureMethod kMethod>
-    [[gnu::always_inline]] float measure(int64_t k, const DirectionSetup& d, int m, float& ypp) const {
-        const int64_t s = d.offset * m;
-        const float invStep = d.invLength / float(m);
-        if constexpr (kMethod == CurvatureMethod::TwoNormal) {
-            float sv = slope(k, d), sn = slope(k + s, d);
-            ypp = (sn - sv) * invStep;
-            return equation1(ypp, sv);
-        } else if constexpr (kMethod == CurvatureMethod::ThreeNormal) {
-            float sp = slope(k - s, d), sv = slope(k, d), sn = slope(k + s, d);
-            ypp = 0.5f * (sn - sp) * invStep;  // the mean of the two pairs' y''
-            float t = 1.0f + sv * sv;
-            return 0.5f * (std::fabs(sv - sp) + std::fabs(sn - sv)) * invStep / (t * std::sqrt(t));
-        } else if constexpr (kMethod == CurvatureMethod::ThreeVertex) {
-            const float yp = g->at(k - s), yv = g->at(k), yn = g->at(k + s);
-            float s1 = (yv - yp) * invStep, s2 = (yn - yv) * invStep;
-            ypp = (s2 - s1) * invStep;
-            return equation1(ypp, 0.5f * (s1 + s2));
-        } else {
-            float hx = float(d.di * m) * g->spacingX, hz = float(d.dj * m) * g->spacingZ;
-            const float yv = g->at(k);
-            float a = g->at(k - s) - yv, b = g->at(k + s) - yv;
-            // e1 = (-hx, a, -hz), e2 = (hx, b, hz)
-            float dot = -hx * hx + a * b - hz * hz;
-            float cosTheta = dot / std::sqrt((hx * hx + hz * hz + a * a) * (hx * hx + hz * hz + b * b));
-            ypp = a + b;  // sign of y''
-            // Clamp to [0, 1]; std::max(v, 0) and std::min(v, 1) keep a NaN v
-            // (no data) and map to min/max instructions.
-            return std::min(std::max(1.0f + cosTheta, 0.0f), 1.0f);
-        }
+    View view(const DirectionSetup& d) const {
+        return {.raw = g->raw, .yScale = g->scale, .gx = gx, .gz = gz, .gradBase = gradBase, .offset = d.offset,
+                .invLength = d.invLength, .ux = d.ux, .uz = d.uz, .hx = float(d.di) * g->spacingX,
+                .hz = float(d.dj) * g->spacingZ};
     }
 
     // Level control and sign on a finished magnitude.
@@ -166,39 +186,34 @@ struct Kernel {
     // inside the grid (no clamping): plain loops, one per option set, that
     // the compiler vectorises. Writes buf[i]; levels are applied afterwards.
     template <CurvatureMethod kMethod>
-    void interior(int j, int iLo, int iHi, const DirectionSetup& ds, float* buf) const {
+    void interior(int j, int iLo, int iHi, const DirectionSetup& ds, float* __restrict buf,
+                  float* __restrict second) const {
+        const View v = view(ds);
         const int64_t row = int64_t(j) * g->width;
         const float scale = opt.scale;
         const int dist = opt.distance;
-        const bool sign = opt.signedValues && !opt.levels.enabled;
+        // Straight arithmetic first, selects in loops of their own: GCC 12
+        // does not vectorise the measure with a select in the same loop. buf
+        // and second never overlap the heights or gradients (ivdep: no
+        // run-time alias checks).
+#pragma GCC ivdep
+        for (int i = iLo; i < iHi; ++i) buf[i] = measure<kMethod>(v, row + i, 1, second[i]);
         if (opt.output == CurvatureOutput::SecondDerivative) {
+            for (int i = iLo; i < iHi; ++i) buf[i] = second[i];
+            return;
+        }
+        for (int i = iLo; i < iHi; ++i) buf[i] *= scale;
+        if (dist > 1) {
+#pragma GCC ivdep
             for (int i = iLo; i < iHi; ++i) {
-                float ypp;
-                measure<kMethod>(row + i, ds, 1, ypp);
-                buf[i] = ypp;
-            }
-        } else {
-            // sign * value as a product: a select here keeps GCC 12 from
-            // if-converting the larger loop bodies.
-            for (int i = iLo; i < iHi; ++i) {
-                float ypp;
-                float v = measure<kMethod>(row + i, ds, 1, ypp) * scale;
-                buf[i] = v * (sign && ypp < 0.0f ? -1.0f : 1.0f);
-            }
-            if (dist > 1) {
-                for (int i = iLo; i < iHi; ++i) {
-                    float farYpp;
-                    buf[i] *= measure<kMethod>(row + i, ds, dist, farYpp);
-                }
+                float farYpp;
+                buf[i] *= measure<kMethod>(v, row + i, dist, farYpp);
             }
         }
-        if (opt.levels.enabled && opt.output == CurvatureOutput::Curvature) {
-            // Recompute the sign of y'' only here, where pow is scalar anyway.
-            for (int i = iLo; i < iHi; ++i) {
-                float ypp;
-                measure<kMethod>(row + i, ds, 1, ypp);
-                buf[i] = finish(buf[i], ypp);
-            }
+        if (opt.levels.enabled) {
+            for (int i = iLo; i < iHi; ++i) buf[i] = finish(buf[i], second[i]);  // pow: scalar
+        } else if (opt.signedValues) {
+            for (int i = iLo; i < iHi; ++i) buf[i] = second[i] < 0.0f ? -buf[i] : buf[i];
         }
     }
 
@@ -207,26 +222,29 @@ struct Kernel {
     float clamped(int i, int j, const DirectionSetup& ds) const {
         const int ci = std::clamp(i, ds.loI, ds.hiI), cj = std::clamp(j, ds.loJ, ds.hiJ);
         const int64_t c = int64_t(cj) * g->width + ci;
+        const View v = view(ds);
         float ypp = 0.0f;
-        float value = measure<kMethod>(c, ds, 1, ypp);
+        float value = measure<kMethod>(v, c, 1, ypp);
         if (opt.output == CurvatureOutput::SecondDerivative) return ypp;
+        value *= opt.scale;
         if (opt.distance > 1) {
             float farYpp;
-            value *= measure<kMethod>(c, ds, opt.distance, farYpp);
+            value *= measure<kMethod>(v, c, opt.distance, farYpp);
         }
-        return finish(value * opt.scale, ypp);
+        return finish(value, ypp);
     }
 
     template <CurvatureMethod kMethod>
     void rows(int j0, int j1, float* out) const {
         const int w = g->width, h = g->height;
         std::vector<float> buf(size_t(w) * kDirectionCount);
+        std::vector<float> yppRow(size_t(w), 0.0f);  // y'' (or its sign) of the near measure
         for (int j = j0; j < j1; ++j) {
             const bool interiorRow = j >= reach && j < h - reach;
             const int iLo = interiorRow ? reach : w, iHi = interiorRow ? w - reach : w;
             for (int d = 0; d < kDirectionCount; ++d) {
                 float* b = buf.data() + size_t(d) * size_t(w);
-                if (iLo < iHi) interior<kMethod>(j, iLo, iHi, dir[d], b);
+                if (iLo < iHi) interior<kMethod>(j, iLo, iHi, dir[d], b, yppRow.data());
                 for (int i = 0; i < w; ++i) {
                     if (i == iLo && iLo < iHi) i = iHi;
                     if (i >= w) break;
