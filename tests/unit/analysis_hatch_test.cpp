@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 using namespace sierra;
 using namespace sierra::analysis;
@@ -93,4 +94,16 @@ TEST(AnalysisHatch, MismatchedFieldsAndNoData) {
     EXPECT_TRUE(std::isnan(h.opacity[40]));
     EXPECT_FALSE(std::isnan(h.direction[0].x));
     EXPECT_THROW(parseHatchDirection("with"), Error);
+}
+
+TEST(AnalysisHatch, ThreadCountDoesNotChangeTheField) {
+    auto f = sampleSurface(257, 257, 1.0, 1.0,
+                           [](double x, double z) { return 3.0 * std::sin(0.1 * x) * std::cos(0.07 * z); });
+    auto c = computeCurvature(f, {.method = CurvatureMethod::ThreeNormal, .distance = 2});
+    for (HatchDirection dir : {HatchDirection::Along, HatchDirection::Across}) {
+        auto a = computeHatchField(f, c, {.direction = dir, .threads = 1});
+        auto b = computeHatchField(f, c, {.direction = dir, .threads = 3});
+        ASSERT_EQ(std::memcmp(a.direction.data(), b.direction.data(), a.direction.size() * sizeof(Vec3)), 0);
+        ASSERT_EQ(std::memcmp(a.opacity.data(), b.opacity.data(), a.opacity.size() * sizeof(float)), 0);
+    }
 }

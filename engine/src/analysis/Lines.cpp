@@ -173,6 +173,11 @@ public:
             for (int i = 0; i < c_.width; ++i) {
                 size_t v = size_t(j) * size_t(c_.width) + size_t(i);
                 if (owner_[v] >= 0 || tried_[v]) continue;
+                // Cheap test first: at a vertex the interpolated strength is its own.
+                float strongest = 0.0f;
+                for (int d = 0; d < kDirectionCount; ++d)
+                    strongest = std::max(strongest, counted(c_.values[v * kDirectionCount + size_t(d)], o_.polarity));
+                if (!(strongest >= o_.threshold)) continue;
                 Sample s0;
                 if (!sample(float(i), float(j), s0) || !(s0.strength >= o_.threshold)) continue;
                 LineVertex start{float(i), float(j), std::min(1.0f, s0.strength)};
