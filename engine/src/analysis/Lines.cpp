@@ -88,8 +88,10 @@ public:
                 path.insert(path.end(), forward.begin(), forward.end());
                 if (int(path.size()) < o_.minVertices) {
                     for (size_t k : path)
-                        if (owner_[k] == id) owner_[k] = -1;
-                    tried_[v] = 1;
+                        if (owner_[k] == id) {
+                            owner_[k] = -1;
+                            tried_[k] = 1;
+                        }
                     continue;
                 }
                 for (size_t k : path)
@@ -188,8 +190,10 @@ public:
                 path.push_back(start);
                 path.insert(path.end(), forward.begin(), forward.end());
                 if (int(path.size()) < o_.minVertices) {
-                    for (size_t k : claimed_) owner_[k] = -1;
-                    tried_[v] = 1;
+                    for (size_t k : claimed_) {
+                        owner_[k] = -1;
+                        tried_[k] = 1;
+                    }
                 } else {
                     out.vertices.insert(out.vertices.end(), path.begin(), path.end());
                     out.offsets.push_back(uint32_t(out.vertices.size()));

@@ -13,8 +13,8 @@
 // or with no data, or at a vertex already on a line: that vertex is appended
 // (the paths join there) and the end stops, so no segment is ever traced
 // twice. Paths of fewer than minVertices vertices (joining vertices
-// included) are dropped, their vertices left free for later paths but never
-// starting one again.
+// included) are dropped; their vertices stay free for later paths to pass
+// through but never start one again.
 //
 // Blended tracing (the document's refinement, blended = true). Points move
 // in steps of `step` grid units perpendicular to the curvature-weighted axis
@@ -22,8 +22,9 @@
 // curvatures interpolated bilinearly at each point. Each point claims its
 // nearest vertex; a point whose nearest vertex another path claimed ends the
 // path at that path's point (the join), a point returning to a vertex this
-// path claimed more than two points ago closes a loop. Lines that cross
-// between vertices are not detected as joined.
+// path claimed a few points ago (more than 2 / step) closes a loop. Lines
+// that cross between vertices are not detected as joined. Dropped paths
+// release their vertices, which never start a path again.
 //
 // Alpha is the strength at the vertex (or point), clamped to [0, 1]; the
 // polylines are in grid coordinates (x = column i, z = row j).
