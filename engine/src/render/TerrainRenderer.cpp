@@ -14,7 +14,7 @@ struct TerrainRenderer::State {
     TerrainGpu terrain;
     SbtStream stream;
     FrameUniforms uniforms;
-    std::unique_ptr<TerrainPass> shaded;
+    std::unique_ptr<TerrainPass> shaded;  // replaced by setSurface()
     std::unique_ptr<WireframePass> wireframe;  // built on first use
     std::vector<std::unique_ptr<Pass>> extra;
     std::unique_ptr<DepthPass> depth;          // built on first use, per frame size
@@ -24,8 +24,8 @@ struct TerrainRenderer::State {
 
 TerrainRenderer TerrainRenderer::create(const TerrainDesc& desc) {
     TerrainGpu terrain = TerrainGpu::create({.field = desc.field, .seaLevel = desc.seaLevel, .threads = desc.threads});
-    auto shaded = TerrainPass::create(terrain, {.surface = desc.surface, .metric = desc.metric,
-                                                .treeLine = desc.treeLine, .snowLine = desc.snowLine});
+    auto shaded = TerrainPass::create(
+        makeRampSurface(terrain, {.metric = desc.metric, .treeLine = desc.treeLine, .snowLine = desc.snowLine}));
     auto state = std::unique_ptr<State>(new State{
         .terrain = std::move(terrain),
         .stream = SbtStream::create(),
@@ -125,6 +125,10 @@ void TerrainRenderer::collectGpuTime(DrawStats& stats) {
     glGetQueryObjectui64v(state_->timer.id(), GL_QUERY_RESULT, &ns);
     state_->timerPending = false;
     stats.drawMs = double(ns) * 1e-6;
+}
+
+void TerrainRenderer::setSurface(std::unique_ptr<Surface> surface) {
+    state_->shaded = TerrainPass::create(std::move(surface));
 }
 
 void TerrainRenderer::addPass(std::unique_ptr<Pass> pass) {

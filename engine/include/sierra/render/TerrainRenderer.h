@@ -11,6 +11,7 @@
 #include <sierra/render/FrameUniforms.h>
 #include <sierra/render/Pass.h>
 #include <sierra/render/SbtStream.h>
+#include <sierra/render/Surface.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/render/passes/DepthPass.h>
 #include <sierra/terrain/Heightfield.h>
@@ -29,7 +30,6 @@ struct TerrainDesc {
     // Sea level as a stored height (the heightfield's units); NaN = no water.
     float seaLevel = std::numeric_limits<float>::quiet_NaN();
     int threads = 0;                      // CPU threads for the error pass, 0 = default
-    std::string surface = "hypsometric";  // the terrain pass's surface function
     bool metric = false;                  // heights in metres: absolute-elevation colours
     float treeLine = 2000.0f;             // metres (metric only)
     float snowLine = 3000.0f;             // metres (metric only)
@@ -74,6 +74,8 @@ public:
     DrawStats draw(const Camera& camera, int width, int height, const DrawOptions& options);
     // Waits for the GPU timer of the last draw() and stores it in stats.drawMs.
     void collectGpuTime(DrawStats& stats);
+    // The terrain pass's surface (default: the colour ramp of TerrainDesc).
+    void setSurface(std::unique_ptr<Surface> surface);
     // Runs after the terrain and wireframe passes, in the order added.
     void addPass(std::unique_ptr<Pass> pass);
     // The linear eye-space depth of the terrain from `camera` (NaN where none).

@@ -1,0 +1,38 @@
+#pragma once
+// A surface: the albedo function the terrain pass is built with
+// (shaders/surface_NAME.glsl defines `vec3 surfaceAlbedo(vec3 world, Ground g)`)
+// and the inputs it reads (textures on units 1 and 3..7, uniform blocks from
+// binding 2 on). A new shading is a new Surface, never a copy of the terrain
+// shader.
+
+#include <sierra/gpu/Objects.h>
+
+#include <memory>
+#include <string>
+
+namespace sierra::render {
+
+class TerrainGpu;
+
+class Surface {
+public:
+    virtual ~Surface() = default;
+    // The shader file that stands for "surface.glsl" in terrain.frag.
+    virtual std::string shaderFile() const = 0;
+    // Binds the surface's textures and blocks (inside the terrain pass's state scope).
+    virtual void bind() const = 0;
+};
+
+struct RampSurfaceDesc {
+    // Heights in metres: colour by absolute elevation with these lines (see
+    // terrain::RampScheme::Elevation); otherwise a ramp over the terrain's range.
+    bool metric = false;
+    float treeLine = 2000.0f;  // metres
+    float snowLine = 3000.0f;  // metres
+};
+
+// The hypsometric colour ramp (or the absolute elevation ramp for metric
+// heights) as a 1D texture over the terrain's height range, on unit 1.
+std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc = {});
+
+}  // namespace sierra::render

@@ -1,0 +1,44 @@
+#include <sierra/render/Surface.h>
+
+#include <sierra/render/TerrainGpu.h>
+#include <sierra/terrain/ColourRamp.h>
+
+namespace sierra::render {
+
+namespace {
+
+constexpr int kRampEntries = 1024;
+
+class RampSurface final : public Surface {
+public:
+    explicit RampSurface(gpu::Texture ramp) : ramp_(std::move(ramp)) {}
+    std::string shaderFile() const override { return "surface_hypsometric.glsl"; }
+    void bind() const override { glBindTextureUnit(1, ramp_.id()); }
+
+private:
+    gpu::Texture ramp_;
+};
+
+}  // namespace
+
+std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
+    // The ramp spans the terrain's heights in stored units (the shader looks it
+    // up by world height over the same range, linearly), so metric stops stay
+    // in metres whatever the vertical scale.
+    glm::vec2 range = terrain.worldRange() / terrain.verticalScale();
+    // Without water the ramp's sea level sits below the lowest height, so no
+    // sample is coloured as sea or beach.
+    float sea = terrain.hasWater() ? terrain.seaLevel() : range.x - (range.y - range.x);
+    terrain::ColourRamp ramp({.scheme = desc.metric ? terrain::RampScheme::Elevation : terrain::RampScheme::Hypsometric,
+                              .minHeight = range.x,
+                              .maxHeight = range.y,
+                              .seaLevel = sea,
+                              .treeLine = desc.treeLine,
+                              .snowLine = desc.snowLine});
+    std::vector<uint8_t> table = ramp.table(kRampEntries);
+    gpu::Texture texture = gpu::Texture::create({.target = GL_TEXTURE_1D, .format = GL_RGBA8, .width = kRampEntries});
+    texture.upload(GL_RGBA, GL_UNSIGNED_BYTE, table.data());
+    return std::make_unique<RampSurface>(std::move(texture));
+}
+
+}  // namespace sierra::render
