@@ -81,8 +81,9 @@ TEST(ZonesField, MatchesBruteForceWithinHalfATexel) {
                         if (eps == 0.0) wrongZone += f.zone[p] != map.at(int(px), int(py));
                         // The sign says on which side of its pair the texel lies
                         // (either side is right for a texel on the line).
-                        if (f.lowZone[p] != f.highZone[p] && std::abs(f.signedDistance[p]) > 1e-4f)
+                        if (f.lowZone[p] != f.highZone[p] && std::abs(f.signedDistance[p]) > 1e-4f) {
                             EXPECT_EQ(f.zone[p], f.signedDistance[p] < 0 ? f.lowZone[p] : f.highZone[p]);
+                        }
                     }
                 EXPECT_LE(worst, 0.5);
                 EXPECT_EQ(wrongZone, 0);
