@@ -65,6 +65,25 @@ class Noise {
             }
         return std::min(best, 1.0);
     }
+    // Distance to the nearest boundary between two cells of `cellular` (F2 - F1): small on cracks.
+    double cellEdge(double u, double v, int cells, uint64_t salt) const {
+        double x = u * cells, y = v * cells;
+        int ix = int(std::floor(x)), iy = int(std::floor(y));
+        double f1 = 9, f2 = 9;
+        for (int dy = -2; dy <= 2; ++dy)
+            for (int dx = -2; dx <= 2; ++dx) {
+                double px = ix + dx + lattice(cells, ix + dx, iy + dy, salt);
+                double py = iy + dy + lattice(cells, ix + dx, iy + dy, salt + 77);
+                double d = std::hypot(px - x, py - y);
+                if (d < f1) {
+                    f2 = f1;
+                    f1 = d;
+                } else if (d < f2) {
+                    f2 = d;
+                }
+            }
+        return f2 - f1;
+    }
 
   private:
     uint64_t seed_;
@@ -104,10 +123,11 @@ Texel shade(const std::string& name, const Noise& n, double u, double v) {
     if (name == "rock") {
         double base = n.fbm(u, v, 4, 6, 20);
         double ridge = 1.0 - std::abs(2 * n.fbm(u, v, 8, 4, 21) - 1);
-        double crack = n.cellular(u, v, 6, 22);
+        // Cracks along cell boundaries, wobbled by noise so they are not straight.
+        double crack = n.cellEdge(u + 0.03 * n.fbm(u, v, 8, 3, 24), v + 0.03 * n.fbm(u, v, 8, 3, 25), 5, 22);
         Texel grey{0.38 + 0.25 * base, 0.36 + 0.24 * base, 0.34 + 0.22 * base, 0};
         Texel t = mixColour(grey, {0.45, 0.38, 0.30, 0}, n.value(u, v, 4, 23) * 0.5);
-        double dark = std::clamp((0.12 - crack) * 8, 0.0, 1.0);
+        double dark = std::clamp((0.08 - crack) * 14, 0.0, 1.0);
         t = mixColour(t, {0.15, 0.14, 0.13, 0}, dark * 0.7);
         t.height = std::clamp(0.3 + 0.5 * ridge * base + 0.3 * base - 0.3 * dark, 0.0, 1.0);
         return t;
@@ -182,6 +202,28 @@ TileImage generateTile(const std::string& name, int size, uint64_t seed) {
 
 std::vector<uint8_t> encodeTilePng(const TileImage& tile) {
     return detail::encodePng8(tile.size, tile.size, 4, tile.rgba.data());
+}
+
+std::vector<uint8_t> encodeTileSheetPng(const std::vector<TileImage>& tiles) {
+    SIERRA_CHECK(!tiles.empty(), "a tile sheet needs at least one tile");
+    const int n = tiles[0].size;
+    for (const auto& t : tiles) SIERRA_CHECK(t.size == n, "tile sheet: all tiles must have one size");
+    const int w = n * int(tiles.size()), h = 2 * n;
+    std::vector<uint8_t> rgb(size_t(w) * size_t(h) * 3, 0);
+    for (size_t k = 0; k < tiles.size(); ++k) {
+        const auto& t = tiles[k].rgba;
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                // Top: 2x2 repeats at half resolution, texel (2x mod n, 2y mod n).
+                const uint8_t* src = &t[(size_t((2 * y) % n) * size_t(n) + size_t((2 * x) % n)) * 4];
+                uint8_t* dst = &rgb[(size_t(y) * size_t(w) + k * size_t(n) + size_t(x)) * 3];
+                dst[0] = src[0], dst[1] = src[1], dst[2] = src[2];
+                uint8_t height = t[(size_t(y) * size_t(n) + size_t(x)) * 4 + 3];
+                uint8_t* low = &rgb[(size_t(y + n) * size_t(w) + k * size_t(n) + size_t(x)) * 3];
+                low[0] = low[1] = low[2] = height;
+            }
+    }
+    return detail::encodePng8(w, h, 3, rgb.data());
 }
 
 }  // namespace sierra::zones

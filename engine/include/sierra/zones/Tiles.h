@@ -25,4 +25,9 @@ TileImage generateTile(const std::string& name, int size = 256, uint64_t seed = 
 // A PNG file (RGBA8) of a tile.
 std::vector<uint8_t> encodeTilePng(const TileImage& tile);
 
+// A PNG contact sheet (RGB) of tiles of one size: one column per tile, the top
+// row its albedo repeated 2x2 at half resolution (a seam would show as a cross),
+// the bottom row its height channel in grey.
+std::vector<uint8_t> encodeTileSheetPng(const std::vector<TileImage>& tiles);
+
 }  // namespace sierra::zones

@@ -49,7 +49,7 @@ struct AutoZoneDesc {
     float deepWater = 0.35f;     // water deeper than this fraction of the deepest depth is deep
     float sandTop = 0.04f;       // sand up to this fraction of the land relief above sea level
     float snowLine = 0.75f;      // snow above this fraction of the land relief
-    float rockSlope = 35.0f;     // land steeper than this (degrees, world units: spacing and
+    float rockSlope = 25.0f;     // land steeper than this (degrees, world units: spacing and
                                  // vertical scale of the field) is rock; sand and snow included
     int smoothPasses = 2;        // 3x3 majority passes removing single-pixel specks, >= 0
     // Surface names looked up in the palette (each must be there).
