@@ -4,6 +4,9 @@
 
 #include "zones_test_maps.h"
 
+#include <sierra/terrain/DiamondSquare.h>
+#include <sierra/zones/Tiles.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -364,6 +367,40 @@ TEST(ZonesVectorise, BandsNarrowToJunctionsAndKeepTheWidthBetween) {
     EXPECT_DOUBLE_EQ(minX, 18.5);
     EXPECT_DOUBLE_EQ(maxX, 21.5);
     EXPECT_NEAR(zoneAreas(lines)[2], 3.0 * (20 - 3.0), 1e-9);  // a hexagon: full width over 14, tapering over 3 at each end
+}
+
+// A real map: the auto-zoning of a fractal terrain (specks, thin strips, many
+// junctions), in both layouts, exact and simplified.
+TEST(ZonesVectorise, AutoZonedTerrainTilesTheFrame) {
+    Palette p;
+    for (const std::string& name : tileNames()) p.surfaces.push_back({name, Colour(p.surfaces.size() + 1), "", 16, 0.5});
+  for (uint64_t seed : {3, 4, 5}) {
+    auto field = terrain::generateDiamondSquare({.size = 129, .seed = seed});
+    auto [lo, hi] = field.range();
+    field.setVerticalScale(0.2f * 128 / (hi - lo));
+    ZoneMap touching = autoZones(field, p, {.rockSlope = 20.0f, .smoothPasses = 0});
+    for (bool figure1 : {false, true}) {
+        ZoneMap map = figure1 ? drawBorderlines(touching) : touching;
+        for (double eps : {0.0, 0.7, 1.5, 4.0}) {
+            SCOPED_TRACE(std::string(figure1 ? "figure1" : "touching") + " eps " + std::to_string(eps) + " seed " +
+                         std::to_string(seed));
+            Borderlines lines = buildBorderlines(map, p, {.epsilon = eps});
+            auto areas = zoneAreas(lines);
+            double total = 0;
+            for (double a : areas) {
+                EXPECT_GE(a, 0.0);
+                total += a;
+            }
+            EXPECT_NEAR(total, (lines.frameX1 - lines.frameX0) * (lines.frameY1 - lines.frameY0), 1e-6);
+            if (!figure1 && eps == 0.0) {
+                auto counts = pixelCounts(map, int(p.surfaces.size()));
+                for (size_t z = 0; z < counts.size(); ++z) EXPECT_EQ(areas[z], double(counts[z]));
+            }
+            expectConsistentFaces(lines);
+            expectNoCrossings(lines);
+        }
+    }
+  }
 }
 
 }  // namespace

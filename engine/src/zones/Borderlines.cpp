@@ -89,12 +89,15 @@ void vectoriseFigure1(const ZoneMap& map, Borderlines& lines) {
 
     // Zone on the side n of the axis edge p -> q: the face there is the unit
     // cell {p, q, p+n, q+n}, or the half of it next to pq when a diagonal cuts
-    // it (then p or q is a zone pixel and names it, so p and q come first).
+    // it (then p or q is a zone pixel and names it, so p and q come first). A
+    // cell of four borderline pixels (a 2x2 blob) gets one zone, the nearest
+    // to its top-left pixel, whichever edge asks, so its faces stay consistent.
     auto axisSide = [&](int px, int py, int qx, int qy, int nx, int ny) -> int32_t {
         if (!inside(px + nx, py + ny)) return kOutside;
         for (auto [x, y] : {std::pair{px, py}, {qx, qy}, {px + nx, py + ny}, {qx + nx, qy + ny}})
             if (map.at(x, y) >= 0) return map.at(x, y);
-        return nearest[size_t(py + ny) * size_t(w) + size_t(px + nx)];
+        int cx = std::min({px, qx, px + nx}), cy = std::min({py, qy, py + ny});
+        return nearest[size_t(cy) * size_t(w) + size_t(cx)];
     };
     auto addAxis = [&](int px, int py, int qx, int qy) {
         int dx = qx - px, dy = qy - py;
@@ -277,6 +280,124 @@ void douglasPeucker(const Borderlines& lines, const std::vector<uint32_t>& chain
     }
 }
 
+// The chain of an arc after rule 3 at `epsilon` (the whole chain when 0).
+std::vector<uint32_t> simplifiedChain(const Borderlines& lines, const Arc& arc, double epsilon) {
+    const size_t n = arc.chain.size();
+    if (n <= 2 || !(epsilon > 0.0)) return arc.chain;
+    std::vector<bool> keep(n, false);
+    keep[0] = keep[n - 1] = true;
+    if (arc.closed) {
+        // Pin the first vertex and the one farthest from it.
+        const Vertex& p0 = lines.vertices[arc.chain[0]];
+        size_t far = 1;
+        double best = -1;
+        for (size_t k = 1; k + 1 < n; ++k) {
+            const Vertex& p = lines.vertices[arc.chain[k]];
+            double d = std::hypot(p.x - p0.x, p.y - p0.y);
+            if (d > best) {
+                best = d;
+                far = k;
+            }
+        }
+        keep[far] = true;
+        douglasPeucker(lines, arc.chain, 0, far, epsilon, keep);
+        douglasPeucker(lines, arc.chain, far, n - 1, epsilon, keep);
+    } else {
+        douglasPeucker(lines, arc.chain, 0, n - 1, epsilon, keep);
+    }
+    std::vector<uint32_t> out;
+    for (size_t k = 0; k < n; ++k)
+        if (keep[k]) out.push_back(arc.chain[k]);
+    return out;
+}
+
+int orientation(const Vertex& p, const Vertex& q, const Vertex& r) {
+    double v = (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+    return v > 0 ? 1 : v < 0 ? -1 : 0;
+}
+
+bool onSegment(const Vertex& p, const Vertex& a, const Vertex& b) {
+    return orientation(a, b, p) == 0 && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) &&
+           std::min(a.y, b.y) <= p.y && p.y <= std::max(a.y, b.y);
+}
+
+// Arcs whose simplified chains break the subdivision: two segments that cross
+// or touch away from a shared end, or a vertex around which the zones do not
+// follow each other (the zone right of one edge must be left of the next).
+std::vector<bool> findConflicts(const Borderlines& lines, const std::vector<Arc>& arcs,
+                                const std::vector<std::vector<uint32_t>>& chains) {
+    struct Seg {
+        uint32_t a, b, arc;
+    };
+    std::vector<Seg> segs;
+    for (size_t k = 0; k < arcs.size(); ++k)
+        for (size_t i = 0; i + 1 < chains[k].size(); ++i) segs.push_back({chains[k][i], chains[k][i + 1], uint32_t(k)});
+    std::vector<bool> conflict(arcs.size(), false);
+
+    // Around each vertex.
+    std::vector<std::vector<std::pair<double, uint32_t>>> around(lines.vertices.size());
+    for (uint32_t s = 0; s < segs.size(); ++s) {
+        const Vertex& a = lines.vertices[segs[s].a];
+        const Vertex& b = lines.vertices[segs[s].b];
+        around[segs[s].a].push_back({std::atan2(b.y - a.y, b.x - a.x), 2 * s});
+        around[segs[s].b].push_back({std::atan2(a.y - b.y, a.x - b.x), 2 * s + 1});
+    }
+    for (auto& list : around) {
+        if (list.size() < 2) continue;
+        std::sort(list.begin(), list.end());
+        for (size_t k = 0; k < list.size(); ++k) {
+            const auto& cur = list[k];
+            const auto& next = list[(k + 1) % list.size()];
+            const Arc& ca = arcs[segs[cur.second / 2].arc];
+            const Arc& na = arcs[segs[next.second / 2].arc];
+            int32_t curRight = cur.second % 2 ? ca.left : ca.right;  // leaving through the end: sides swap
+            int32_t nextLeft = next.second % 2 ? na.right : na.left;
+            if (cur.first == next.first || curRight != nextLeft) {
+                for (const auto& e : list) conflict[segs[e.second / 2].arc] = true;
+                break;
+            }
+        }
+    }
+
+    // Crossings, through a uniform grid of buckets.
+    const double cell = std::max(4.0, std::max(lines.mapWidth, lines.mapHeight) / 256.0);
+    const int gw = int(lines.mapWidth / cell) + 2, gh = int(lines.mapHeight / cell) + 2;
+    std::vector<std::vector<uint32_t>> grid(size_t(gw) * size_t(gh));
+    auto cellOf = [&](double v, int limit) { return std::clamp(int(std::floor(v / cell)), 0, limit - 1); };
+    for (uint32_t s = 0; s < segs.size(); ++s) {
+        const Vertex& a = lines.vertices[segs[s].a];
+        const Vertex& b = lines.vertices[segs[s].b];
+        for (int gy = cellOf(std::min(a.y, b.y), gh); gy <= cellOf(std::max(a.y, b.y), gh); ++gy)
+            for (int gx = cellOf(std::min(a.x, b.x), gw); gx <= cellOf(std::max(a.x, b.x), gw); ++gx)
+                grid[size_t(gy) * size_t(gw) + size_t(gx)].push_back(s);
+    }
+    for (const auto& bucket : grid)
+        for (size_t i = 0; i < bucket.size(); ++i)
+            for (size_t j = i + 1; j < bucket.size(); ++j) {
+                const Seg& s = segs[bucket[i]];
+                const Seg& t = segs[bucket[j]];
+                if (conflict[s.arc] && conflict[t.arc]) continue;
+                const Vertex &a = lines.vertices[s.a], &b = lines.vertices[s.b];
+                const Vertex &c = lines.vertices[t.a], &d = lines.vertices[t.b];
+                bool shared = s.a == t.a || s.a == t.b || s.b == t.a || s.b == t.b;
+                bool bad;
+                if (shared) {
+                    // Sharing an end is fine unless the other end lies on the other segment (overlap).
+                    uint32_t sOther = (s.a == t.a || s.a == t.b) ? s.b : s.a;
+                    uint32_t tOther = (t.a == s.a || t.a == s.b) ? t.b : t.a;
+                    bad = (sOther != t.a && sOther != t.b && onSegment(lines.vertices[sOther], c, d)) ||
+                          (tOther != s.a && tOther != s.b && onSegment(lines.vertices[tOther], a, b));
+                } else {
+                    int o1 = orientation(a, b, c), o2 = orientation(a, b, d);
+                    int o3 = orientation(c, d, a), o4 = orientation(c, d, b);
+                    bad = (o1 * o2 < 0 && o3 * o4 < 0) || onSegment(c, a, b) || onSegment(d, a, b) ||
+                          onSegment(a, c, d) || onSegment(b, c, d);
+                }
+                if (bad) conflict[s.arc] = conflict[t.arc] = true;
+            }
+    return conflict;
+}
+
 }  // namespace
 
 Borderlines vectorise(const ZoneMap& map, const Palette& palette) {
@@ -349,37 +470,34 @@ void removeCollinearVertices(Borderlines& lines) {
 void simplifyArcs(Borderlines& lines, double epsilon) {
     if (!(epsilon > 0.0)) return;
     Adjacency adj = adjacency(lines);
-    auto arcs = extractArcs(lines, adj, junctionsOf(lines, adj));
-    for (Arc& arc : arcs) {
-        const size_t n = arc.chain.size();
-        if (n <= 2) continue;
-        std::vector<bool> keep(n, false);
-        keep[0] = keep[n - 1] = true;
-        if (arc.closed) {
-            // Pin the first vertex and the one farthest from it.
-            const Vertex& p0 = lines.vertices[arc.chain[0]];
-            size_t far = 1;
-            double best = -1;
-            for (size_t k = 1; k + 1 < n; ++k) {
-                const Vertex& p = lines.vertices[arc.chain[k]];
-                double d = std::hypot(p.x - p0.x, p.y - p0.y);
-                if (d > best) {
-                    best = d;
-                    far = k;
-                }
-            }
-            keep[far] = true;
-            douglasPeucker(lines, arc.chain, 0, far, epsilon, keep);
-            douglasPeucker(lines, arc.chain, far, n - 1, epsilon, keep);
-        } else {
-            douglasPeucker(lines, arc.chain, 0, n - 1, epsilon, keep);
+    const std::vector<Arc> arcs = extractArcs(lines, adj, junctionsOf(lines, adj));
+    // Each arc is simplified on its own at epsilon, so two arcs that run close
+    // together (the two sides of a thin strip) could cross. Every such conflict
+    // found in the result tightens the arcs involved (epsilon / 2, / 4, then
+    // exact) and those are simplified again; the exact arcs never conflict,
+    // so this ends.
+    constexpr int kExact = 3;
+    std::vector<int> level(arcs.size(), 0);
+    std::vector<std::vector<uint32_t>> chains(arcs.size());
+    std::vector<bool> dirty(arcs.size(), true);
+    for (int round = 0;; ++round) {
+        for (size_t a = 0; a < arcs.size(); ++a) {
+            if (!dirty[a]) continue;
+            dirty[a] = false;
+            chains[a] = simplifiedChain(lines, arcs[a], level[a] >= kExact ? 0.0 : epsilon / double(1 << level[a]));
         }
-        std::vector<uint32_t> out;
-        for (size_t k = 0; k < n; ++k)
-            if (keep[k]) out.push_back(arc.chain[k]);
-        arc.chain.swap(out);
+        std::vector<bool> conflict = findConflicts(lines, arcs, chains);
+        bool any = false;
+        for (size_t a = 0; a < arcs.size(); ++a)
+            if (conflict[a] && level[a] < kExact) {
+                ++level[a];
+                dirty[a] = any = true;
+            }
+        if (!any) break;
     }
-    rebuild(lines, arcs);
+    std::vector<Arc> out = arcs;
+    for (size_t a = 0; a < arcs.size(); ++a) out[a].chain = chains[a];
+    rebuild(lines, out);
 }
 
 void doubleBorderlines(Borderlines& lines, double width) {
