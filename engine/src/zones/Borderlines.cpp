@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <map>
 #include <unordered_map>
 
@@ -65,27 +64,15 @@ void vectoriseFigure1(const ZoneMap& map, Borderlines& lines) {
     auto border = [&](int x, int y) { return inside(x, y) && map.at(x, y) == kBorderlinePixel; };
     auto ring = [&](int x, int y) { return x == 0 || y == 0 || x == w - 1 || y == h - 1; };
 
-    // Nearest zone of every pixel (breadth-first from the zone pixels): only
-    // used where an edge has borderline pixels on all sides (a 2x2 blob).
-    std::vector<int16_t> nearest = map.ids;
-    {
-        std::deque<int> queue;
-        for (int p = 0; p < w * h; ++p)
-            if (nearest[size_t(p)] >= 0) queue.push_back(p);
-        while (!queue.empty()) {
-            int p = queue.front();
-            queue.pop_front();
-            int x = p % w, y = p / w;
-            for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-                if (!inside(x + dx, y + dy)) continue;
-                int q = (y + dy) * w + x + dx;
-                if (nearest[size_t(q)] < 0) {
-                    nearest[size_t(q)] = nearest[size_t(p)];
-                    queue.push_back(q);
-                }
-            }
-        }
-    }
+    // The zone nearest to pixel (x, y) (Chebyshev rings, scanned in a fixed
+    // order): only asked for cells of four borderline pixels (2x2 blobs).
+    auto nearestZone = [&](int x, int y) -> int32_t {
+        for (int r = 1; r < std::max(w, h); ++r)
+            for (int j = y - r; j <= y + r; ++j)
+                for (int i = x - r; i <= x + r; i += (j == y - r || j == y + r) ? 1 : 2 * r)
+                    if (inside(i, j) && map.at(i, j) >= 0) return map.at(i, j);
+        return kOutside;
+    };
 
     // Zone on the side n of the axis edge p -> q: the face there is the unit
     // cell {p, q, p+n, q+n}, or the half of it next to pq when a diagonal cuts
@@ -97,7 +84,7 @@ void vectoriseFigure1(const ZoneMap& map, Borderlines& lines) {
         for (auto [x, y] : {std::pair{px, py}, {qx, qy}, {px + nx, py + ny}, {qx + nx, qy + ny}})
             if (map.at(x, y) >= 0) return map.at(x, y);
         int cx = std::min({px, qx, px + nx}), cy = std::min({py, qy, py + ny});
-        return nearest[size_t(cy) * size_t(w) + size_t(cx)];
+        return nearestZone(cx, cy);
     };
     auto addAxis = [&](int px, int py, int qx, int qy) {
         int dx = qx - px, dy = qy - py;
