@@ -98,10 +98,11 @@ struct BorderlineDesc {
 // vectorise, rules 1-2, rule 3 (epsilon), then doubling (bandWidth).
 Borderlines buildBorderlines(const ZoneMap& map, const Palette& palette, const BorderlineDesc& desc = {});
 
-// Signed area of each zone from the edges (index = zone id), square pixels:
-// every edge adds its shoelace term to its left zone and subtracts it from its
-// right zone (y down, so a counter-clockwise-on-screen ring is negative; the sign
-// is fixed so that areas come out positive).
+// Area of each zone from the edges (index = zone id), square pixels: the
+// shoelace terms (x0 y1 - x1 y0) / 2 of the edges with the zone on their right
+// minus those of the edges with it on their left (y points down). Exact for
+// lattice coordinates; a zone overlapped by a band that does not fit comes out
+// smaller, even negative.
 std::vector<double> zoneAreas(const Borderlines& lines);
 
 // JSON: {"width", "height", "layout", "frame": [x0, y0, x1, y1],
