@@ -360,13 +360,14 @@ TEST(ZonesVectorise, BandsNarrowToJunctionsAndKeepTheWidthBetween) {
     for (const Edge& e : lines.edges)
         if (e.left == 2 || e.right == 2)
             for (uint32_t v : {e.from, e.to})
-                if (lines.vertices[v].y >= 3 && lines.vertices[v].y <= 17) {
+                if (lines.vertices[v].y >= 6 && lines.vertices[v].y <= 14) {
                     minX = std::min(minX, lines.vertices[v].x);
                     maxX = std::max(maxX, lines.vertices[v].x);
                 }
     EXPECT_DOUBLE_EQ(minX, 18.5);
     EXPECT_DOUBLE_EQ(maxX, 21.5);
-    EXPECT_NEAR(zoneAreas(lines)[2], 3.0 * (20 - 3.0), 1e-9);  // a hexagon: full width over 14, tapering over 3 at each end
+    // A hexagon: full width over y = 6..14, tapering over 2 W = 6 at each end.
+    EXPECT_NEAR(zoneAreas(lines)[2], 3.0 * (20 - 6.0), 1e-9);
 }
 
 // A real map: the auto-zoning of a fractal terrain (specks, thin strips, many
@@ -396,6 +397,20 @@ TEST(ZonesVectorise, AutoZonedTerrainTilesTheFrame) {
                 auto counts = pixelCounts(map, int(p.surfaces.size()));
                 for (size_t z = 0; z < counts.size(); ++z) EXPECT_EQ(areas[z], double(counts[z]));
             }
+            expectConsistentFaces(lines);
+            expectNoCrossings(lines);
+        }
+        // Bands wider than many strips and bends: narrowed where they do not fit.
+        for (double width : {2.0, 5.0}) {
+            SCOPED_TRACE(std::string(figure1 ? "figure1" : "touching") + " band " + std::to_string(width) + " seed " +
+                         std::to_string(seed));
+            Borderlines lines = buildBorderlines(map, p, {.epsilon = 0.7, .bandWidth = width});
+            double total = 0;
+            for (double a : zoneAreas(lines)) {
+                EXPECT_GE(a, 0.0);
+                total += a;
+            }
+            EXPECT_NEAR(total, (lines.frameX1 - lines.frameX0) * (lines.frameY1 - lines.frameY0), 1e-6);
             expectConsistentFaces(lines);
             expectNoCrossings(lines);
         }

@@ -487,111 +487,150 @@ void simplifyArcs(Borderlines& lines, double epsilon) {
     rebuild(lines, out);
 }
 
+namespace {
+
+// The two copies of one arc at +-width/2 (mitred), as vertex ids; new vertices
+// are appended to `vertices`. An open arc's copies start and end at its
+// junctions and reach their full width at min(taper, length / 3) from them.
+std::pair<std::vector<uint32_t>, std::vector<uint32_t>> offsetArc(std::vector<Vertex>& vertices, const Arc& arc,
+                                                                  double width, double taperLength) {
+    const double half = width / 2;
+    auto add = [&](Vertex p) {
+        vertices.push_back(p);
+        return uint32_t(vertices.size() - 1);
+    };
+    std::vector<Vertex> pts;
+    for (uint32_t v : arc.chain) pts.push_back(vertices[v]);
+    if (!arc.closed) {
+        double length = 0;
+        for (size_t k = 0; k + 1 < pts.size(); ++k) length += std::hypot(pts[k + 1].x - pts[k].x, pts[k + 1].y - pts[k].y);
+        double taper = std::min(taperLength, length / 3);
+        auto insertAt = [&](std::vector<Vertex>& p) {
+            double walked = 0;
+            for (size_t k = 0; k + 1 < p.size(); ++k) {
+                double seg = std::hypot(p[k + 1].x - p[k].x, p[k + 1].y - p[k].y);
+                if (walked + seg > taper) {
+                    double t = (taper - walked) / seg;
+                    if (t > 1e-9)
+                        p.insert(p.begin() + long(k) + 1,
+                                 {p[k].x + t * (p[k + 1].x - p[k].x), p[k].y + t * (p[k + 1].y - p[k].y)});
+                    return;
+                }
+                walked += seg;
+            }
+        };
+        insertAt(pts);
+        std::reverse(pts.begin(), pts.end());
+        insertAt(pts);
+        std::reverse(pts.begin(), pts.end());
+    }
+    const size_t n = pts.size();
+    auto normal = [&](size_t a, size_t b) {
+        double dx = pts[b].x - pts[a].x, dy = pts[b].y - pts[a].y, len = std::hypot(dx, dy);
+        return std::pair{dy / len, -dx / len};  // left of a -> b as drawn (y down)
+    };
+    std::vector<uint32_t> leftCopy(n), rightCopy(n);
+    for (size_t k = 0; k < n; ++k) {
+        if (!arc.closed && (k == 0 || k == n - 1)) {
+            leftCopy[k] = rightCopy[k] = arc.chain[k == 0 ? 0 : arc.chain.size() - 1];
+            continue;
+        }
+        if (arc.closed && k == n - 1) {
+            leftCopy[k] = leftCopy[0];
+            rightCopy[k] = rightCopy[0];
+            continue;
+        }
+        size_t prev = k > 0 ? k - 1 : n - 2, next = k + 1;  // closed: pts[n-1] == pts[0]
+        auto n1 = normal(prev, k), n2 = normal(k, next);
+        double mx = n1.first + n2.first, my = n1.second + n2.second, len = std::hypot(mx, my);
+        double scale = 1.0;
+        if (len > 1e-12) {
+            mx /= len;
+            my /= len;
+            double c = mx * n1.first + my * n1.second;
+            scale = std::min(1.0 / std::max(c, 1e-6), 4.0);  // mitre, capped at 4x on sharp turns
+        } else {
+            mx = n1.first;
+            my = n1.second;
+        }
+        leftCopy[k] = add({pts[k].x + mx * scale * half, pts[k].y + my * scale * half});
+        rightCopy[k] = add({pts[k].x - mx * scale * half, pts[k].y - my * scale * half});
+    }
+    return {leftCopy, rightCopy};
+}
+
+}  // namespace
+
 void doubleBorderlines(Borderlines& lines, double width) {
     if (!(width > 0.0)) return;
     Adjacency adj = adjacency(lines);
-    auto arcs = extractArcs(lines, adj, junctionsOf(lines, adj));
-    const double half = width / 2;
+    const std::vector<Arc> arcs = extractArcs(lines, adj, junctionsOf(lines, adj));
     std::map<std::pair<int32_t, int32_t>, int32_t> bandOf;
-    std::vector<Edge> edges;
-    auto add = [&](Vertex p) {
-        lines.vertices.push_back(p);
-        return uint32_t(lines.vertices.size() - 1);
-    };
-    for (const Arc& arc : arcs) {
-        if (arc.left == kOutside || arc.right == kOutside) {
-            for (size_t k = 0; k + 1 < arc.chain.size(); ++k)
-                edges.push_back({arc.chain[k], arc.chain[k + 1], arc.left, arc.right});
-            continue;
-        }
+    std::vector<int32_t> band(arcs.size(), -1);
+    for (size_t a = 0; a < arcs.size(); ++a) {
+        const Arc& arc = arcs[a];
+        if (arc.left == kOutside || arc.right == kOutside) continue;
         auto key = std::minmax(arc.left, arc.right);
         auto [it, fresh] = bandOf.try_emplace({key.first, key.second}, int32_t(lines.zones.size()));
         if (fresh) {
-            const Zone& a = lines.zones[size_t(key.first)];
-            const Zone& b = lines.zones[size_t(key.second)];
+            const Zone& za = lines.zones[size_t(key.first)];
+            const Zone& zb = lines.zones[size_t(key.second)];
             Colour mixed = 0;
             for (int shift : {16, 8, 0})
-                mixed |= ((((a.colour >> shift) & 255) + ((b.colour >> shift) & 255)) / 2) << shift;
-            lines.zones.push_back({it->second, a.name + "|" + b.name, mixed, {key.first, key.second}});
+                mixed |= ((((za.colour >> shift) & 255) + ((zb.colour >> shift) & 255)) / 2) << shift;
+            lines.zones.push_back({it->second, za.name + "|" + zb.name, mixed, {key.first, key.second}});
         }
-        const int32_t band = it->second;
-        // Points of the arc; an open arc gets a point `taper` from each end, where
-        // the band reaches its full width.
-        std::vector<Vertex> pts;
-        for (uint32_t v : arc.chain) pts.push_back(lines.vertices[v]);
-        if (!arc.closed) {
-            double length = 0;
-            for (size_t k = 0; k + 1 < pts.size(); ++k) length += std::hypot(pts[k + 1].x - pts[k].x, pts[k + 1].y - pts[k].y);
-            double taper = std::min(width, length / 3);
-            auto insertAt = [&](std::vector<Vertex>& p) {
-                double walked = 0;
-                for (size_t k = 0; k + 1 < p.size(); ++k) {
-                    double seg = std::hypot(p[k + 1].x - p[k].x, p[k + 1].y - p[k].y);
-                    if (walked + seg > taper) {
-                        double t = (taper - walked) / seg;
-                        if (t > 1e-9) p.insert(p.begin() + long(k) + 1, {p[k].x + t * (p[k + 1].x - p[k].x), p[k].y + t * (p[k + 1].y - p[k].y)});
-                        return;
-                    }
-                    walked += seg;
-                }
-            };
-            insertAt(pts);
-            std::reverse(pts.begin(), pts.end());
-            insertAt(pts);
-            std::reverse(pts.begin(), pts.end());
-        }
-        const size_t n = pts.size();
-        auto normal = [&](size_t a, size_t b) {
-            double dx = pts[b].x - pts[a].x, dy = pts[b].y - pts[a].y, len = std::hypot(dx, dy);
-            return std::pair{dy / len, -dx / len};  // left of a -> b as drawn (y down)
-        };
-        std::vector<uint32_t> leftCopy(n), rightCopy(n);
-        for (size_t k = 0; k < n; ++k) {
-            bool end = !arc.closed && (k == 0 || k == n - 1);
-            if (end) {
-                leftCopy[k] = rightCopy[k] = arc.chain[k == 0 ? 0 : arc.chain.size() - 1];
+        band[a] = it->second;
+    }
+    // A band wider than the room beside its arc (a thin strip, a tight bend)
+    // would cross its neighbours: every arc in a conflict is narrowed (W/2,
+    // W/4) and at last left single; single arcs never conflict, so this ends.
+    constexpr int kSingle = 3;
+    std::vector<int> level(arcs.size(), 0);
+    const size_t baseVertices = lines.vertices.size();
+    while (true) {
+        std::vector<Vertex> vertices(lines.vertices.begin(), lines.vertices.begin() + long(baseVertices));
+        std::vector<Arc> out;
+        std::vector<size_t> source;
+        for (size_t a = 0; a < arcs.size(); ++a) {
+            if (band[a] < 0 || level[a] >= kSingle) {
+                out.push_back(arcs[a]);
+                source.push_back(a);
                 continue;
             }
-            if (arc.closed && k == n - 1) {
-                leftCopy[k] = leftCopy[0];
-                rightCopy[k] = rightCopy[0];
-                continue;
-            }
-            size_t prev = k > 0 ? k - 1 : n - 2, next = k + 1;  // closed: pts[n-1] == pts[0]
-            auto n1 = normal(prev, k), n2 = normal(k, next);
-            double mx = n1.first + n2.first, my = n1.second + n2.second, len = std::hypot(mx, my);
-            double scale = 1.0;
-            if (len > 1e-12) {
-                mx /= len;
-                my /= len;
-                double c = mx * n1.first + my * n1.second;
-                scale = std::min(1.0 / std::max(c, 1e-6), 4.0);  // mitre, capped at 4x on sharp turns
-            } else {
-                mx = n1.first;
-                my = n1.second;
-            }
-            leftCopy[k] = add({pts[k].x + mx * scale * half, pts[k].y + my * scale * half});
-            rightCopy[k] = add({pts[k].x - mx * scale * half, pts[k].y - my * scale * half});
+            // The taper keeps its length when the band narrows, so the copies of
+            // two arcs leaving one junction at a small angle separate.
+            // Offsetting the arc simplified at a quarter of the band width keeps
+            // wiggles smaller than the band from folding its copies.
+            const double w = width / double(1 << level[a]);
+            Arc smooth = arcs[a];
+            smooth.chain = simplifiedChain(lines, arcs[a], w / 4);
+            auto [leftCopy, rightCopy] = offsetArc(vertices, smooth, w, 2 * width);
+            out.push_back({leftCopy, arcs[a].left, band[a], arcs[a].closed});
+            out.push_back({rightCopy, band[a], arcs[a].right, arcs[a].closed});
+            source.push_back(a);
+            source.push_back(a);
         }
-        for (size_t k = 0; k + 1 < n; ++k) {
-            edges.push_back({leftCopy[k], leftCopy[k + 1], arc.left, band});
-            edges.push_back({rightCopy[k], rightCopy[k + 1], band, arc.right});
+        Borderlines candidate = lines;
+        candidate.vertices = std::move(vertices);
+        std::vector<std::vector<uint32_t>> chains;
+        for (const Arc& arc : out) chains.push_back(arc.chain);
+        std::vector<bool> conflict = findConflicts(candidate, out, chains);
+        std::vector<bool> narrow(arcs.size(), false);
+        for (size_t k = 0; k < out.size(); ++k)
+            if (conflict[k] && band[source[k]] >= 0 && level[source[k]] < kSingle) narrow[source[k]] = true;
+        bool any = false;
+        for (size_t a = 0; a < arcs.size(); ++a)
+            if (narrow[a]) {
+                ++level[a];
+                any = true;
+            }
+        if (!any) {
+            lines.vertices = std::move(candidate.vertices);
+            rebuild(lines, out);
+            return;
         }
     }
-    lines.edges.swap(edges);
-    // Drop the vertices no edge uses any more (the original arcs' interiors).
-    std::vector<Arc> none;
-    std::vector<int32_t> remap(lines.vertices.size(), -1);
-    std::vector<Vertex> vertices;
-    for (Edge& e : lines.edges)
-        for (uint32_t* v : {&e.from, &e.to}) {
-            if (remap[*v] < 0) {
-                remap[*v] = int32_t(vertices.size());
-                vertices.push_back(lines.vertices[*v]);
-            }
-            *v = uint32_t(remap[*v]);
-        }
-    lines.vertices.swap(vertices);
 }
 
 Borderlines buildBorderlines(const ZoneMap& map, const Palette& palette, const BorderlineDesc& desc) {

@@ -84,10 +84,15 @@ void removeCollinearVertices(Borderlines& lines);
 void simplifyArcs(Borderlines& lines, double epsilon);
 
 // Doubles every borderline (edges between two zones, not the frame) into two
-// copies offset by +-width/2 along the mitred normals, with a new band zone
+// copies offset by +-width/2 along the mitred normals of the arc simplified at
+// width/4 (so wiggles smaller than the band do not fold it), with a new band zone
 // "a|b" between them (one per zone pair). The band has the full width along
-// the arc and narrows to the junction vertex over the last `width` pixels at an
-// arc end that is a junction. width <= 0 does nothing.
+// the arc and narrows to the junction vertex over the last min(2 width,
+// length/3) pixels of an arc end that is a junction. Where a band would not
+// fit (a strip narrower than the band, a tight bend) and its copies would cross
+// other lines, that arc's band is narrowed to width/2, then width/4, and at
+// last the arc is left single: the result is always a valid subdivision.
+// width <= 0 does nothing.
 void doubleBorderlines(Borderlines& lines, double width);
 
 struct BorderlineDesc {
