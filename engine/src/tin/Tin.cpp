@@ -800,6 +800,8 @@ TinResult Mesher::run(const Constraints& constraints) {
     TinMesh& mesh = result.mesh;
     mesh.gridWidth = width_;
     mesh.gridHeight = height_;
+    mesh.spacingX = field_.spacingX();
+    mesh.spacingZ = field_.spacingZ();
     mesh.vertices = points_;
     mesh.heights.resize(points_.size());
     for (size_t v = 0; v < points_.size(); ++v) mesh.heights[v] = float(height(points_[v].x, points_[v].y)) * field_.verticalScale();

@@ -104,6 +104,8 @@ struct TinDesc {
 struct TinMesh {
     int32_t gridWidth = 0;
     int32_t gridHeight = 0;
+    float spacingX = 1.0f;  // world distance between samples along x (from the heightfield)
+    float spacingZ = 1.0f;  // ... along z (grid y)
     std::vector<GridPoint> vertices;
     std::vector<float> heights;                    // world height per vertex
     std::vector<std::array<int32_t, 3>> triangles; // counter-clockwise in (x, y)
