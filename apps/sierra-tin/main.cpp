@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cstdio>
 #include <unistd.h>
 
@@ -35,6 +36,11 @@ struct Options {
 };
 
 int run(const Options& o) {
+    // Reject an unknown mesh format before the work, not after it.
+    std::string ext = o.out.size() >= 4 ? o.out.substr(o.out.size() - 4) : "";
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".obj" && ext != ".ply" && ext != ".stl")
+        throw Error(msg(o.out, ": unknown mesh format (use .obj, .ply or .stl)"));
     Stopwatch clock, total;
     nlohmann::json report;
     terrain::Heightfield field;
