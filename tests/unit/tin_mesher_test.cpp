@@ -225,6 +225,18 @@ TEST(TinMesher, ExactWhenNoLimitAndFlatAreas) {
     EXPECT_LT(exact.mesh.vertices.size(), 200u);  // of 1089 samples: planes need few vertices
 }
 
+TEST(TinMesher, TinyAndThinGrids) {
+    std::mt19937 rng(3);
+    for (auto [w, h] : {std::pair{2, 2}, {2, 9}, {9, 2}, {3, 3}, {17, 4}}) {
+        terrain::Heightfield field(w, h);
+        for (float& v : field.samples()) v = float(std::uniform_int_distribution<int>(0, 9)(rng));
+        auto r = tin::buildTin(field, {}, {});
+        expectValidMesh(r.mesh, true);
+        EXPECT_EQ(independentMaxError(r.mesh, field), 0.0) << w << "x" << h;
+        EXPECT_NE(r.stats.stop, tin::StopReason::Triangles);
+    }
+}
+
 TEST(TinMesher, ConstrainedSegmentsAreMeshEdges) {
     const terrain::Heightfield field = fractal(65, 11);
     std::mt19937 rng(5);
