@@ -17,6 +17,23 @@ inline int64_t orient(GridPoint a, GridPoint b, GridPoint c) {
     return int64_t(b.x - a.x) * (c.y - a.y) - int64_t(b.y - a.y) * (c.x - a.x);
 }
 
+// Largest coordinate difference for which inCircle64 is exact: each lifted
+// term is at most 4 D^4 and their sum 12 D^4 < 2^63 for D <= 2^14 (grids up to
+// 16385 samples a side).
+constexpr int kInCircle64MaxExtent = 1 << 14;
+
+// inCircle in int64 only: exact when every coordinate difference is at most
+// kInCircle64MaxExtent.
+inline bool inCircle64(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
+    const int64_t adx = a.x - d.x, ady = a.y - d.y;
+    const int64_t bdx = b.x - d.x, bdy = b.y - d.y;
+    const int64_t cdx = c.x - d.x, cdy = c.y - d.y;
+    const int64_t det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) +
+                        (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
+                        (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+    return det > 0;
+}
+
 // True when d lies strictly inside the circumcircle of the counter-clockwise
 // triangle a, b, c.
 inline bool inCircle(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {

@@ -57,7 +57,7 @@ private:
         constrained_.resize(constrained_.size() + 3, 0);
         zone_.resize(zone_.size() + 3, -1);
         segment_.resize(segment_.size() + 3, -1);
-        version_.push_back(0);
+        heapPos_.push_back(-1);
         candidate_.push_back(-1);
         candidateError_.push_back(-1.0);
         mark_.push_back(0);
@@ -134,7 +134,15 @@ private:
     float height(int x, int y) const { return heights_[size_t(y) * size_t(width_) + size_t(x)]; }
     void scan(int t);
     double quadError(GridPoint a, GridPoint b, GridPoint c) const;
-    void pushCandidate(int t);
+    void heapUpdate(int t);
+    bool heapLess(int i, int j) const { return heap_[size_t(i)].error < heap_[size_t(j)].error; }
+    void heapSwap(int i, int j) {
+        std::swap(heap_[size_t(i)], heap_[size_t(j)]);
+        heapPos_[heap_[size_t(i)].triangle] = i;
+        heapPos_[heap_[size_t(j)].triangle] = j;
+    }
+    void heapUp(int i);
+    void heapDown(int i);
     void floodZones(const Constraints& constraints, TinResult& result);
 
     const terrain::Heightfield& field_;
@@ -152,9 +160,9 @@ private:
     // from the input segment, so a borderline never drifts further than that.
     std::vector<int32_t> segment_;
     std::vector<std::pair<GridPoint, GridPoint>> segments_;
-    // Per triangle: version stamp (heap entries with an older one are stale),
-    // worst sample (index into the grid, -1 none) and its error (stored units).
-    std::vector<uint32_t> version_;
+    // Per triangle: its place in the heap (-1 none), its worst sample (index
+    // into the grid, -1 none) and that sample's error (stored units).
+    std::vector<int32_t> heapPos_;
     std::vector<int64_t> candidate_;
     std::vector<double> candidateError_;
     std::vector<uint32_t> mark_;
@@ -162,16 +170,18 @@ private:
     std::vector<int> dirty_;
     std::vector<int> stack_;
     bool dataDependent_ = false;
+    bool smallGrid_ = false;  // every coordinate difference fits detail::inCircle64
     int64_t flips_ = 0;
     int lastTriangle_ = 0;
 
-    struct HeapEntry {
+    // A binary max-heap of triangles by candidate error (kept in the entry, so
+    // sifting reads one array), indexed so that a rescanned triangle moves in
+    // place (no stale entries).
+    struct HeapItem {
         double error;
         int32_t triangle;
-        uint32_t version;
-        bool operator<(const HeapEntry& o) const { return error < o.error; }
     };
-    std::vector<HeapEntry> heap_;
+    std::vector<HeapItem> heap_;
     double targetStored_ = 0.0;
 };
 
@@ -362,7 +372,7 @@ bool Mesher::shouldFlip(int e) {
     const int o = twin_[e];
     if (o < 0 || constrained_[e]) return false;
     const GridPoint a = at(e), b = at(nextHe(e)), p = at(prevHe(e)), d = at(prevHe(o));
-    if (!dataDependent_) return inCircle(a, b, p, d);
+    if (!dataDependent_) return smallGrid_ ? detail::inCircle64(a, b, p, d) : inCircle(a, b, p, d);
     // Data-dependent: only a strictly convex quad, and only when the other
     // diagonal's two planes fit the quad's samples better (sum of squared errors,
     // by a relative margin of 1e-9 so round-off cannot make flips cycle).
@@ -574,7 +584,6 @@ void Mesher::scan(int t) {
             }
         }
     });
-    ++version_[t];
     candidate_[t] = bestIndex;
     candidateError_[t] = best;
 }
@@ -599,10 +608,57 @@ double Mesher::quadError(GridPoint a, GridPoint b, GridPoint c) const {
 
 // Every triangle with a sample that is not a vertex stays in the heap, so its
 // top is the worst error left even after the target is met.
-void Mesher::pushCandidate(int t) {
-    if (candidate_[t] < 0) return;
-    heap_.push_back({candidateError_[t], t, version_[t]});
-    std::push_heap(heap_.begin(), heap_.end());
+// A 4-ary heap: half the depth of a binary one, and the four children of a
+// node share a cache line or two, which matters once the heap outgrows the cache.
+void Mesher::heapUp(int i) {
+    while (i > 0) {
+        const int parent = (i - 1) / 4;
+        if (!heapLess(parent, i)) break;
+        heapSwap(parent, i);
+        i = parent;
+    }
+}
+
+void Mesher::heapDown(int i) {
+    const int n = int(heap_.size());
+    while (true) {
+        const int first = 4 * i + 1;
+        if (first >= n) break;
+        int largest = first;
+        const int last = std::min(first + 4, n);
+        for (int c = first + 1; c < last; ++c)
+            if (heapLess(largest, c)) largest = c;
+        if (!heapLess(i, largest)) break;
+        heapSwap(i, largest);
+        i = largest;
+    }
+}
+
+void Mesher::heapUpdate(int t) {
+    int i = heapPos_[t];
+    if (candidate_[t] < 0) {
+        if (i < 0) return;
+        const int last = int(heap_.size()) - 1;
+        heapSwap(i, last);
+        heap_.pop_back();
+        heapPos_[t] = -1;
+        if (i < last) {
+            heapUp(i);
+            heapDown(i);
+        }
+        return;
+    }
+    if (i < 0) {
+        i = int(heap_.size());
+        heap_.push_back({candidateError_[t], t});
+        heapPos_[t] = i;
+        heapUp(i);
+        return;
+    }
+    const double old = heap_[size_t(i)].error;
+    heap_[size_t(i)].error = candidateError_[t];
+    if (candidateError_[t] > old) heapUp(i);
+    else heapDown(i);
 }
 
 void Mesher::floodZones(const Constraints& constraints, TinResult& result) {
@@ -663,6 +719,7 @@ TinResult Mesher::run(const Constraints& constraints) {
 
     TinResult result;
     Stopwatch clock;
+    smallGrid_ = std::max(width_, height_) - 1 <= detail::kInCircle64MaxExtent;
     // Error target in stored height units.
     const double scale = std::fabs(double(field_.verticalScale()));
     const auto [lo, hi] = field_.range();
@@ -706,7 +763,7 @@ TinResult Mesher::run(const Constraints& constraints) {
     const int initial = int(origin_.size() / 3);
     for (int t = 0; t < initial; ++t) {
         scan(t);
-        pushCandidate(t);
+        heapUpdate(t);
     }
     result.stats.setupMs = clock.ms();
     clock.restart();
@@ -720,18 +777,13 @@ TinResult Mesher::run(const Constraints& constraints) {
     const double snap2 = desc_.snapDistance * desc_.snapDistance;
     result.stats.stop = StopReason::Exhausted;
     while (!heap_.empty()) {
-        const HeapEntry top = heap_.front();
-        if (top.version != version_[top.triangle]) {
-            std::pop_heap(heap_.begin(), heap_.end());
-            heap_.pop_back();
-            continue;
-        }
-        result.stats.worstError = double(top.error) * scale;
-        if (!(top.error > targetStored_)) {
+        const int t = heap_.front().triangle;
+        const double topError = heap_.front().error;
+        result.stats.worstError = topError * scale;
+        if (!(topError > targetStored_)) {
             result.stats.stop = StopReason::Error;
             break;
         }
-        const int t = top.triangle;
         const int64_t index = candidate_[t];
         const GridPoint p{int32_t(index % width_), int32_t(index / width_)};
         // Where p lies in t: on an edge (exactly), next to a constrained edge, or inside.
@@ -767,8 +819,6 @@ TinResult Mesher::run(const Constraints& constraints) {
             result.stats.stop = StopReason::Triangles;
             break;
         }
-        std::pop_heap(heap_.begin(), heap_.end());
-        heap_.pop_back();
         const int v = addVertex(p);
         ++stamp_;
         dirty_.clear();
@@ -783,12 +833,12 @@ TinResult Mesher::run(const Constraints& constraints) {
         }
         for (int d : dirty_) {
             scan(d);
-            pushCandidate(d);
+            heapUpdate(d);
         }
         ++result.stats.inserted;
         if (++sinceProgress >= desc_.progressEvery) {
             sinceProgress = 0;
-            report(top.error);
+            report(topError);
         }
     }
     if (heap_.empty()) result.stats.worstError = 0.0;
