@@ -63,7 +63,7 @@ int run(const Options& o) {
     if (o.maxError == 0.0 && o.maxErrorRel == 0.0 && o.maxTriangles == 0 && o.maxPoints == 0) desc.maxErrorRel = 0.001;
     // A progress line rewritten in place on a terminal, plain lines (fewer) when redirected.
     const bool terminal = ::isatty(fileno(stderr));
-    desc.progressEvery = terminal ? 20000 : 1000000;
+    desc.progressEvery = terminal ? 20000 : 200000;
     desc.progress = [&](const tin::TinProgress& p) {
         std::fprintf(stderr, "%ssierra-tin: %lld points, %lld triangles, error %.6g (target %.6g)%s",
                      terminal ? "\r" : "", (long long)p.points, (long long)p.triangles, p.worstError, p.targetError,
@@ -99,6 +99,8 @@ int run(const Options& o) {
         report["vertices"] = result.mesh.vertices.size();
         report["inserted"] = s.inserted;
         report["flips"] = s.flips;
+        report["edge_splits"] = s.edgeSplits;
+        report["snap_splits"] = s.snapSplits;
         report["stop"] = tin::toString(s.stop);
         report["target_error"] = s.targetError;
         report["max_error"] = error.maxError;
