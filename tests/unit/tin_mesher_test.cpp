@@ -277,6 +277,42 @@ TEST(TinMesher, ConstrainedSegmentsAreMeshEdges) {
     }
 }
 
+// Random borderlines on a coarse lattice: shared end points, T-junctions,
+// collinear and overlapping pieces; only proper crossings are left out.
+TEST(TinMesher, RandomBorderlineSoup) {
+    std::mt19937 rng(17);
+    for (int round = 0; round < 12; ++round) {
+        const int size = round % 2 ? 33 : 65;
+        const terrain::Heightfield field = fractal(size, uint64_t(round + 1));
+        tin::Constraints c;
+        std::vector<std::pair<GridPoint, GridPoint>> kept;
+        std::uniform_int_distribution<int> coord(0, (size - 1) / 4);
+        for (int tries = 0; tries < 60; ++tries) {
+            const GridPoint a{4 * coord(rng), 4 * coord(rng)}, b{4 * coord(rng), 4 * coord(rng)};
+            if (a == b) continue;
+            bool crosses = false;
+            for (const auto& [p, q] : kept) {
+                const int64_t o1 = orient2(a, b, p), o2 = orient2(a, b, q), o3 = orient2(p, q, a), o4 = orient2(p, q, b);
+                if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) crosses = true;
+            }
+            if (crosses) continue;
+            kept.emplace_back(a, b);
+            const int i = int(c.vertices.size());
+            c.vertices.push_back({double(a.x), double(a.y)});
+            c.vertices.push_back({double(b.x), double(b.y)});
+            c.segments.push_back({i, i + 1, 1, 2});
+        }
+        for (double snap : {0.0, 1.0}) {
+            auto mode = round % 3 == 0 ? tin::Triangulation::DataDependent : tin::Triangulation::Delaunay;
+            auto r = tin::buildTin(field, c, {.maxErrorRel = 0.005, .triangulation = mode, .snapDistance = snap});
+            expectValidMesh(r.mesh, mode == tin::Triangulation::Delaunay);
+            auto [lo, hi] = field.range();
+            EXPECT_LE(independentMaxError(r.mesh, field), 0.005 * (hi - lo) + 1e-6);
+            for (const auto& [a, b] : kept) EXPECT_TRUE(constrainedPath(r.mesh, a, b, snap == 0.0));
+        }
+    }
+}
+
 // A point next to a constrained edge (Figures 5 and 6 of the zone document):
 // the edge is bent through the grid sample, the mesh has no slit.
 TEST(TinMesher, SnapLeavesNoSlit) {
