@@ -315,23 +315,19 @@ void Mesher::snapInsert(int t, int k, int v) {
     const int e = 3 * t;
     const int o = twin_[e];
     const int32_t zoneHere = zone_[e], zoneThere = zone_[o], segment = segment_[e];
-    const int t1 = int(origin_.size() / 3), t2 = t1 + 1;
-    // Keep the flips of the ordinary insertion away from a->b for now: it is
-    // still constrained while insertInTriangle legalizes.
-    insertInTriangle(t, v);
-    // insertInTriangle keeps (a, b, p) in t, (b, c, p) in t1, (c, a, p) in t2,
-    // but legalization may have flipped edges around p; find the new borderline
-    // halves by their end points instead of their slots.
-    (void)t1;
-    (void)t2;
     const int a = origin_[e], b = origin_[nextHe(e)];
+    // An ordinary insertion first: a->b is still constrained, so its flips
+    // leave the sliver (a, b, p) alone. They may move the edges around p, so
+    // the new borderline halves are found by their end points, not their slots.
+    insertInTriangle(t, v);
     const int ap = findEdge(a, v), pb = findEdge(v, b);
-    SIERRA_CHECK(ap >= 0 && pb >= 0, "snap: the split edge lost its new vertex");
+    SIERRA_CHECK(ap >= 0 && pb >= 0, "sierra::tin: snap: the split edge lost its new vertex");
     const int ab = findEdge(a, b);
-    SIERRA_CHECK(ab >= 0 && twin_[ab] >= 0, "snap: the constrained edge moved");
+    SIERRA_CHECK(ab >= 0 && twin_[ab] >= 0, "sierra::tin: snap: the constrained edge moved");
     const int ba = twin_[ab];
-    // a->b's own side (zoneHere) is the side of the old triangle, now beyond
-    // a->p->b: the halves a->p and p->b face the old triangle's side.
+    // c (the old triangle's far corner) stays left of a->p and p->b, so they
+    // take the zone of c's side; their twins take the other side's. The sliver
+    // (a, b, p) is now on the other side, and a-b an ordinary edge.
     unconstrain(ab);
     unconstrain(ba);
     for (int h : {ap, pb}) {
