@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <unordered_map>
 
@@ -49,6 +50,20 @@ private:
         points_.push_back(p);
         vertexHe_.push_back(-1);
         return int(points_.size()) - 1;
+    }
+    void reserve(size_t points) {
+        const size_t triangles = 2 * points, halfEdges = 3 * triangles;
+        points_.reserve(points);
+        vertexHe_.reserve(points);
+        for (auto* v : {&origin_, &twin_}) v->reserve(halfEdges);
+        constrained_.reserve(halfEdges);
+        zone_.reserve(halfEdges);
+        segment_.reserve(halfEdges);
+        heapPos_.reserve(triangles);
+        candidate_.reserve(triangles);
+        candidateError_.reserve(triangles);
+        mark_.reserve(triangles);
+        heap_.reserve(triangles);
     }
     int addTriangle() {
         const int t = int(origin_.size() / 3);
@@ -444,7 +459,8 @@ int Mesher::insertVertex(GridPoint p) {
 // Makes a->b a chain of mesh edges (split at vertices exactly on it), marks it
 // constrained with its zones, and restores the constrained Delaunay property.
 void Mesher::recoverSegment(int a, int b, int32_t leftZone, int32_t rightZone, int32_t segment) {
-    std::vector<std::pair<int, int>> crossing, created;
+    std::deque<std::pair<int, int>> crossing;
+    std::vector<std::pair<int, int>> created;
     while (a != b) {
         const GridPoint pa = pt(a), pb = pt(b);
         // An edge from a along the segment: to b, or to a vertex on it.
@@ -510,7 +526,7 @@ void Mesher::recoverSegment(int a, int b, int32_t leftZone, int32_t rightZone, i
         while (!crossing.empty()) {
             SIERRA_CHECK(++guard < 1000000, "sierra::tin: segment recovery did not converge");
             const auto [u, w] = crossing.front();
-            crossing.erase(crossing.begin());
+            crossing.pop_front();
             const int e = findEdge(u, w);
             SIERRA_CHECK(e >= 0, "sierra::tin: a crossing edge vanished");
             const GridPoint pu = at(e), pw = at(nextHe(e)), pp = at(prevHe(e)), pd = at(prevHe(twin_[e]));
@@ -724,8 +740,13 @@ TinResult Mesher::run(const Constraints& constraints) {
     targetStored_ = target;
     result.stats.targetError = target * scale;
 
-    const int64_t expected = desc_.maxPoints > 0 ? std::min<int64_t>(desc_.maxPoints, int64_t(1) << 26) : 1024;
-    points_.reserve(size_t(expected));
+    // Arrays grow by doubling (amortised: no allocation in most insertions);
+    // with a point or triangle budget they are sized once up front.
+    int64_t expectedPoints = 1024;
+    if (desc_.maxPoints > 0) expectedPoints = desc_.maxPoints;
+    if (desc_.maxTriangles > 0) expectedPoints = std::max(expectedPoints, desc_.maxTriangles / 2 + 2);
+    expectedPoints = std::min<int64_t>({expectedPoints, int64_t(width_) * height_, int64_t(1) << 26});
+    reserve(size_t(expectedPoints));
     // The grid's corners: two triangles, split along the (0,0)-(w-1,h-1) diagonal.
     const int c00 = addVertex({0, 0}), c10 = addVertex({width_ - 1, 0});
     const int c11 = addVertex({width_ - 1, height_ - 1}), c01 = addVertex({0, height_ - 1});
