@@ -29,7 +29,6 @@ struct Options {
     int64_t maxTriangles = 0;
     int64_t maxPoints = 0;
     std::string delaunay = "plain";
-    double snap = 1.0;
     double uvPeriod = 64.0;
     std::string out;
     std::string json;
@@ -58,8 +57,7 @@ int run(const Options& o) {
                       .maxTriangles = o.maxTriangles,
                       .maxPoints = o.maxPoints,
                       .triangulation = o.delaunay == "data" ? tin::Triangulation::DataDependent
-                                                            : tin::Triangulation::Delaunay,
-                      .snapDistance = o.snap};
+                                                            : tin::Triangulation::Delaunay};
     if (o.maxError == 0.0 && o.maxErrorRel == 0.0 && o.maxTriangles == 0 && o.maxPoints == 0) desc.maxErrorRel = 0.001;
     // A progress line rewritten in place on a terminal, plain lines (fewer) when redirected.
     const bool terminal = ::isatty(fileno(stderr));
@@ -139,8 +137,6 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     app.add_option("--delaunay", o.delaunay, "plain: Delaunay flips; data: data-dependent flips")
         ->check(CLI::IsMember({"plain", "data"}));
-    app.add_option("--snap", o.snap, "Snap distance of the borderline split rule, in samples")
-        ->check(CLI::NonNegativeNumber);
     app.add_option("--uv-period", o.uvPeriod, "OBJ planar UVs: grid samples per texture repeat")
         ->check(CLI::PositiveNumber);
     app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl")->required();
