@@ -9,12 +9,12 @@
 #include <sierra/tin/Export.h>
 #include <sierra/tin/Tin.h>
 
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
+#include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cctype>
 #include <cstdio>
-#include <unistd.h>
+#include <nlohmann/json.hpp>
 
 using namespace sierra;
 
@@ -58,14 +58,16 @@ int run(const Options& o) {
                       .maxPoints = o.maxPoints,
                       .triangulation = o.delaunay == "data" ? tin::Triangulation::DataDependent
                                                             : tin::Triangulation::Delaunay};
-    if (o.maxError == 0.0 && o.maxErrorRel == 0.0 && o.maxTriangles == 0 && o.maxPoints == 0) desc.maxErrorRel = 0.001;
+    if (o.maxError == 0.0 && o.maxErrorRel == 0.0 && o.maxTriangles == 0 && o.maxPoints == 0)
+        desc.maxErrorRel = 0.001;
     // A progress line rewritten in place on a terminal, plain lines (fewer) when redirected.
     const bool terminal = ::isatty(fileno(stderr));
     desc.progressEvery = terminal ? 20000 : 200000;
     desc.progress = [&](const tin::TinProgress& p) {
-        std::fprintf(stderr, "%ssierra-tin: %lld points, %lld triangles, error %.6g (target %.6g)%s",
-                     terminal ? "\r" : "", (long long)p.points, (long long)p.triangles, p.worstError, p.targetError,
-                     terminal ? "   " : "\n");
+        std::fprintf(stderr,
+                     "%ssierra-tin: %lld points, %lld triangles, error %.6g (target %.6g)%s",
+                     terminal ? "\r" : "", (long long)p.points, (long long)p.triangles,
+                     p.worstError, p.targetError, terminal ? "   " : "\n");
     };
     tin::TinResult result = tin::buildTin(field, {}, desc);
     if (terminal) std::fprintf(stderr, "\n");
@@ -78,16 +80,19 @@ int run(const Options& o) {
     const double writeMs = clock.ms();
 
     const auto& s = result.stats;
-    const double pointsPerSecond = s.insertMs > 0 ? double(s.inserted) / (s.insertMs / 1000.0) : 0.0;
+    const double pointsPerSecond =
+        s.insertMs > 0 ? double(s.inserted) / (s.insertMs / 1000.0) : 0.0;
     std::printf("grid %d x %d, %s triangulation\n", field.width(), field.height(),
                 o.delaunay == "data" ? "data-dependent" : "Delaunay");
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
-                result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)s.inserted, pointsPerSecond,
-                tin::toString(s.stop));
-    std::printf("vertical error: max %.6g, rms %.6g (target %.6g) over %lld samples\n", error.maxError,
-                error.rmsError, s.targetError, (long long)error.samples);
-    std::printf("time ms: load %.1f, setup %.1f, insert %.1f, zones %.1f, measure %.1f, write %.1f, total %.1f\n",
-                loadMs, s.setupMs, s.insertMs, s.zonesMs, measureMs, writeMs, total.ms());
+                result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)s.inserted,
+                pointsPerSecond, tin::toString(s.stop));
+    std::printf("vertical error: max %.6g, rms %.6g (target %.6g) over %lld samples\n",
+                error.maxError, error.rmsError, s.targetError, (long long)error.samples);
+    std::printf(
+        "time ms: load %.1f, setup %.1f, insert %.1f, zones %.1f, measure %.1f, write %.1f, total "
+        "%.1f\n",
+        loadMs, s.setupMs, s.insertMs, s.zonesMs, measureMs, writeMs, total.ms());
     std::printf("wrote %s\n", o.out.c_str());
 
     if (!o.json.empty()) {
@@ -105,8 +110,9 @@ int run(const Options& o) {
         report["rms_error"] = error.rmsError;
         report["samples"] = error.samples;
         report["points_per_second"] = pointsPerSecond;
-        report["time_ms"] = {{"load", loadMs},   {"setup", s.setupMs},     {"insert", s.insertMs}, {"zones", s.zonesMs},
-                             {"measure", measureMs}, {"write", writeMs}, {"total", total.ms()}};
+        report["time_ms"] = {{"load", loadMs},     {"setup", s.setupMs},   {"insert", s.insertMs},
+                             {"zones", s.zonesMs}, {"measure", measureMs}, {"write", writeMs},
+                             {"total", total.ms()}};
         report["out"] = o.out;
         writeFileAtomic(o.json, report.dump(2) + "\n");
     }
@@ -117,21 +123,27 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
     Options o;
-    CLI::App app{"sierra-tin: a triangulated irregular network of a heightfield by greedy insertion\n"
-                 "(the grid sample of largest vertical error first), written as OBJ (+MTL), PLY or STL.\n"
-                 "With no stop option: --max-error-rel 0.001."};
+    CLI::App app{
+        "sierra-tin: a triangulated irregular network of a heightfield by greedy insertion\n"
+        "(the grid sample of largest vertical error first), written as OBJ (+MTL), PLY or STL.\n"
+        "With no stop option: --max-error-rel 0.001."};
     app.option_defaults()->always_capture_default();
-    auto* heightmap = app.add_option("--heightmap", o.heightmap,
-                                     "Heightmap to load: .png (8/16-bit), .pgm, .r16/.r32, .hgt, .npy (any width x height)");
-    auto* generate = app.add_option("--generate", o.generate, "Generate a diamond-square terrain of N = 2^n+1 samples")
+    auto* heightmap = app.add_option(
+        "--heightmap", o.heightmap,
+        "Heightmap to load: .png (8/16-bit), .pgm, .r16/.r32, .hgt, .npy (any width x height)");
+    auto* generate = app.add_option("--generate", o.generate,
+                                    "Generate a diamond-square terrain of N = 2^n+1 samples")
                          ->excludes(heightmap);
     heightmap->excludes(generate);
     app.add_option("--seed", o.seed, "Seed of the generated terrain");
-    app.add_option("--max-error", o.maxError, "Stop when the largest vertical error is at most E (world height units)")
+    app.add_option("--max-error", o.maxError,
+                   "Stop when the largest vertical error is at most E (world height units)")
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--max-error-rel", o.maxErrorRel, "Stop when the largest vertical error is at most F x the height range")
+    app.add_option("--max-error-rel", o.maxErrorRel,
+                   "Stop when the largest vertical error is at most F x the height range")
         ->check(CLI::Range(0.0, 1.0));
-    app.add_option("--max-triangles", o.maxTriangles, "Stop before exceeding N triangles (0 = no limit)")
+    app.add_option("--max-triangles", o.maxTriangles,
+                   "Stop before exceeding N triangles (0 = no limit)")
         ->check(CLI::NonNegativeNumber);
     app.add_option("--max-points", o.maxPoints, "Stop before exceeding N vertices (0 = no limit)")
         ->check(CLI::NonNegativeNumber);
@@ -139,11 +151,13 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"plain", "data"}));
     app.add_option("--uv-period", o.uvPeriod, "OBJ planar UVs: grid samples per texture repeat")
         ->check(CLI::PositiveNumber);
-    app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl")->required();
+    app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl")
+        ->required();
     app.add_option("--json", o.json, "Write the statistics to this JSON file");
     try {
         app.parse(argc, argv);
-        if (o.heightmap.empty() && o.generate == 0) throw CLI::ValidationError("give --heightmap FILE or --generate N");
+        if (o.heightmap.empty() && o.generate == 0)
+            throw CLI::ValidationError("give --heightmap FILE or --generate N");
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {

@@ -7,13 +7,13 @@
 #include <sierra/tin/Tin.h>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <set>
-#include <unistd.h>
 
 namespace {
 
@@ -29,7 +29,8 @@ struct TempDir {
 
 // A 2-zone mesh with a band: lines x = 10 and x = 14 on a 33 x 33 fractal.
 tin::TinResult zonedMesh() {
-    terrain::Heightfield field = terrain::generateDiamondSquare({.size = 33, .seed = 2, .threads = 1});
+    terrain::Heightfield field =
+        terrain::generateDiamondSquare({.size = 33, .seed = 2, .threads = 1});
     field.setSpacing(2.0f, 0.5f);
     field.setVerticalScale(10.0f);
     tin::Constraints c;
@@ -89,7 +90,8 @@ TEST(TinExport, ObjParsesBackToTheSameMesh) {
     EXPECT_EQ(textures.at("zone_2"), "tiles/rock.png");
     EXPECT_EQ(textures.at("band_1_2"), "tiles/grass_rock.png");
     // No band image: the first surface's tile stands in; no tile: no map_Kd.
-    tin::writeObj(dir / "b.obj", mesh, {.mtlPath = dir / "other.mtl", .tileImages = {{1, "g.png"}}});
+    tin::writeObj(dir / "b.obj", mesh,
+                  {.mtlPath = dir / "other.mtl", .tileImages = {{1, "g.png"}}});
     const auto other = tin::readMtlTextures(dir / "other.mtl");
     EXPECT_EQ(other.at("band_1_2"), "g.png");
     EXPECT_EQ(other.at("zone_2"), "");
@@ -105,7 +107,8 @@ TEST(TinExport, PlyCarriesZonesAndStlEveryFacet) {
     const size_t end = text.find("end_header\n");
     ASSERT_NE(end, std::string::npos);
     const std::string header = text.substr(0, end);
-    EXPECT_NE(header.find("element face " + std::to_string(mesh.triangles.size())), std::string::npos);
+    EXPECT_NE(header.find("element face " + std::to_string(mesh.triangles.size())),
+              std::string::npos);
     EXPECT_NE(header.find("property int zone"), std::string::npos);
     size_t at = end + 11 + mesh.vertices.size() * 12;
     ASSERT_EQ(ply.size(), at + mesh.triangles.size() * 25);
@@ -124,7 +127,8 @@ TEST(TinExport, ReaderRejectsMalformedObj) {
     TempDir dir;
     writeFileAtomic(dir / "bad.obj", std::string_view("v 0 0 0\nv 1 0 0\nf 1 2 7\n"));
     EXPECT_THROW(tin::readObj(dir / "bad.obj"), Error);
-    writeFileAtomic(dir / "quad.obj", std::string_view("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"));
+    writeFileAtomic(dir / "quad.obj",
+                    std::string_view("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"));
     EXPECT_THROW(tin::readObj(dir / "quad.obj"), Error);
     EXPECT_THROW(tin::readObj(dir / "missing.obj"), Error);
 }

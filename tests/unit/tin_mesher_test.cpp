@@ -35,8 +35,8 @@ bool strictlyInCircle(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
         m[i][2] = x * x + y * y;
     }
     const Int128 det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                         m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     return det > 0;
 }
 
@@ -48,14 +48,16 @@ std::map<Edge, std::pair<int, int>> directedEdges(const tin::TinMesh& mesh) {
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         for (int k = 0; k < 3; ++k) {
             const Edge e{mesh.triangles[t][size_t(k)], mesh.triangles[t][size_t((k + 1) % 3)]};
-            EXPECT_TRUE(edges.emplace(e, std::pair{int(t), k}).second) << "directed edge used twice";
+            EXPECT_TRUE(edges.emplace(e, std::pair{int(t), k}).second)
+                << "directed edge used twice";
         }
     }
     return edges;
 }
 
 bool onBorder(const tin::TinMesh& m, GridPoint a, GridPoint b) {
-    return (a.x == 0 && b.x == 0) || (a.y == 0 && b.y == 0) || (a.x == m.gridWidth - 1 && b.x == m.gridWidth - 1) ||
+    return (a.x == 0 && b.x == 0) || (a.y == 0 && b.y == 0) ||
+           (a.x == m.gridWidth - 1 && b.x == m.gridWidth - 1) ||
            (a.y == m.gridHeight - 1 && b.y == m.gridHeight - 1);
 }
 
@@ -71,29 +73,35 @@ void expectValidMesh(const tin::TinMesh& mesh, bool delaunay) {
     }
     int64_t twiceArea = 0;
     for (const auto& t : mesh.triangles) {
-        const int64_t o = orient2(mesh.vertices[size_t(t[0])], mesh.vertices[size_t(t[1])], mesh.vertices[size_t(t[2])]);
+        const int64_t o = orient2(mesh.vertices[size_t(t[0])], mesh.vertices[size_t(t[1])],
+                                  mesh.vertices[size_t(t[2])]);
         EXPECT_GT(o, 0) << "triangle not counter-clockwise";
         twiceArea += o;
     }
-    EXPECT_EQ(twiceArea, 2 * int64_t(mesh.gridWidth - 1) * (mesh.gridHeight - 1));  // areas sum to the grid's rectangle
+    EXPECT_EQ(twiceArea, 2 * int64_t(mesh.gridWidth - 1) *
+                             (mesh.gridHeight - 1));  // areas sum to the grid's rectangle
     auto edges = directedEdges(mesh);
     int nonDelaunay = 0;
     for (const auto& [e, where] : edges) {
         const GridPoint a = mesh.vertices[size_t(e.first)], b = mesh.vertices[size_t(e.second)];
         auto twin = edges.find({e.second, e.first});
         if (twin == edges.end()) {
-            EXPECT_TRUE(onBorder(mesh, a, b)) << "edge " << a.x << "," << a.y << " - " << b.x << "," << b.y
-                                              << " has one triangle but is inside the grid (a slit or hole)";
+            EXPECT_TRUE(onBorder(mesh, a, b))
+                << "edge " << a.x << "," << a.y << " - " << b.x << "," << b.y
+                << " has one triangle but is inside the grid (a slit or hole)";
             continue;
         }
         const bool c1 = mesh.constrainedEdges[size_t(where.first)] & (1u << where.second);
-        const bool c2 = mesh.constrainedEdges[size_t(twin->second.first)] & (1u << twin->second.second);
+        const bool c2 =
+            mesh.constrainedEdges[size_t(twin->second.first)] & (1u << twin->second.second);
         EXPECT_EQ(c1, c2) << "constrained flag differs between the two sides";
         if (!delaunay || c1) continue;
         const auto& t1 = mesh.triangles[size_t(where.first)];
         const auto& t2 = mesh.triangles[size_t(twin->second.first)];
-        const int p = t1[size_t((where.second + 2) % 3)], d = t2[size_t((twin->second.second + 2) % 3)];
-        if (strictlyInCircle(a, b, mesh.vertices[size_t(p)], mesh.vertices[size_t(d)])) ++nonDelaunay;
+        const int p = t1[size_t((where.second + 2) % 3)],
+                  d = t2[size_t((twin->second.second + 2) % 3)];
+        if (strictlyInCircle(a, b, mesh.vertices[size_t(p)], mesh.vertices[size_t(d)]))
+            ++nonDelaunay;
     }
     EXPECT_EQ(nonDelaunay, 0) << "unconstrained edges that are not locally Delaunay";
 }
@@ -104,7 +112,8 @@ double independentMaxError(const tin::TinMesh& mesh, const terrain::Heightfield&
     std::vector<uint8_t> covered(size_t(field.sampleCount()), 0);
     double worst = 0.0;
     for (const auto& t : mesh.triangles) {
-        const GridPoint a = mesh.vertices[size_t(t[0])], b = mesh.vertices[size_t(t[1])], c = mesh.vertices[size_t(t[2])];
+        const GridPoint a = mesh.vertices[size_t(t[0])], b = mesh.vertices[size_t(t[1])],
+                        c = mesh.vertices[size_t(t[2])];
         const double area = double(orient2(a, b, c));
         const int x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
         const int y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
@@ -114,14 +123,16 @@ double independentMaxError(const tin::TinMesh& mesh, const terrain::Heightfield&
                 const int64_t wa = orient2(b, c, p), wb = orient2(c, a, p), wc = orient2(a, b, p);
                 if (wa < 0 || wb < 0 || wc < 0) continue;
                 covered[size_t(y) * size_t(field.width()) + size_t(x)] = 1;
-                const double z = (double(wa) * mesh.heights[size_t(t[0])] + double(wb) * mesh.heights[size_t(t[1])] +
+                const double z = (double(wa) * mesh.heights[size_t(t[0])] +
+                                  double(wb) * mesh.heights[size_t(t[1])] +
                                   double(wc) * mesh.heights[size_t(t[2])]) /
                                  area;
                 worst = std::max(worst, std::fabs(double(field.worldHeight(x, y)) - z));
             }
         }
     }
-    EXPECT_EQ(std::count(covered.begin(), covered.end(), uint8_t(0)), 0) << "samples outside every triangle";
+    EXPECT_EQ(std::count(covered.begin(), covered.end(), uint8_t(0)), 0)
+        << "samples outside every triangle";
     return worst;
 }
 
@@ -139,7 +150,8 @@ bool constrainedPath(const tin::TinMesh& mesh, GridPoint a, GridPoint b, bool st
         for (int k = 0; k < 3; ++k) {
             if (!(mesh.constrainedEdges[t] & (1u << k))) continue;
             const int u = mesh.triangles[t][size_t(k)], w = mesh.triangles[t][size_t((k + 1) % 3)];
-            if (straight && (orient2(a, b, mesh.vertices[size_t(u)]) != 0 || orient2(a, b, mesh.vertices[size_t(w)]) != 0))
+            if (straight && (orient2(a, b, mesh.vertices[size_t(u)]) != 0 ||
+                             orient2(a, b, mesh.vertices[size_t(w)]) != 0))
                 continue;
             graph[u].push_back(w);
             graph[w].push_back(u);
@@ -204,7 +216,8 @@ TEST(TinMesher, TriangleAndPointLimits) {
     expectValidMesh(byPoints.mesh, true);
     // Greedy: more points, smaller error.
     auto more = tin::buildTin(field, {}, {.maxPoints = 1200});
-    EXPECT_LT(tin::measureError(more.mesh, field).maxError, tin::measureError(byPoints.mesh, field).maxError);
+    EXPECT_LT(tin::measureError(more.mesh, field).maxError,
+              tin::measureError(byPoints.mesh, field).maxError);
     EXPECT_NEAR(byPoints.stats.worstError, tin::measureError(byPoints.mesh, field).maxError, 1e-4);
 }
 
@@ -247,30 +260,39 @@ TEST(TinMesher, ConstrainedSegmentsAreMeshEdges) {
         for (int band = 0; band < 4; ++band) {
             const int first = int(c.vertices.size());
             for (int x = 0; x <= 64; x += 8) {
-                const double y = 6 + band * 16 + std::uniform_real_distribution<double>(0.0, 7.0)(rng);
-                c.vertices.push_back({double(x) + std::uniform_real_distribution<double>(-0.4, 0.4)(rng), y});
+                const double y =
+                    6 + band * 16 + std::uniform_real_distribution<double>(0.0, 7.0)(rng);
+                c.vertices.push_back(
+                    {double(x) + std::uniform_real_distribution<double>(-0.4, 0.4)(rng), y});
             }
-            for (int i = first; i + 1 < int(c.vertices.size()); ++i) c.segments.push_back({i, i + 1, band + 1, band});
+            for (int i = first; i + 1 < int(c.vertices.size()); ++i)
+                c.segments.push_back({i, i + 1, band + 1, band});
         }
         for (auto mode : {tin::Triangulation::Delaunay, tin::Triangulation::DataDependent}) {
-            auto r = tin::buildTin(field, c, {.maxErrorRel = 0.01, .triangulation = mode, .snapDistance = 0.0});
+            auto r = tin::buildTin(
+                field, c, {.maxErrorRel = 0.01, .triangulation = mode, .snapDistance = 0.0});
             expectValidMesh(r.mesh, mode == tin::Triangulation::Delaunay);
             EXPECT_EQ(r.stats.zoneConflicts, 0);
-            EXPECT_LE(independentMaxError(r.mesh, field), 0.01 * (field.range().second - field.range().first) + 1e-6);
+            EXPECT_LE(independentMaxError(r.mesh, field),
+                      0.01 * (field.range().second - field.range().first) + 1e-6);
             for (const auto& s : c.segments) {
                 auto snap = [](const tin::Constraints::Vertex& v) {
-                    return GridPoint{int32_t(std::clamp(std::floor(v.x + 0.5), 0.0, 64.0)), int32_t(std::floor(v.y + 0.5))};
+                    return GridPoint{int32_t(std::clamp(std::floor(v.x + 0.5), 0.0, 64.0)),
+                                     int32_t(std::floor(v.y + 0.5))};
                 };
-                EXPECT_TRUE(constrainedPath(r.mesh, snap(c.vertices[size_t(s.a)]), snap(c.vertices[size_t(s.b)]), true));
+                EXPECT_TRUE(constrainedPath(r.mesh, snap(c.vertices[size_t(s.a)]),
+                                            snap(c.vertices[size_t(s.b)]), true));
             }
             // With the snap rule the borderlines bend through samples but stay connected.
             auto snapped = tin::buildTin(field, c, {.maxErrorRel = 0.01, .triangulation = mode});
             expectValidMesh(snapped.mesh, mode == tin::Triangulation::Delaunay);
             for (const auto& s : c.segments) {
                 auto snap = [](const tin::Constraints::Vertex& v) {
-                    return GridPoint{int32_t(std::clamp(std::floor(v.x + 0.5), 0.0, 64.0)), int32_t(std::floor(v.y + 0.5))};
+                    return GridPoint{int32_t(std::clamp(std::floor(v.x + 0.5), 0.0, 64.0)),
+                                     int32_t(std::floor(v.y + 0.5))};
                 };
-                EXPECT_TRUE(constrainedPath(snapped.mesh, snap(c.vertices[size_t(s.a)]), snap(c.vertices[size_t(s.b)]), false));
+                EXPECT_TRUE(constrainedPath(snapped.mesh, snap(c.vertices[size_t(s.a)]),
+                                            snap(c.vertices[size_t(s.b)]), false));
             }
             EXPECT_EQ(snapped.stats.zoneConflicts, 0);
         }
@@ -292,8 +314,11 @@ TEST(TinMesher, RandomBorderlineSoup) {
             if (a == b) continue;
             bool crosses = false;
             for (const auto& [p, q] : kept) {
-                const int64_t o1 = orient2(a, b, p), o2 = orient2(a, b, q), o3 = orient2(p, q, a), o4 = orient2(p, q, b);
-                if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) crosses = true;
+                const int64_t o1 = orient2(a, b, p), o2 = orient2(a, b, q), o3 = orient2(p, q, a),
+                              o4 = orient2(p, q, b);
+                if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) &&
+                    ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+                    crosses = true;
             }
             if (crosses) continue;
             kept.emplace_back(a, b);
@@ -303,8 +328,10 @@ TEST(TinMesher, RandomBorderlineSoup) {
             c.segments.push_back({i, i + 1, 1, 2});
         }
         for (double snap : {0.0, 1.0}) {
-            auto mode = round % 3 == 0 ? tin::Triangulation::DataDependent : tin::Triangulation::Delaunay;
-            auto r = tin::buildTin(field, c, {.maxErrorRel = 0.005, .triangulation = mode, .snapDistance = snap});
+            auto mode =
+                round % 3 == 0 ? tin::Triangulation::DataDependent : tin::Triangulation::Delaunay;
+            auto r = tin::buildTin(
+                field, c, {.maxErrorRel = 0.005, .triangulation = mode, .snapDistance = snap});
             expectValidMesh(r.mesh, mode == tin::Triangulation::Delaunay);
             auto [lo, hi] = field.range();
             EXPECT_LE(independentMaxError(r.mesh, field), 0.005 * (hi - lo) + 1e-6);
@@ -401,7 +428,8 @@ TEST(TinMesher, CollinearBorderlinePoints) {
     tin::Constraints c;
     // A long segment through two lone vertices on it, and a polyline of collinear steps.
     c.vertices = {{4, 4}, {28, 28}, {10, 10}, {16, 16}, {4, 20}, {8, 22}, {12, 24}, {16, 26}};
-    c.segments = {{0, 1, 1, 1}, {4, 5, 1, 1}, {5, 6, 1, 1}, {6, 7, 1, 1}};  // open lines: one zone around
+    c.segments = {
+        {0, 1, 1, 1}, {4, 5, 1, 1}, {5, 6, 1, 1}, {6, 7, 1, 1}};  // open lines: one zone around
     for (double snap : {0.0, 1.0}) {
         auto r = tin::buildTin(field, c, {.maxErrorRel = 0.01, .snapDistance = snap});
         expectValidMesh(r.mesh, true);
@@ -430,7 +458,8 @@ TEST(TinMesher, BorderlineAlongTheGridEdge) {
             minY = std::min(minY, r.mesh.vertices[size_t(r.mesh.triangles[t][size_t(k)])].y);
         }
         int maxX = 0;
-        for (int k = 0; k < 3; ++k) maxX = std::max(maxX, r.mesh.vertices[size_t(r.mesh.triangles[t][size_t(k)])].x);
+        for (int k = 0; k < 3; ++k)
+            maxX = std::max(maxX, r.mesh.vertices[size_t(r.mesh.triangles[t][size_t(k)])].x);
         EXPECT_EQ(r.mesh.zone[t], (minY >= 20 && maxX <= 10) ? 1 : 2);
     }
 }

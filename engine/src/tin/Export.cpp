@@ -1,7 +1,6 @@
-#include <sierra/tin/Export.h>
-
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
+#include <sierra/tin/Export.h>
 
 #include <algorithm>
 #include <cctype>
@@ -15,12 +14,15 @@ namespace sierra::tin {
 namespace {
 
 std::array<float, 3> worldPosition(const TinMesh& mesh, size_t v) {
-    return {float(mesh.vertices[v].x) * mesh.spacingX, mesh.heights[v], float(mesh.vertices[v].y) * mesh.spacingZ};
+    return {float(mesh.vertices[v].x) * mesh.spacingX, mesh.heights[v],
+            float(mesh.vertices[v].y) * mesh.spacingZ};
 }
 
 // Triangles are counter-clockwise in (x, y) grid coordinates, which with y up
 // and grid y along +z faces down; written as (0, 2, 1) they face up.
-std::array<int32_t, 3> upward(const std::array<int32_t, 3>& t) { return {t[0], t[2], t[1]}; }
+std::array<int32_t, 3> upward(const std::array<int32_t, 3>& t) {
+    return {t[0], t[2], t[1]};
+}
 
 void put(std::FILE* f, const std::string& s) {
     if (std::fwrite(s.data(), 1, s.size(), f) != s.size()) throw Error("short write");
@@ -35,12 +37,14 @@ void putBinary(std::string& out, T value) {
 
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
 
 void checkMesh(const TinMesh& mesh) {
-    SIERRA_CHECK(mesh.heights.size() == mesh.vertices.size() && mesh.surfaces.size() == mesh.triangles.size() &&
+    SIERRA_CHECK(mesh.heights.size() == mesh.vertices.size() &&
+                     mesh.surfaces.size() == mesh.triangles.size() &&
                      mesh.zone.size() == mesh.triangles.size(),
                  "sierra::tin: the mesh's per-vertex or per-triangle arrays disagree in size");
 }
@@ -53,10 +57,12 @@ std::string materialName(const std::array<int32_t, 2>& s) {
 
 void writeObj(const std::string& path, const TinMesh& mesh, const ObjOptions& options) {
     checkMesh(mesh);
-    SIERRA_CHECK(options.uvPeriod > 0.0, "sierra::tin::writeObj: uvPeriod must be positive, got ", options.uvPeriod);
+    SIERRA_CHECK(options.uvPeriod > 0.0, "sierra::tin::writeObj: uvPeriod must be positive, got ",
+                 options.uvPeriod);
     const std::filesystem::path objPath(path);
     const std::string mtlPath =
-        options.mtlPath.empty() ? std::filesystem::path(objPath).replace_extension(".mtl").string() : options.mtlPath;
+        options.mtlPath.empty() ? std::filesystem::path(objPath).replace_extension(".mtl").string()
+                                : options.mtlPath;
     // mtllib relative to the OBJ's folder when the MTL is beside it.
     std::string mtlRef = mtlPath;
     if (std::filesystem::path(mtlPath).parent_path() == objPath.parent_path())
@@ -89,31 +95,35 @@ void writeObj(const std::string& path, const TinMesh& mesh, const ObjOptions& op
         }
         // A stable plain colour per material for viewers without textures.
         const uint32_t h = uint32_t(surfaces[0]) * 2654435761u ^ uint32_t(surfaces[1]) * 40503u;
-        mtl << "Ka 0 0 0\nKd " << 0.35 + 0.6 * ((h >> 0) & 255) / 255.0 << " " << 0.35 + 0.6 * ((h >> 8) & 255) / 255.0
-            << " " << 0.35 + 0.6 * ((h >> 16) & 255) / 255.0 << "\nKs 0 0 0\nillum 1\n";
+        mtl << "Ka 0 0 0\nKd " << 0.35 + 0.6 * ((h >> 0) & 255) / 255.0 << " "
+            << 0.35 + 0.6 * ((h >> 8) & 255) / 255.0 << " "
+            << 0.35 + 0.6 * ((h >> 16) & 255) / 255.0 << "\nKs 0 0 0\nillum 1\n";
         if (!image.empty()) mtl << "map_Kd " << image << "\n";
     }
     writeFileAtomic(mtlPath, mtl.str());
 
     writeFileAtomic(path, [&](std::FILE* f) {
         char line[160];
-        put(f, msg("# Sierra TIN: ", mesh.vertices.size(), " vertices, ", mesh.triangles.size(), " triangles, grid ",
-                   mesh.gridWidth, " x ", mesh.gridHeight, "\nmtllib ", mtlRef, "\n"));
+        put(f, msg("# Sierra TIN: ", mesh.vertices.size(), " vertices, ", mesh.triangles.size(),
+                   " triangles, grid ", mesh.gridWidth, " x ", mesh.gridHeight, "\nmtllib ", mtlRef,
+                   "\n"));
         for (size_t v = 0; v < mesh.vertices.size(); ++v) {
             const auto p = worldPosition(mesh, v);
-            std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(p[0]), double(p[1]), double(p[2]));
+            std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(p[0]), double(p[1]),
+                          double(p[2]));
             put(f, line);
         }
         for (const GridPoint& g : mesh.vertices) {
-            std::snprintf(line, sizeof line, "vt %.9g %.9g\n", g.x / options.uvPeriod, g.y / options.uvPeriod);
+            std::snprintf(line, sizeof line, "vt %.9g %.9g\n", g.x / options.uvPeriod,
+                          g.y / options.uvPeriod);
             put(f, line);
         }
         for (const auto& [surfaces, tris] : groups) {
             put(f, "usemtl " + materialName(surfaces) + "\n");
             for (size_t t : tris) {
                 const auto tri = upward(mesh.triangles[t]);
-                std::snprintf(line, sizeof line, "f %d/%d %d/%d %d/%d\n", tri[0] + 1, tri[0] + 1, tri[1] + 1, tri[1] + 1,
-                              tri[2] + 1, tri[2] + 1);
+                std::snprintf(line, sizeof line, "f %d/%d %d/%d %d/%d\n", tri[0] + 1, tri[0] + 1,
+                              tri[1] + 1, tri[1] + 1, tri[2] + 1, tri[2] + 1);
                 put(f, line);
             }
         }
@@ -122,11 +132,13 @@ void writeObj(const std::string& path, const TinMesh& mesh, const ObjOptions& op
 
 void writePly(const std::string& path, const TinMesh& mesh) {
     checkMesh(mesh);
-    std::string out = msg("ply\nformat binary_little_endian 1.0\ncomment Sierra TIN, grid ", mesh.gridWidth, " x ",
-                          mesh.gridHeight, "\nelement vertex ", mesh.vertices.size(),
-                          "\nproperty float x\nproperty float y\nproperty float z\nelement face ", mesh.triangles.size(),
-                          "\nproperty list uchar int vertex_indices\nproperty int zone\nproperty int surface0\n"
-                          "property int surface1\nend_header\n");
+    std::string out =
+        msg("ply\nformat binary_little_endian 1.0\ncomment Sierra TIN, grid ", mesh.gridWidth,
+            " x ", mesh.gridHeight, "\nelement vertex ", mesh.vertices.size(),
+            "\nproperty float x\nproperty float y\nproperty float z\nelement face ",
+            mesh.triangles.size(),
+            "\nproperty list uchar int vertex_indices\nproperty int zone\nproperty int surface0\n"
+            "property int surface1\nend_header\n");
     out.reserve(out.size() + mesh.vertices.size() * 12 + mesh.triangles.size() * 25);
     for (size_t v = 0; v < mesh.vertices.size(); ++v)
         for (float c : worldPosition(mesh, v)) putBinary(out, c);
@@ -151,8 +163,10 @@ void writeStl(const std::string& path, const TinMesh& mesh) {
         const auto tri = upward(t);
         const auto a = worldPosition(mesh, size_t(tri[0])), b = worldPosition(mesh, size_t(tri[1])),
                    c = worldPosition(mesh, size_t(tri[2]));
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                     w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
+                       u[0] * w[1] - u[1] * w[0]};
         const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         for (double& x : n) putBinary(out, float(len > 0 ? x / len : 0.0));
         for (const auto& p : {a, b, c})
@@ -164,10 +178,14 @@ void writeStl(const std::string& path, const TinMesh& mesh) {
 
 void writeMesh(const std::string& path, const TinMesh& mesh, const ObjOptions& options) {
     const std::string ext = lowerExtension(path);
-    if (ext == ".obj") writeObj(path, mesh, options);
-    else if (ext == ".ply") writePly(path, mesh);
-    else if (ext == ".stl") writeStl(path, mesh);
-    else throw Error(msg(path, ": unknown mesh format '", ext, "' (use .obj, .ply or .stl)"));
+    if (ext == ".obj")
+        writeObj(path, mesh, options);
+    else if (ext == ".ply")
+        writePly(path, mesh);
+    else if (ext == ".stl")
+        writeStl(path, mesh);
+    else
+        throw Error(msg(path, ": unknown mesh format '", ext, "' (use .obj, .ply or .stl)"));
 }
 
 ObjFile readObj(const std::string& path) {
@@ -209,7 +227,8 @@ ObjFile readObj(const std::string& path) {
                 }
                 auto resolve = [&](int i, size_t count) {
                     const long r = i > 0 ? i - 1 : long(count) + i;
-                    if (i == 0 || r < 0 || r >= long(count)) fail(msg("index ", i, " out of range"));
+                    if (i == 0 || r < 0 || r >= long(count))
+                        fail(msg("index ", i, " out of range"));
                     return int32_t(r);
                 };
                 f[size_t(n)] = resolve(vi, obj.positions.size());

@@ -44,7 +44,7 @@ inline bool inCircle(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
     const Int128 blift = bdx * bdx + bdy * bdy;
     const Int128 clift = cdx * cdx + cdy * cdy;
     const Int128 det = alift * (bdx * cdy - cdx * bdy) + blift * (cdx * ady - adx * cdy) +
-                         clift * (adx * bdy - bdx * ady);
+                       clift * (adx * bdy - bdx * ady);
     return det > 0;
 }
 
@@ -83,15 +83,18 @@ inline void scanTriangle(GridPoint a, GridPoint b, GridPoint c, Row&& row) {
         int64_t floorX() const { return q; }
         int64_t ceilX() const { return q + (r > 0); }
     };
-    const bool shortLeft = orient(a, c, b) > 0;  // b left of the long edge a->c: short edges bound from the left
+    const bool shortLeft =
+        orient(a, c, b) > 0;  // b left of the long edge a->c: short edges bound from the left
     Edge longEdge;
     longEdge.start(a, c, a.y);
     if (a.y < b.y) {
         Edge e;
         e.start(a, b, a.y);
         for (int y = a.y; y < b.y; ++y) {
-            if (shortLeft) row(y, int(e.ceilX()), int(longEdge.floorX()));
-            else row(y, int(longEdge.ceilX()), int(e.floorX()));
+            if (shortLeft)
+                row(y, int(e.ceilX()), int(longEdge.floorX()));
+            else
+                row(y, int(longEdge.ceilX()), int(e.floorX()));
             e.step();
             longEdge.step();
         }
@@ -100,15 +103,19 @@ inline void scanTriangle(GridPoint a, GridPoint b, GridPoint c, Row&& row) {
         Edge e;
         e.start(b, c, b.y);
         for (int y = b.y; y <= c.y; ++y) {
-            if (shortLeft) row(y, int(e.ceilX()), int(longEdge.floorX()));
-            else row(y, int(longEdge.ceilX()), int(e.floorX()));
+            if (shortLeft)
+                row(y, int(e.ceilX()), int(longEdge.floorX()));
+            else
+                row(y, int(longEdge.ceilX()), int(e.floorX()));
             e.step();
             longEdge.step();
         }
     } else {
         // b and c on one row: that last row runs between them.
-        if (shortLeft) row(b.y, b.x, int(longEdge.floorX()));
-        else row(b.y, int(longEdge.ceilX()), b.x);
+        if (shortLeft)
+            row(b.y, b.x, int(longEdge.floorX()));
+        else
+            row(b.y, int(longEdge.ceilX()), b.x);
     }
 }
 

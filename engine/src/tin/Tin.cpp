@@ -1,9 +1,8 @@
-#include <sierra/tin/Tin.h>
-
 #include "Predicates.h"
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Timer.h>
+#include <sierra/tin/Tin.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,32 +18,43 @@ using detail::scanTriangle;
 
 const char* toString(StopReason reason) {
     switch (reason) {
-        case StopReason::Error: return "error";
-        case StopReason::Triangles: return "triangles";
-        case StopReason::Points: return "points";
-        case StopReason::Exhausted: return "exhausted";
+        case StopReason::Error:
+            return "error";
+        case StopReason::Triangles:
+            return "triangles";
+        case StopReason::Points:
+            return "points";
+        case StopReason::Exhausted:
+            return "exhausted";
     }
     return "?";
 }
 
 namespace {
 
-inline int nextHe(int e) { return e % 3 == 2 ? e - 2 : e + 1; }
-inline int prevHe(int e) { return e % 3 == 0 ? e + 2 : e - 1; }
+inline int nextHe(int e) {
+    return e % 3 == 2 ? e - 2 : e + 1;
+}
+inline int prevHe(int e) {
+    return e % 3 == 0 ? e + 2 : e - 1;
+}
 
 // The triangulation in flat arrays: triangle t owns half-edges 3t, 3t+1, 3t+2,
 // counter-clockwise; half-edge e runs from vertex origin_[e] to origin_[nextHe(e)]
 // with its triangle on its left. twin_[e] is the opposite half-edge (-1 on the
 // grid's border). A constrained half-edge carries the zone of its own side.
 class Mesher {
-public:
+  public:
     Mesher(const terrain::Heightfield& field, const TinDesc& desc)
-        : field_(field), desc_(desc), width_(field.width()), height_(field.height()),
+        : field_(field),
+          desc_(desc),
+          width_(field.width()),
+          height_(field.height()),
           heights_(field.samples().data()) {}
 
     TinResult run(const Constraints& constraints);
 
-private:
+  private:
     // --- topology -------------------------------------------------------------
     int addVertex(GridPoint p) {
         points_.push_back(p);
@@ -360,8 +370,10 @@ void Mesher::snapInsert(int t, int k, int v) {
 void Mesher::flip(int e) {
     const int o = twin_[e];
     const int t1 = e / 3, t2 = o / 3;
-    const int a = origin_[e], b = origin_[nextHe(e)], p = origin_[prevHe(e)], d = origin_[prevHe(o)];
-    const EdgeData bp = save(nextHe(e)), pa = save(prevHe(e)), ad = save(nextHe(o)), db = save(prevHe(o));
+    const int a = origin_[e], b = origin_[nextHe(e)], p = origin_[prevHe(e)],
+              d = origin_[prevHe(o)];
+    const EdgeData bp = save(nextHe(e)), pa = save(prevHe(e)), ad = save(nextHe(o)),
+                   db = save(prevHe(o));
     twin_[3 * t1] = twin_[3 * t1 + 1] = twin_[3 * t1 + 2] = -1;
     twin_[3 * t2] = twin_[3 * t2 + 1] = twin_[3 * t2 + 2] = -1;
     setTriangle(t1, p, a, d);
@@ -450,8 +462,10 @@ int Mesher::insertVertex(GridPoint p) {
     }
     ++stamp_;
     dirty_.clear();
-    if (onEdge >= 0) splitEdge(onEdge, v);
-    else insertInTriangle(t, v);
+    if (onEdge >= 0)
+        splitEdge(onEdge, v);
+    else
+        insertInTriangle(t, v);
     lastTriangle_ = t;
     return v;
 }
@@ -466,7 +480,8 @@ void Mesher::recoverSegment(int a, int b, int32_t leftZone, int32_t rightZone, i
         // An edge from a along the segment: to b, or to a vertex on it.
         int along = -1, alongIn = -1, wedge = -1;
         auto onSegment = [&](GridPoint w) {
-            const int64_t dot = int64_t(w.x - pa.x) * (pb.x - pa.x) + int64_t(w.y - pa.y) * (pb.y - pa.y);
+            const int64_t dot =
+                int64_t(w.x - pa.x) * (pb.x - pa.x) + int64_t(w.y - pa.y) * (pb.y - pa.y);
             return orient(pa, pb, w) == 0 && dot > 0;
         };
         forEachOutgoing(a, [&](int e) {
@@ -493,20 +508,21 @@ void Mesher::recoverSegment(int a, int b, int32_t leftZone, int32_t rightZone, i
             continue;
         }
         if (alongIn >= 0) {
-            constrain(alongIn, rightZone, segment);  // runs against the segment: its left is the right side
+            constrain(alongIn, rightZone,
+                      segment);  // runs against the segment: its left is the right side
             a = origin_[alongIn];
             continue;
         }
-        SIERRA_CHECK(wedge >= 0, "sierra::tin: no triangle at (", pa.x, ", ", pa.y, ") towards (", pb.x, ", ",
-                     pb.y, ")");
+        SIERRA_CHECK(wedge >= 0, "sierra::tin: no triangle at (", pa.x, ", ", pa.y, ") towards (",
+                     pb.x, ", ", pb.y, ")");
         // Walk along a->b collecting the crossed edges, up to b or a vertex on the segment.
         crossing.clear();
         int c = nextHe(wedge);
         int stop = -1;
         while (true) {
             if (constrained_[c])
-                throw Error(msg("sierra::tin: borderline segments cross near (", at(c).x, ", ", at(c).y,
-                                "): borderlines may meet only at shared vertices"));
+                throw Error(msg("sierra::tin: borderline segments cross near (", at(c).x, ", ",
+                                at(c).y, "): borderlines may meet only at shared vertices"));
             crossing.emplace_back(origin_[c], origin_[nextHe(c)]);
             const int tc = twin_[c];
             SIERRA_CHECK(tc >= 0, "sierra::tin: a borderline leaves the grid");
@@ -529,7 +545,8 @@ void Mesher::recoverSegment(int a, int b, int32_t leftZone, int32_t rightZone, i
             crossing.pop_front();
             const int e = findEdge(u, w);
             SIERRA_CHECK(e >= 0, "sierra::tin: a crossing edge vanished");
-            const GridPoint pu = at(e), pw = at(nextHe(e)), pp = at(prevHe(e)), pd = at(prevHe(twin_[e]));
+            const GridPoint pu = at(e), pw = at(nextHe(e)), pp = at(prevHe(e)),
+                            pd = at(prevHe(twin_[e]));
             if (orient(pp, pu, pd) <= 0 || orient(pd, pw, pp) <= 0) {
                 crossing.emplace_back(u, w);
                 continue;
@@ -537,8 +554,10 @@ void Mesher::recoverSegment(int a, int b, int32_t leftZone, int32_t rightZone, i
             const int p = origin_[prevHe(e)], d = origin_[prevHe(twin_[e])];
             flip(e);
             const int64_t op = orient(pa, ps, pt(p)), od = orient(pa, ps, pt(d));
-            if ((op > 0 && od < 0) || (op < 0 && od > 0)) crossing.emplace_back(p, d);
-            else created.emplace_back(p, d);
+            if ((op > 0 && od < 0) || (op < 0 && od > 0))
+                crossing.emplace_back(p, d);
+            else
+                created.emplace_back(p, d);
         }
         const int e = findEdge(a, stop);
         SIERRA_CHECK(e >= 0, "sierra::tin: segment recovery lost the segment");
@@ -559,9 +578,11 @@ void Mesher::legalizeEdges(std::vector<std::pair<int, int>>& edges) {
         edges.pop_back();
         const int e = findEdge(u, w);
         if (e < 0 || twin_[e] < 0 || constrained_[e]) continue;
-        const GridPoint pa = at(e), pb = at(nextHe(e)), pp = at(prevHe(e)), pd = at(prevHe(twin_[e]));
+        const GridPoint pa = at(e), pb = at(nextHe(e)), pp = at(prevHe(e)),
+                        pd = at(prevHe(twin_[e]));
         if (!inCircle(pa, pb, pp, pd)) continue;
-        const int a = origin_[e], b = origin_[nextHe(e)], p = origin_[prevHe(e)], d = origin_[prevHe(twin_[e])];
+        const int a = origin_[e], b = origin_[nextHe(e)], p = origin_[prevHe(e)],
+                  d = origin_[prevHe(twin_[e])];
         flip(e);
         edges.emplace_back(p, a);
         edges.emplace_back(a, d);
@@ -669,8 +690,10 @@ void Mesher::heapUpdate(int t) {
     }
     const double old = heap_[size_t(i)].error;
     heap_[size_t(i)].error = candidateError_[t];
-    if (candidateError_[t] > old) heapUp(i);
-    else heapDown(i);
+    if (candidateError_[t] > old)
+        heapUp(i);
+    else
+        heapDown(i);
 }
 
 void Mesher::floodZones(const Constraints& constraints, TinResult& result) {
@@ -708,13 +731,15 @@ void Mesher::floodZones(const Constraints& constraints, TinResult& result) {
     for (int t = 0; t < triangles; ++t) {
         if (zone[t] < 0) zone[t] = constraints.defaultZone;
         auto it = bands.find(zone[t]);
-        mesh.surfaces[size_t(t)] = it != bands.end() ? it->second : std::array<int32_t, 2>{zone[t], zone[t]};
+        mesh.surfaces[size_t(t)] =
+            it != bands.end() ? it->second : std::array<int32_t, 2>{zone[t], zone[t]};
     }
 }
 
 TinResult Mesher::run(const Constraints& constraints) {
-    SIERRA_CHECK(width_ >= 2 && height_ >= 2, "sierra::tin: the heightfield must be at least 2 x 2 samples, got ",
-                 width_, " x ", height_);
+    SIERRA_CHECK(width_ >= 2 && height_ >= 2,
+                 "sierra::tin: the heightfield must be at least 2 x 2 samples, got ", width_, " x ",
+                 height_);
     SIERRA_CHECK(desc_.maxError >= 0.0 && desc_.maxErrorRel >= 0.0 && desc_.maxTriangles >= 0 &&
                      desc_.maxPoints >= 0 && desc_.snapDistance >= 0.0,
                  "sierra::tin: stop limits and snap distance must not be negative");
@@ -723,11 +748,12 @@ TinResult Mesher::run(const Constraints& constraints) {
                          size_t(s.b) < constraints.vertices.size(),
                      "sierra::tin: segment (", s.a, ", ", s.b, ") names a vertex outside 0..",
                      int64_t(constraints.vertices.size()) - 1);
-        SIERRA_CHECK(s.leftZone >= 0 && s.rightZone >= 0, "sierra::tin: zones must be >= 0, got ", s.leftZone,
-                     " and ", s.rightZone);
+        SIERRA_CHECK(s.leftZone >= 0 && s.rightZone >= 0, "sierra::tin: zones must be >= 0, got ",
+                     s.leftZone, " and ", s.rightZone);
     }
     for (const auto& v : constraints.vertices)
-        SIERRA_CHECK(std::isfinite(v.x) && std::isfinite(v.y), "sierra::tin: a borderline vertex is not finite");
+        SIERRA_CHECK(std::isfinite(v.x) && std::isfinite(v.y),
+                     "sierra::tin: a borderline vertex is not finite");
 
     TinResult result;
     Stopwatch clock;
@@ -736,7 +762,8 @@ TinResult Mesher::run(const Constraints& constraints) {
     const double scale = std::fabs(double(field_.verticalScale()));
     const auto [lo, hi] = field_.range();
     double target = desc_.maxErrorRel * (double(hi) - double(lo));
-    if (desc_.maxError > 0.0) target = std::max(target, scale > 0.0 ? desc_.maxError / scale : 1e30);
+    if (desc_.maxError > 0.0)
+        target = std::max(target, scale > 0.0 ? desc_.maxError / scale : 1e30);
     targetStored_ = target;
     result.stats.targetError = target * scale;
 
@@ -744,8 +771,10 @@ TinResult Mesher::run(const Constraints& constraints) {
     // with a point or triangle budget they are sized once up front.
     int64_t expectedPoints = 1024;
     if (desc_.maxPoints > 0) expectedPoints = desc_.maxPoints;
-    if (desc_.maxTriangles > 0) expectedPoints = std::max(expectedPoints, desc_.maxTriangles / 2 + 2);
-    expectedPoints = std::min<int64_t>({expectedPoints, int64_t(width_) * height_, int64_t(1) << 26});
+    if (desc_.maxTriangles > 0)
+        expectedPoints = std::max(expectedPoints, desc_.maxTriangles / 2 + 2);
+    expectedPoints =
+        std::min<int64_t>({expectedPoints, int64_t(width_) * height_, int64_t(1) << 26});
     reserve(size_t(expectedPoints));
     // The grid's corners: two triangles, split along the (0,0)-(w-1,h-1) diagonal.
     const int c00 = addVertex({0, 0}), c10 = addVertex({width_ - 1, 0});
@@ -788,8 +817,10 @@ TinResult Mesher::run(const Constraints& constraints) {
     int64_t sinceProgress = 0;
     auto report = [&](double worst) {
         if (!desc_.progress) return;
-        desc_.progress({.points = int64_t(points_.size()), .triangles = int64_t(origin_.size() / 3),
-                        .worstError = worst * scale, .targetError = result.stats.targetError});
+        desc_.progress({.points = int64_t(points_.size()),
+                        .triangles = int64_t(origin_.size() / 3),
+                        .worstError = worst * scale,
+                        .targetError = result.stats.targetError});
     };
     const double snap2 = desc_.snapDistance * desc_.snapDistance;
     result.stats.stop = StopReason::Exhausted;
@@ -818,10 +849,13 @@ TinResult Mesher::run(const Constraints& constraints) {
             // Distance from the input segment this edge comes from.
             const auto [sa, sb] = segments_[size_t(segment_[e])];
             const int64_t os = orient(sa, sb, p);
-            const double len2 = double(sb.x - sa.x) * (sb.x - sa.x) + double(sb.y - sa.y) * (sb.y - sa.y);
+            const double len2 =
+                double(sb.x - sa.x) * (sb.x - sa.x) + double(sb.y - sa.y) * (sb.y - sa.y);
             const double dist2 = double(os) * double(os) / len2;
-            const int64_t dotA = int64_t(p.x - a.x) * (b.x - a.x) + int64_t(p.y - a.y) * (b.y - a.y);
-            const int64_t dotB = int64_t(p.x - b.x) * (a.x - b.x) + int64_t(p.y - b.y) * (a.y - b.y);
+            const int64_t dotA =
+                int64_t(p.x - a.x) * (b.x - a.x) + int64_t(p.y - a.y) * (b.y - a.y);
+            const int64_t dotB =
+                int64_t(p.x - b.x) * (a.x - b.x) + int64_t(p.y - b.y) * (a.y - b.y);
             if (dist2 < snapBest && dotA > 0 && dotB > 0) {
                 snapBest = dist2;
                 snapEdge = k;
@@ -832,7 +866,8 @@ TinResult Mesher::run(const Constraints& constraints) {
             result.stats.stop = StopReason::Points;
             break;
         }
-        if (desc_.maxTriangles > 0 && int64_t(origin_.size() / 3) + newTriangles > desc_.maxTriangles) {
+        if (desc_.maxTriangles > 0 &&
+            int64_t(origin_.size() / 3) + newTriangles > desc_.maxTriangles) {
             result.stats.stop = StopReason::Triangles;
             break;
         }
@@ -871,7 +906,8 @@ TinResult Mesher::run(const Constraints& constraints) {
     mesh.spacingZ = field_.spacingZ();
     mesh.vertices = points_;
     mesh.heights.resize(points_.size());
-    for (size_t v = 0; v < points_.size(); ++v) mesh.heights[v] = float(height(points_[v].x, points_[v].y)) * field_.verticalScale();
+    for (size_t v = 0; v < points_.size(); ++v)
+        mesh.heights[v] = float(height(points_[v].x, points_[v].y)) * field_.verticalScale();
     const int triangles = int(origin_.size() / 3);
     mesh.triangles.resize(size_t(triangles));
     mesh.constrainedEdges.resize(size_t(triangles));
@@ -893,7 +929,8 @@ TinResult Mesher::run(const Constraints& constraints) {
 
 }  // namespace
 
-TinResult buildTin(const terrain::Heightfield& field, const Constraints& constraints, const TinDesc& desc) {
+TinResult buildTin(const terrain::Heightfield& field, const Constraints& constraints,
+                   const TinDesc& desc) {
     SIERRA_CHECK(!field.empty(), "sierra::tin: the heightfield is empty");
     Mesher mesher(field, desc);
     return mesher.run(constraints);
@@ -901,8 +938,9 @@ TinResult buildTin(const terrain::Heightfield& field, const Constraints& constra
 
 ErrorStats measureError(const TinMesh& mesh, const terrain::Heightfield& field) {
     SIERRA_CHECK(mesh.gridWidth == field.width() && mesh.gridHeight == field.height(),
-                 "sierra::tin::measureError: the mesh is for a ", mesh.gridWidth, " x ", mesh.gridHeight,
-                 " grid, the heightfield is ", field.width(), " x ", field.height());
+                 "sierra::tin::measureError: the mesh is for a ", mesh.gridWidth, " x ",
+                 mesh.gridHeight, " grid, the heightfield is ", field.width(), " x ",
+                 field.height());
     const int w = field.width();
     std::vector<uint8_t> seen(size_t(field.sampleCount()), 0);
     ErrorStats stats;
@@ -923,7 +961,8 @@ ErrorStats measureError(const TinMesh& mesh, const terrain::Heightfield& field) 
                 const size_t i = size_t(y) * size_t(w) + size_t(x);
                 if (seen[i]) continue;
                 seen[i] = 1;
-                const double err = std::fabs(double(field.at(x, y)) * scale - (za + gx * (x - a.x) + gy * (y - a.y)));
+                const double err = std::fabs(double(field.at(x, y)) * scale -
+                                             (za + gx * (x - a.x) + gy * (y - a.y)));
                 stats.maxError = std::max(stats.maxError, err);
                 sum += err * err;
                 ++stats.samples;

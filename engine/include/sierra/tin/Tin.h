@@ -71,19 +71,19 @@ enum class Triangulation {
 };
 
 struct TinProgress {
-    int64_t points = 0;       // vertices so far
-    int64_t triangles = 0;    // triangles so far
-    double worstError = 0.0;  // largest vertical error left (world units)
-    double targetError = 0.0; // error at which insertion stops (world units)
+    int64_t points = 0;        // vertices so far
+    int64_t triangles = 0;     // triangles so far
+    double worstError = 0.0;   // largest vertical error left (world units)
+    double targetError = 0.0;  // error at which insertion stops (world units)
 };
 
 struct TinDesc {
     // Stop at the first of these that holds (0 = not used). With no limit at
     // all, insertion goes on until every sample is interpolated exactly.
-    double maxError = 0.0;      // largest vertical error, world height units
-    double maxErrorRel = 0.0;   // largest vertical error as a fraction of the height range
-    int64_t maxTriangles = 0;   // no insertion that would make more triangles than this
-    int64_t maxPoints = 0;      // no insertion that would make more vertices than this
+    double maxError = 0.0;     // largest vertical error, world height units
+    double maxErrorRel = 0.0;  // largest vertical error as a fraction of the height range
+    int64_t maxTriangles = 0;  // no insertion that would make more triangles than this
+    int64_t maxPoints = 0;     // no insertion that would make more vertices than this
     Triangulation triangulation = Triangulation::Delaunay;
     // The snap() rule: a point inserted into a triangle next to one of the
     // triangle's constrained edges (its foot strictly inside that edge, and its
@@ -107,8 +107,8 @@ struct TinMesh {
     float spacingX = 1.0f;  // world distance between samples along x (from the heightfield)
     float spacingZ = 1.0f;  // ... along z (grid y)
     std::vector<GridPoint> vertices;
-    std::vector<float> heights;                    // world height per vertex
-    std::vector<std::array<int32_t, 3>> triangles; // counter-clockwise in (x, y)
+    std::vector<float> heights;                     // world height per vertex
+    std::vector<std::array<int32_t, 3>> triangles;  // counter-clockwise in (x, y)
     // Per triangle, bit k set: edge k (vertex k -> vertex k+1 mod 3) is constrained.
     std::vector<uint8_t> constrainedEdges;
     // Per triangle and edge k: the zone on that triangle's side of a constrained
@@ -124,17 +124,18 @@ enum class StopReason { Error, Triangles, Points, Exhausted };
 const char* toString(StopReason reason);
 
 struct TinStats {
-    int64_t inserted = 0;       // points inserted by greedy insertion (not corners or borderlines)
-    int64_t edgeSplits = 0;     // insertions that split an edge exactly through the point
-    int64_t snapSplits = 0;     // insertions that bent a constrained edge through the point (snap rule)
-    int64_t flips = 0;          // edge flips in total
+    int64_t inserted = 0;    // points inserted by greedy insertion (not corners or borderlines)
+    int64_t edgeSplits = 0;  // insertions that split an edge exactly through the point
+    int64_t snapSplits =
+        0;              // insertions that bent a constrained edge through the point (snap rule)
+    int64_t flips = 0;  // edge flips in total
     int64_t zoneConflicts = 0;  // triangles that two flood fills claimed with different zones
     double targetError = 0.0;   // error threshold used (world units; 0 = none)
     double worstError = 0.0;    // largest error left when insertion stopped (world units)
     StopReason stop = StopReason::Exhausted;
-    double setupMs = 0.0;       // initial triangulation and constrained edges
-    double insertMs = 0.0;      // greedy insertion
-    double zonesMs = 0.0;       // flood fill
+    double setupMs = 0.0;   // initial triangulation and constrained edges
+    double insertMs = 0.0;  // greedy insertion
+    double zonesMs = 0.0;   // flood fill
 };
 
 struct TinResult {
