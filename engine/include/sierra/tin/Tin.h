@@ -126,8 +126,8 @@ const char* toString(StopReason reason);
 struct TinStats {
     int64_t inserted = 0;    // points inserted by greedy insertion (not corners or borderlines)
     int64_t edgeSplits = 0;  // insertions that split an edge exactly through the point
-    int64_t snapSplits =
-        0;              // insertions that bent a constrained edge through the point (snap rule)
+    // Insertions that bent a constrained edge through the point (the snap rule).
+    int64_t snapSplits = 0;
     int64_t flips = 0;  // edge flips in total
     int64_t zoneConflicts = 0;  // triangles that two flood fills claimed with different zones
     double targetError = 0.0;   // error threshold used (world units; 0 = none)
