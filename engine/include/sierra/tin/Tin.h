@@ -128,7 +128,7 @@ struct TinStats {
     int64_t edgeSplits = 0;  // insertions that split an edge exactly through the point
     // Insertions that bent a constrained edge through the point (the snap rule).
     int64_t snapSplits = 0;
-    int64_t flips = 0;  // edge flips in total
+    int64_t flips = 0;          // edge flips in total
     int64_t zoneConflicts = 0;  // triangles that two flood fills claimed with different zones
     double targetError = 0.0;   // error threshold used (world units; 0 = none)
     double worstError = 0.0;    // largest error left when insertion stopped (world units)
