@@ -6,8 +6,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
+#include <random>
 
 namespace {
 
@@ -37,6 +39,47 @@ void BM_GreedyInsertion(benchmark::State& state) {
 }
 BENCHMARK(BM_GreedyInsertion)
     ->ArgsProduct({{1025, 2049, 4097}, {10, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+// The cost of zone borderlines: six wavy polylines across the 1025² fractal (a
+// vertex every 8 samples, 768 segments) against no borderlines, at the same
+// triangle budget. Counters: max and RMS error of each and their ratios
+// (zones / plain); the time is of the constrained run.
+void BM_ZoneCost(benchmark::State& state) {
+    const auto& field = fractal(1025);
+    const int64_t budget = state.range(0);
+    sierra::tin::Constraints c;
+    std::mt19937 rng(1);
+    for (int k = 0; k < 6; ++k) {
+        const int first = int(c.vertices.size());
+        for (int x = 0; x <= 1024; x += 8)
+            c.vertices.push_back(
+                {double(x), 80.0 + k * 150 + 30 * std::sin(x / 60.0 + k) +
+                                std::uniform_real_distribution<double>(-2, 2)(rng)});
+        for (int i = first; i + 1 < int(c.vertices.size()); ++i)
+            c.segments.push_back({i, i + 1, k + 1, k});
+    }
+    const auto plain = sierra::tin::measureError(
+        sierra::tin::buildTin(field, {}, {.maxTriangles = budget}).mesh, field);
+    sierra::tin::ErrorStats zoned;
+    for (auto _ : state) {
+        auto result = sierra::tin::buildTin(field, c, {.maxTriangles = budget});
+        state.PauseTiming();
+        zoned = sierra::tin::measureError(result.mesh, field);
+        state.ResumeTiming();
+    }
+    state.counters["plain_max"] = plain.maxError;
+    state.counters["plain_rms"] = plain.rmsError;
+    state.counters["zones_max"] = zoned.maxError;
+    state.counters["zones_rms"] = zoned.rmsError;
+    state.counters["ratio_max"] = zoned.maxError / plain.maxError;
+    state.counters["ratio_rms"] = zoned.rmsError / plain.rmsError;
+}
+BENCHMARK(BM_ZoneCost)
+    ->Arg(20000)
+    ->Arg(100000)
+    ->Arg(300000)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
