@@ -53,9 +53,10 @@ inline int32_t epsilonKey(float eps) {
 // a linear index j * side + i in fixed mode (the midpoint of a and b is
 // (a + b) / 2 because both coordinate sums are even), packed (i | j << 32) in
 // view mode (the same midpoint rule holds lane-wise).
-template <bool kView>
+template <bool kView, bool kFast = false>
 struct Walker {
     using V = std::conditional_t<kView, uint64_t, uint32_t>;
+    static constexpr bool kIsView = kView;
 
     // configuration
     const float* err;
@@ -69,6 +70,13 @@ struct Walker {
     int32_t epsKey;
     double ex, ey, ez, sx, sz, vs, kE;
     Plane planes[6];
+    // fast view path (kFast): interleaved (world height, error, radius) per
+    // vertex and the same quantities in float, with the guard bands below
+    // which the float result could differ from the double one.
+    const float* yer;
+    float fex, fey, fez, fsx, fsz, fkE;
+    float distanceSlack;     // absolute slack on squared distances (world units^2)
+    float planeSlack[6];     // absolute slack on plane distances (world units)
 
     // output
     Refiner::Chunk* chunk;
@@ -189,6 +197,114 @@ struct Walker {
         ++leaves;
     }
 
+
+    // --- fast view path -------------------------------------------------
+    // The same decisions as refine() (the double-precision baseline), taken in
+    // float where the float result is certain: a float value v of a quantity
+    // computed exactly as w in double satisfies |v - w| <= slack (bounds in
+    // Refiner::run), so a comparison whose float margin exceeds the slack has
+    // the same outcome in double; the few inside the band are recomputed in
+    // double from the original arrays. The data of a vertex is one 12-byte
+    // record (one cache line instead of three), and the records of both
+    // children are prefetched while the parent is decided.
+
+    // Plane tests of vertex m's sphere, in float with a double fallback.
+    inline unsigned cullFast(uint32_t i, uint32_t j, float x, float y, float z, float r,
+                             unsigned mask) const {
+        for (int k = 0; k < 6; ++k) {
+            if (!(mask & (1u << k))) continue;
+            const Plane& p = planes[k];
+            const float s = p.a * x + p.b * y + p.c * z + p.d;
+            const float slack = planeSlack[k];
+            if (s < -r - slack) return kCulled;
+            if (s >= r + slack) {
+                mask &= ~(1u << k);
+                continue;
+            }
+            if (s >= -r + slack && s < r - slack) continue;  // straddles for sure
+            // the band: exactly the baseline's double test
+            const uint32_t mi = j * side + i;
+            const double xd = i * sx, yd = double(height[mi]) * vs, zd = j * sz;
+            const double sd = p.a * xd + p.b * yd + p.c * zd + p.d;
+            if (sd < -double(r)) return kCulled;
+            if (sd >= double(r)) mask &= ~(1u << k);
+        }
+        return mask;
+    }
+
+    // Is vertex (i, j) active? reach^2 > d^2 in float, double in the band.
+    inline bool activeFast(uint32_t i, uint32_t j, float x, float y, float z, float e,
+                           float r) const {
+        const float dx = x - fex, dy = y - fey, dz = z - fez;
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        const float reach = fkE * e + r;
+        const float r2 = reach * reach;
+        const float slack = 0x1.0p-17f * (r2 + d2) + distanceSlack;
+        if (r2 > d2 + slack) return true;
+        if (r2 < d2 - slack) return false;
+        const uint32_t mi = j * side + i;
+        const double xd = i * sx, yd = double(height[mi]) * vs, zd = j * sz;
+        const double ddx = xd - ex, ddy = yd - ey, ddz = zd - ez;
+        const double reachD = kE * double(err[mi]) + double(rad[mi]);
+        return reachD * reachD > ddx * ddx + ddy * ddy + ddz * ddz;
+    }
+
+    inline void prefetch(V v) const {
+        const uint32_t i = uint32_t(v), j = uint32_t(v >> 32);
+        __builtin_prefetch(yer + 3 * size_t(j * side + i));
+    }
+
+    // Leaf at level l with apex q (entry a): what refine() does for a leaf.
+    inline void leafFast(V a, V q, int l) {
+        if (needStart) start(index(a));
+        ensure(4);
+        append(index(q), l & 1);
+        ++leaves;
+    }
+
+    void refineFast(V a, V q, V b, int l, unsigned mask) {
+        ensure(4);
+        const V m = (a + b) >> 1;
+        const uint32_t i = uint32_t(m), j = uint32_t(m >> 32);
+        const float* d = yer + 3 * size_t(j * side + i);
+        const bool inner = l + 1 < finest;  // children can split
+        if (l + 2 < finest) {
+            // The grandchildren's records: a depth-first walk reaches the
+            // children too soon for a prefetch to help, the grandchildren
+            // late enough (the children's records come with the parent's
+            // prefetch, one level up).
+            const V lm = (a + q) >> 1, rm = (q + b) >> 1;
+            prefetch((a + m) >> 1);
+            prefetch((m + q) >> 1);
+            prefetch((q + m) >> 1);
+            prefetch((m + b) >> 1);
+            (void)lm, (void)rm;
+        } else if (inner) {
+            prefetch((a + q) >> 1);
+            prefetch((q + b) >> 1);
+        }
+        const float x = float(i) * fsx, y = d[0], z = float(j) * fsz, r = d[2];
+        if (mask) {
+            mask = cullFast(i, j, x, y, z, r, mask);
+            if (mask == kCulled) {
+                needStart = true;
+                return;
+            }
+        }
+        if (needStart) start(index(a));
+        if (!activeFast(i, j, x, y, z, d[1], r)) {
+            append(index(q), l & 1);
+            ++leaves;
+            return;
+        }
+        if (inner) refineFast(a, m, q, l + 1, mask);
+        else leafFast(a, m, l + 1);
+        ensure(4);
+        append(index(q), l & 1);
+        if (inner) refineFast(q, m, b, l + 1, mask);
+        else leafFast(q, m, l + 1);
+    }
+
     // Fixed mode on the split keys: does triangle `node` (tree index, see
     // Refiner::splitKeys_) with hypotenuse (a, b) split? The exact float is read
     // only when the keys tie. kAll: epsilon < 0, every triangle splits.
@@ -238,11 +354,15 @@ struct Walker {
             switch (op->kind) {
                 case Refiner::Op::kSubtree:
                     if (!kView && needStart) start(index(V(op->a)));
-                    if (!kView && keys)
+                    if constexpr (kFast) {
+                        if (op->level < finest) refineFast(V(op->a), V(op->q), V(op->b), op->level, op->mask);
+                        else leafFast(V(op->a), V(op->q), op->level);
+                    } else if (!kView && keys) {
                         refineKeyed(uint32_t(op->a), uint32_t(op->q), uint32_t(op->b), op->level,
                                     op->node);
-                    else
+                    } else {
                         refine(V(op->a), V(op->q), V(op->b), op->level, op->mask);
+                    }
                     break;
                 case Refiner::Op::kLeaf:
                     if (needStart) start(index(V(op->a)));
@@ -261,10 +381,11 @@ struct Walker {
 };
 
 // Serial recursion over the levels above the chunk level, recording ops.
-template <bool kView>
+template <typename W>
 struct TopWalker {
-    using V = typename Walker<kView>::V;
-    const Walker<kView>* w;  // decisions only
+    using V = typename W::V;
+    static constexpr bool kView = W::kIsView;
+    const W* w;  // decisions only (exact double, as the baseline)
     int chunkLevel;
     std::vector<Refiner::Op>* ops;
 
@@ -423,17 +544,54 @@ void Refiner::refineFixed(float epsilon, StripMesh& out) {
     run<false>(nullptr, epsilon, out);
 }
 
-void Refiner::refineView(const ViewParams& view, StripMesh& out) {
+namespace {
+void checkView(const ViewParams& view) {
     SIERRA_CHECK(view.tau > 0 && std::isfinite(view.tau), "refineView: tau must be > 0 pixels, got ",
                  view.tau);
     SIERRA_CHECK(view.lambda > 0 && std::isfinite(view.lambda),
                  "refineView: lambda must be > 0, got ", view.lambda);
-    run<true>(&view, 0.0f, out);
+    for (float c : view.eye)
+        SIERRA_CHECK(std::isfinite(c), "refineView: the eye must be finite, got (", view.eye[0], ", ",
+                     view.eye[1], ", ", view.eye[2], ")");
+}
+}  // namespace
+
+// (world height, error, radius) per vertex, row-major: the one record the fast
+// view path reads per visited vertex.
+void Refiner::buildViewRecords() {
+    const size_t count = size_t(side_) * side_;
+    viewRecords_.resize(3 * count);
+    const float* h = field_->samples().data();
+    const float* e = errors_->error.data();
+    const float* r = errors_->radius.data();
+    const double vs = field_->verticalScale();
+    float* out = viewRecords_.data();
+    double maxAbs = 0.0;
+    for (size_t k = 0; k < count; ++k) {
+        const double y = double(h[k]) * vs;
+        out[3 * k] = float(y);
+        out[3 * k + 1] = e[k];
+        out[3 * k + 2] = r[k];
+        maxAbs = std::max({maxAbs, std::fabs(y), double(r[k])});
+    }
+    recordMagnitude_ = std::max({maxAbs, double(side_ - 1) * field_->spacingX(),
+                                 double(side_ - 1) * field_->spacingZ()});
 }
 
-template <bool kView>
+void Refiner::refineView(const ViewParams& view, StripMesh& out) {
+    checkView(view);
+    if (viewRecords_.empty()) buildViewRecords();
+    run<true, true>(&view, 0.0f, out);
+}
+
+void Refiner::refineViewReference(const ViewParams& view, StripMesh& out) {
+    checkView(view);
+    run<true, false>(&view, 0.0f, out);
+}
+
+template <bool kView, bool kFast>
 void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
-    using W = Walker<kView>;
+    using W = Walker<kView, kFast>;
     using V = typename W::V;
     W proto{};
     proto.err = errors_->error.data();
@@ -453,6 +611,22 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         proto.kE = double(view->lambda) / double(view->tau);
         for (int k = 0; k < 6; ++k) proto.planes[k] = view->planes[k];
         rootMask = view->cull ? kAllPlanes : 0;
+        if constexpr (kFast) {
+            // Float slack (see Walker::activeFast): every coordinate, eye and
+            // radius is at most M in magnitude; a float coordinate difference is
+            // then within 3 M 2^-24 of the double one, a squared distance within
+            // 2^-18 d^2 + 2^-24 M^2, a plane distance within 2^-24 (18 M + 4 |d|).
+            // The slacks below are 4 to 8 times these bounds.
+            const double M = std::max({recordMagnitude_, std::fabs(proto.ex), std::fabs(proto.ey),
+                                       std::fabs(proto.ez), 1.0});
+            proto.yer = viewRecords_.data();
+            proto.fex = view->eye[0], proto.fey = view->eye[1], proto.fez = view->eye[2];
+            proto.fsx = field_->spacingX(), proto.fsz = field_->spacingZ();
+            proto.fkE = float(proto.kE);
+            proto.distanceSlack = float(0x1.0p-22 * M * M);
+            for (int k = 0; k < 6; ++k)
+                proto.planeSlack[k] = float(0x1.0p-19 * (3.0 * M + std::fabs(double(view->planes[k].d))));
+        }
     }
 
     // Vertices of the two level-0 triangles: entry (0,0), apex (0,S), exit (S,S);
@@ -467,7 +641,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     const V v00 = vert(0, 0), v0S = vert(0, S), vSS = vert(S, S), vS0 = vert(S, 0);
 
     ops_.clear();
-    TopWalker<kView> top{&proto, chunkLevel_, &ops_};
+    TopWalker<W> top{&proto, chunkLevel_, &ops_};
     top.refine(v00, v0S, vSS, 0, rootMask, 0);
     top.push(Op::kAppend, 0, 0, proto.index(vSS), 0, 0);
     top.refine(vSS, vS0, v00, 0, rootMask, 1);

@@ -96,7 +96,18 @@ public:
     // sphere lies fully outside a plane is not emitted (the sphere holds both
     // triangles of the pair and all their descendants), and below a sphere
     // fully inside all planes no plane is tested again.
+    //
+    // Decisions are taken in float where the float result provably equals the
+    // double-precision one (a guard band around every threshold, double inside
+    // it), on one interleaved record per vertex built by the first call
+    // (12 bytes per grid sample): the output is byte-identical to
+    // refineViewReference.
     void refineView(const ViewParams& view, StripMesh& out);
+
+    // The baseline of refineView: the same recursion with every test in double
+    // on the three separate arrays (height, error, radius). For tests and
+    // benchmarks; needs no per-vertex records.
+    void refineViewReference(const ViewParams& view, StripMesh& out);
 
     int n() const { return n_; }
     int side() const { return side_; }
@@ -107,9 +118,10 @@ public:
     struct Chunk;  // implementation detail (one subtree's strip)
 
 private:
-    template <bool kView>
+    template <bool kView, bool kFast = false>
     void run(const ViewParams* view, float epsilon, StripMesh& out);
     void buildSplitKeys();
+    void buildViewRecords();
 
     const terrain::Heightfield* field_;
     const VertexErrors* errors_;
@@ -130,6 +142,10 @@ private:
     // the 8 of VertexErrors. Empty (exact path only) when an error is NaN or negative.
     std::vector<uint16_t> splitKeys_;
     bool keysBuilt_ = false;  // built by the first refineFixed() with epsilon >= 0
+    // refineView's records: (world height, error, radius) per vertex, row-major,
+    // 12 bytes per grid sample, built by the first refineView().
+    std::vector<float> viewRecords_;
+    double recordMagnitude_ = 0.0;  // largest |coordinate| or radius of the grid, world units
 };
 
 // Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate
