@@ -12,9 +12,11 @@
 // equals the parity of the previous one, the second-to-last vertex is re-sent
 // first so the strip turns (Lindstrom and Pascucci's tstrip-append).
 //
-// Threads: the tree is cut at a fixed level (RefinerDesc::chunkLevel) into
-// disjoint subtrees taken in Sierpinski order; each is refined on its own into
-// its own strip and the strips are joined in that order with primitive restart
+// Threads: small refinements (fewer than kParallelTriangles triangles the
+// previous time) run serially. Otherwise the tree is cut at a fixed level
+// (RefinerDesc::chunkLevel) into disjoint subtrees taken in Sierpinski order;
+// each is refined on its own into its own strip and the strips are joined in
+// that order (the copies in parallel) with primitive restart
 // (kRestartIndex), or continued through degenerate triangles where consecutive
 // subtrees meet along the curve. The cut does not depend on the thread count,
 // so the output is byte-identical for any number of threads.
@@ -70,6 +72,11 @@ float projectionLambda(float viewportHeightPx, float fovyRadians);
 // view-projection matrix (Gribb and Hartmann), clip space -w <= x, y, z <= w.
 std::array<Plane, 6> frustumPlanes(const float viewProjection[16]);
 
+// A refinement whose previous call in the same mode made fewer triangles runs
+// on the calling thread alone, whatever the thread count (the output is the
+// same either way).
+inline constexpr int64_t kParallelTriangles = int64_t(1) << 17;
+
 struct RefinerDesc {
     int threads = 0;      // 0 = sierra::defaultThreadCount()
     int chunkLevel = -1;  // level of the parallel subtrees; -1 = clamp(2n - 10, 0, 6)
@@ -116,6 +123,12 @@ public:
 
     struct Op;     // implementation detail (top-level recursion record)
     struct Chunk;  // implementation detail (one subtree's strip)
+    struct Copy {  // implementation detail (one strip's place in the output)
+        const uint32_t* src;
+        int64_t length;
+        int64_t dst;   // offset in the output
+        bool restart;  // a restart index goes at dst - 1
+    };
 
 private:
     template <bool kView, bool kFast = false>
@@ -131,6 +144,7 @@ private:
     int chunkLevel_ = 0;
     std::vector<Op> ops_;
     std::vector<Chunk> chunks_;
+    std::vector<Copy> copies_;
     // Split keys for refineFixed: per triangle of levels 0..2n-1, the top 16 bits
     // of its split vertex's error (a monotone, conservative bfloat16), in tree
     // order: the two level-0 triangles are nodes 0 and 1, the children of node k
@@ -145,7 +159,11 @@ private:
     // refineView's records: (world height, error, radius) per vertex, row-major,
     // 12 bytes per grid sample, built by the first refineView().
     std::vector<float> viewRecords_;
-    double recordMagnitude_ = 0.0;  // largest |coordinate| or radius of the grid, world units
+    double recordMagnitude_ = 0.0;
+    // Triangles of the last refinement in each mode (-1: none yet), the work
+    // estimate that keeps small refinements serial (see kParallelTriangles).
+    int64_t lastViewTriangles_ = -1;
+    int64_t lastFixedTriangles_ = -1;  // largest |coordinate| or radius of the grid, world units
 };
 
 // Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate
