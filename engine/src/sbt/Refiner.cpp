@@ -70,11 +70,9 @@ struct Walker {
     int32_t epsKey;
     double ex, ey, ez, sx, sz, vs, kE;
     Plane planes[6];
-    // fast view path (kFast): interleaved (world height, error, radius) per
-    // vertex and the same quantities in float, with the guard bands below
+    // fast view path (kFast): the view in float, and the guard bands below
     // which the float result could differ from the double one.
-    const float* yer;
-    float fex, fey, fez, fsx, fsz, fkE;
+    float fex, fey, fez, fsx, fsz, fkE, fvs;
     float distanceSlack;     // absolute slack on squared distances (world units^2)
     float planeSlack[6];     // absolute slack on plane distances (world units)
 
@@ -204,9 +202,10 @@ struct Walker {
     // computed exactly as w in double satisfies |v - w| <= slack (bounds in
     // Refiner::run), so a comparison whose float margin exceeds the slack has
     // the same outcome in double; the few inside the band are recomputed in
-    // double from the original arrays. The data of a vertex is one 12-byte
-    // record (one cache line instead of three), and the records of both
-    // children are prefetched while the parent is decided.
+    // double. The children's data are prefetched while the parent is decided.
+    // (An interleaved 12-byte record per vertex, one cache line instead of
+    // three, was measured no faster on the orbit case and cost 12 bytes per
+    // sample: not kept.)
 
     // Plane tests of vertex m's sphere, in float with a double fallback.
     inline unsigned cullFast(uint32_t i, uint32_t j, float x, float y, float z, float r,
@@ -251,7 +250,10 @@ struct Walker {
 
     inline void prefetch(V v) const {
         const uint32_t i = uint32_t(v), j = uint32_t(v >> 32);
-        __builtin_prefetch(yer + 3 * size_t(j * side + i));
+        const size_t mi = j * side + i;
+        __builtin_prefetch(height + mi);
+        __builtin_prefetch(err + mi);
+        __builtin_prefetch(rad + mi);
     }
 
     // Leaf at level l with apex q (entry a): what refine() does for a leaf.
@@ -262,28 +264,16 @@ struct Walker {
         ++leaves;
     }
 
-    void refineFast(V a, V q, V b, int l, unsigned mask) {
+    // Triangle (a, q, b) at level l < finest: culled, a leaf, or split. Its
+    // children are decided here too (node() is inlined into split()), so a
+    // call is made only for a child that splits: half of the visited
+    // triangles are leaves.
+    inline void node(V a, V q, V b, int l, unsigned mask) {
         ensure(4);
         const V m = (a + b) >> 1;
         const uint32_t i = uint32_t(m), j = uint32_t(m >> 32);
-        const float* d = yer + 3 * size_t(j * side + i);
-        const bool inner = l + 1 < finest;  // children can split
-        if (l + 2 < finest) {
-            // The grandchildren's records: a depth-first walk reaches the
-            // children too soon for a prefetch to help, the grandchildren
-            // late enough (the children's records come with the parent's
-            // prefetch, one level up).
-            const V lm = (a + q) >> 1, rm = (q + b) >> 1;
-            prefetch((a + m) >> 1);
-            prefetch((m + q) >> 1);
-            prefetch((q + m) >> 1);
-            prefetch((m + b) >> 1);
-            (void)lm, (void)rm;
-        } else if (inner) {
-            prefetch((a + q) >> 1);
-            prefetch((q + b) >> 1);
-        }
-        const float x = float(i) * fsx, y = d[0], z = float(j) * fsz, r = d[2];
+        const uint32_t mi = j * side + i;
+        const float x = float(i) * fsx, y = height[mi] * fvs, z = float(j) * fsz, r = rad[mi];
         if (mask) {
             mask = cullFast(i, j, x, y, z, r, mask);
             if (mask == kCulled) {
@@ -292,18 +282,32 @@ struct Walker {
             }
         }
         if (needStart) start(index(a));
-        if (!activeFast(i, j, x, y, z, d[1], r)) {
+        if (!activeFast(i, j, x, y, z, err[mi], r)) {
             append(index(q), l & 1);
             ++leaves;
             return;
         }
-        if (inner) refineFast(a, m, q, l + 1, mask);
-        else leafFast(a, m, l + 1);
-        ensure(4);
-        append(index(q), l & 1);
-        if (inner) refineFast(q, m, b, l + 1, mask);
-        else leafFast(q, m, l + 1);
+        split(a, q, b, l, mask, m);
     }
+
+    void split(V a, V q, V b, int l, unsigned mask, V m) {
+        if (l + 1 < finest) {
+            // the children's data, needed right after this call's frame set-up
+            prefetch((a + q) >> 1);
+            prefetch((q + b) >> 1);
+            node(a, m, q, l + 1, mask);
+            ensure(4);
+            append(index(q), l & 1);
+            node(q, m, b, l + 1, mask);
+        } else {
+            leafFast(a, m, l + 1);
+            ensure(4);
+            append(index(q), l & 1);
+            leafFast(q, m, l + 1);
+        }
+    }
+
+    void refineFast(V a, V q, V b, int l, unsigned mask) { node(a, q, b, l, mask); }
 
     // Fixed mode on the split keys: does triangle `node` (tree index, see
     // Refiner::splitKeys_) with hypotenuse (a, b) split? The exact float is read
@@ -556,31 +560,23 @@ void checkView(const ViewParams& view) {
 }
 }  // namespace
 
-// (world height, error, radius) per vertex, row-major: the one record the fast
-// view path reads per visited vertex.
-void Refiner::buildViewRecords() {
+// The largest magnitude of a world coordinate or radius of the grid: the scale
+// of the fast view path's float slack.
+void Refiner::measureMagnitude() {
     const size_t count = size_t(side_) * side_;
-    viewRecords_.resize(3 * count);
     const float* h = field_->samples().data();
-    const float* e = errors_->error.data();
     const float* r = errors_->radius.data();
-    const double vs = field_->verticalScale();
-    float* out = viewRecords_.data();
+    const double vs = std::fabs(double(field_->verticalScale()));
     double maxAbs = 0.0;
-    for (size_t k = 0; k < count; ++k) {
-        const double y = double(h[k]) * vs;
-        out[3 * k] = float(y);
-        out[3 * k + 1] = e[k];
-        out[3 * k + 2] = r[k];
-        maxAbs = std::max({maxAbs, std::fabs(y), double(r[k])});
-    }
-    recordMagnitude_ = std::max({maxAbs, double(side_ - 1) * field_->spacingX(),
-                                 double(side_ - 1) * field_->spacingZ()});
+    for (size_t k = 0; k < count; ++k)
+        maxAbs = std::max({maxAbs, std::fabs(double(h[k])) * vs, double(r[k])});
+    magnitude_ = std::max({maxAbs, double(side_ - 1) * field_->spacingX(),
+                           double(side_ - 1) * field_->spacingZ()});
 }
 
 void Refiner::refineView(const ViewParams& view, StripMesh& out) {
     checkView(view);
-    if (viewRecords_.empty()) buildViewRecords();
+    if (magnitude_ < 0.0) measureMagnitude();
     run<true, true>(&view, 0.0f, out);
 }
 
@@ -617,12 +613,12 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             // then within 3 M 2^-24 of the double one, a squared distance within
             // 2^-18 d^2 + 2^-24 M^2, a plane distance within 2^-24 (18 M + 4 |d|).
             // The slacks below are 4 to 8 times these bounds.
-            const double M = std::max({recordMagnitude_, std::fabs(proto.ex), std::fabs(proto.ey),
+            const double M = std::max({magnitude_, std::fabs(proto.ex), std::fabs(proto.ey),
                                        std::fabs(proto.ez), 1.0});
-            proto.yer = viewRecords_.data();
             proto.fex = view->eye[0], proto.fey = view->eye[1], proto.fez = view->eye[2];
             proto.fsx = field_->spacingX(), proto.fsz = field_->spacingZ();
             proto.fkE = float(proto.kE);
+            proto.fvs = field_->verticalScale();
             proto.distanceSlack = float(0x1.0p-22 * M * M);
             for (int k = 0; k < 6; ++k)
                 proto.planeSlack[k] = float(0x1.0p-19 * (3.0 * M + std::fabs(double(view->planes[k].d))));

@@ -106,14 +106,12 @@ public:
     //
     // Decisions are taken in float where the float result provably equals the
     // double-precision one (a guard band around every threshold, double inside
-    // it), on one interleaved record per vertex built by the first call
-    // (12 bytes per grid sample): the output is byte-identical to
-    // refineViewReference.
+    // it): the output is byte-identical to refineViewReference.
     void refineView(const ViewParams& view, StripMesh& out);
 
     // The baseline of refineView: the same recursion with every test in double
     // on the three separate arrays (height, error, radius). For tests and
-    // benchmarks; needs no per-vertex records.
+    // benchmarks.
     void refineViewReference(const ViewParams& view, StripMesh& out);
 
     int n() const { return n_; }
@@ -134,7 +132,7 @@ private:
     template <bool kView, bool kFast = false>
     void run(const ViewParams* view, float epsilon, StripMesh& out);
     void buildSplitKeys();
-    void buildViewRecords();
+    void measureMagnitude();
 
     const terrain::Heightfield* field_;
     const VertexErrors* errors_;
@@ -156,14 +154,13 @@ private:
     // the 8 of VertexErrors. Empty (exact path only) when an error is NaN or negative.
     std::vector<uint16_t> splitKeys_;
     bool keysBuilt_ = false;  // built by the first refineFixed() with epsilon >= 0
-    // refineView's records: (world height, error, radius) per vertex, row-major,
-    // 12 bytes per grid sample, built by the first refineView().
-    std::vector<float> viewRecords_;
-    double recordMagnitude_ = 0.0;
+    // Largest |world coordinate| or radius of the grid (world units), measured
+    // by the first refineView(); -1 until then.
+    double magnitude_ = -1.0;
     // Triangles of the last refinement in each mode (-1: none yet), the work
     // estimate that keeps small refinements serial (see kParallelTriangles).
     int64_t lastViewTriangles_ = -1;
-    int64_t lastFixedTriangles_ = -1;  // largest |coordinate| or radius of the grid, world units
+    int64_t lastFixedTriangles_ = -1;
 };
 
 // Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate
