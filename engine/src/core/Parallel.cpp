@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -153,8 +154,12 @@ private:
 
     void wakeHelpers(int helpers) {
         const uint32_t seen = wake_.load(std::memory_order_acquire);
-        while (int(workers_.size()) < helpers)
-            workers_.emplace_back([this, index = int(workers_.size()), seen] { loop(index, seen); });
+        try {
+            while (int(workers_.size()) < helpers)
+                workers_.emplace_back([this, index = int(workers_.size()), seen] { loop(index, seen); });
+        } catch (const std::system_error&) {
+            // no more threads to be had: the ones there (or the caller alone) do the work
+        }
         wake_.fetch_add(1, std::memory_order_release);
         wake_.notify_all();
     }
