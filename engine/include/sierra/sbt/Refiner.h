@@ -2,8 +2,8 @@
 // SBT refinement in Lindstrom and Pascucci's style: a top-down recursion over
 // vertex coordinates (nothing stored per triangle), flat arrays, no virtual
 // calls, no allocation per frame once the buffers have grown (output and
-// per-chunk buffers are reused; only the worker threads of parallelChunks are
-// created per call when threads > 1).
+// per-chunk buffers are reused; parallelChunks' helper threads are started once
+// and kept).
 //
 // Output: generalized triangle strips in Sierpinski-curve order (the paper's
 // Algorithm 4): the leaves of the tree are visited along the curve, left child
