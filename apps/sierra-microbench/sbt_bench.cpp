@@ -6,6 +6,8 @@
 #include <sierra/terrain/DiamondSquare.h>
 
 #include <benchmark/benchmark.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
 #include <map>
@@ -46,7 +48,7 @@ void BM_ErrorPass(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations() * t.field.sampleCount());
     state.counters["threads"] = threads;
 }
-BENCHMARK(BM_ErrorPass)->ArgsProduct({{513, 1025, 2049}, {1, 2}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ErrorPass)->ArgsProduct({{513, 1025, 2049}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Times `refine` (which writes one mesh) after a first call that grows the
 // buffers, and reports triangles per second.
@@ -78,7 +80,7 @@ void BM_RefineFixed(benchmark::State& state) {
 }
 BENCHMARK(BM_RefineFixed)
     ->ArgsProduct({{1025, 2049}, {-1, 0, 5, 10, 20, 50, 100}, {1, 2}})
-    ->Unit(benchmark::kMillisecond);
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // A camera 1/8 of the extent above the middle of the south edge, looking at the
 // centre, 1920x1080, 60 degree vertical field of view, tau 1 px.
@@ -112,7 +114,70 @@ void BM_RefineView(benchmark::State& state) {
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
     measureRefinement(state, threads, [&](sbt::StripMesh& mesh) { refiner.refineView(vp, mesh); });
 }
-BENCHMARK(BM_RefineView)->ArgsProduct({{2049}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RefineView)->ArgsProduct({{2049}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A rough fractal (Hurst exponent H = range(1) / 10) for the renderer's view:
+// heights scaled so the relief is 20% of the extent (the renderer's automatic
+// vertical scale), built once per (size, H).
+const Terrain& roughTerrain(int size, int hurstTenths) {
+    static std::map<std::pair<int, int>, std::unique_ptr<Terrain>> cache;
+    auto& slot = cache[{size, hurstTenths}];
+    if (!slot) {
+        slot = std::make_unique<Terrain>();
+        slot->field = sierra::terrain::generateDiamondSquare(
+            {.size = size, .seed = 1, .hurst = float(hurstTenths) / 10.0f});
+        auto [lo, hi] = slot->field.range();
+        slot->field.setVerticalScale(0.2f * float(size - 1) / std::max(1e-6f, hi - lo));
+        slot->errors = sbt::computeVertexErrors(slot->field);
+    }
+    return *slot;
+}
+
+// The first camera of the renderer's orbit path (render/Camera.cpp orbitPath):
+// 0.9 extents from the centre towards the south-west, 0.3 extents above the
+// highest point, looking at the centre at a quarter of the height range;
+// 45 degree vertical field of view, 1920x1080, near 1e-3 and far 4 extents.
+sbt::ViewParams orbitView(const Terrain& t, float tau, bool cull) {
+    const float extent = float(t.field.width() - 1) * t.field.spacingX();
+    auto [lo, hi] = t.field.range();
+    const float vs = t.field.verticalScale();
+    const glm::vec3 centre{0.5f * extent, 0.5f * (lo + hi) * vs, 0.5f * extent};
+    const float a = glm::radians(135.0f);
+    const glm::vec3 eye{centre.x + 0.9f * extent * std::cos(a), hi * vs + 0.3f * extent,
+                        centre.z + 0.9f * extent * std::sin(a)};
+    const glm::vec3 target{centre.x, lo * vs + 0.25f * (hi - lo) * vs, centre.z};
+    const float fovy = glm::radians(45.0f);
+    const glm::mat4 vp = glm::perspective(fovy, 1920.0f / 1080.0f, extent * 1e-3f, extent * 4.0f) *
+                         glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+    sbt::ViewParams view;
+    view.eye = {eye.x, eye.y, eye.z};
+    view.lambda = sbt::projectionLambda(1080.0f, fovy);
+    view.tau = tau;
+    view.cull = cull;
+    view.planes = sbt::frustumPlanes(glm::value_ptr(vp));
+    return view;
+}
+
+// View-dependent refinement + strip of a rough 2049^2 fractal from the orbit
+// camera at tau = 1 px. Args: Hurst exponent in tenths, threads, culling.
+void BM_RefineOrbit(benchmark::State& state) {
+    const Terrain& t = roughTerrain(2049, int(state.range(0)));
+    const int threads = int(state.range(1));
+    const sbt::ViewParams view = orbitView(t, 1.0f, state.range(2) != 0);
+    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
+    measureRefinement(state, threads, [&](sbt::StripMesh& mesh) { refiner.refineView(view, mesh); });
+}
+BENCHMARK(BM_RefineOrbit)->ArgsProduct({{8}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same through the double-precision baseline (Refiner::refineViewReference).
+void BM_RefineOrbitReference(benchmark::State& state) {
+    const Terrain& t = roughTerrain(2049, int(state.range(0)));
+    const int threads = int(state.range(1));
+    const sbt::ViewParams view = orbitView(t, 1.0f, state.range(2) != 0);
+    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
+    measureRefinement(state, threads, [&](sbt::StripMesh& mesh) { refiner.refineViewReference(view, mesh); });
+}
+BENCHMARK(BM_RefineOrbitReference)->ArgsProduct({{8}, {1}, {1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -98,6 +98,49 @@ TEST(TerrainDiamondSquare, OffsetRangesFollowTheErrata) {
     }
 }
 
+// Mean |h(i-1) - 2 h(i) + h(i+1)| along rows at the finest spacing, relative to
+// the field's height range: a scale-free roughness measure.
+double finestSecondDifference(const Heightfield& f) {
+    auto [lo, hi] = f.range();
+    double sum = 0.0;
+    int64_t count = 0;
+    for (int j = 0; j < f.height(); ++j)
+        for (int i = 1; i + 1 < f.width(); ++i) {
+            sum += std::abs(double(f.at(i - 1, j)) - 2.0 * f.at(i, j) + f.at(i + 1, j));
+            ++count;
+        }
+    return sum / double(count) / double(hi - lo);
+}
+
+TEST(TerrainDiamondSquare, HurstIsDeterministicAndSmallerIsRougher) {
+    const DiamondSquareDesc desc{.size = 257, .seed = 5, .hurst = 0.5f};
+    const Heightfield a = generateDiamondSquare(desc);
+    const Heightfield b = generateDiamondSquare(DiamondSquareDesc{.size = 257, .seed = 5, .threads = 1, .hurst = 0.5f});
+    EXPECT_TRUE(std::equal(a.samples().begin(), a.samples().end(), b.samples().begin()));
+    // H = 1 is the default (errata) scaling up to pow()'s rounding.
+    const Heightfield def = generateDiamondSquare({.size = 257, .seed = 5});
+    const Heightfield one = generateDiamondSquare({.size = 257, .seed = 5, .hurst = 1.0f});
+    for (size_t k = 0; k < def.samples().size(); ++k)
+        ASSERT_NEAR(def.samples()[k], one.samples()[k], 1e-4f);
+    // Rougher as H falls: a larger mean second difference at the finest level,
+    // relative to the relief, over several seeds.
+    double previous = 0.0;
+    for (float h : {1.5f, 1.0f, 0.7f, 0.4f}) {
+        double rough = 0.0;
+        for (uint64_t seed = 1; seed <= 4; ++seed)
+            rough += finestSecondDifference(
+                generateDiamondSquare({.size = 257, .seed = seed, .hurst = h}));
+        EXPECT_GT(rough, previous * 1.3) << "H " << h;
+        previous = rough;
+    }
+}
+
+TEST(TerrainDiamondSquare, RejectsBadHurst) {
+    for (float h : {0.0f, -0.5f, 2.5f, NAN, INFINITY})
+        EXPECT_THAT(generateError({.size = 9, .hurst = h}),
+                    HasSubstr("Hurst exponent")) << h;
+}
+
 TEST(TerrainDiamondSquare, RejectsBadSizeAndRoughness) {
     EXPECT_THAT(generateError({.size = 32}), HasSubstr("size 32 is not 2^n + 1 in 3..16385"));
     EXPECT_THAT(generateError({.size = 1}), HasSubstr("is not 2^n + 1"));

@@ -1,22 +1,41 @@
 #include <sierra/core/Parallel.h>
 
+#include <sierra/core/Log.h>
+
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
+
+#include <time.h>
 
 namespace sierra {
 namespace {
 
 int initialThreadCount() {
-    if (const char* env = std::getenv("SIERRA_THREADS")) {
-        int n = std::atoi(env);
-        if (n > 0) return n;
+    const int hardware = int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(kMaxThreads)));
+    const char* env = std::getenv("SIERRA_THREADS");
+    if (!env) return hardware;
+    const int n = parseThreadCount(env);
+    if (n == 0) {
+        log::warn("SIERRA_THREADS=", env, " is not a thread count in 1..", kMaxThreads,
+                  "; using ", hardware, " (the hardware concurrency)");
+        return hardware;
     }
-    return std::max(1u, std::thread::hardware_concurrency());
+    return n;
+}
+
+// CPU time of the calling thread: the caller's lone start is measured in work
+// done, so a caller that the system preempts does not count the wait as work.
+double threadSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 std::atomic<int>& threadCount() {
@@ -24,54 +43,199 @@ std::atomic<int>& threadCount() {
     return count;
 }
 
+// Chunk c of `count` equal parts of [begin, begin + total): the first
+// total % count chunks one element longer. No product of two large numbers,
+// so no overflow for any count.
+std::pair<int64_t, int64_t> chunkRange(int64_t begin, int64_t total, int64_t count, int64_t c) {
+    const int64_t q = total / count, r = total % count;
+    const int64_t lo = begin + q * c + std::min(c, r);
+    return {lo, lo + q + (c < r ? 1 : 0)};
+}
+
+// One parallelChunks call. Chunks are claimed in units of `unit` consecutive
+// chunks so the unit count fits the pool's 16-bit claim counter.
+struct Job {
+    const std::function<void(int64_t, int64_t, int)>* body;
+    int64_t begin, total;
+    int chunkCount;
+    int unit;
+    std::atomic<bool> failed{false};
+    std::exception_ptr failure;
+    std::mutex failureMutex;
+
+    void runUnit(int u) {
+        const int c0 = u * unit, c1 = std::min(chunkCount, c0 + unit);
+        for (int c = c0; c < c1; ++c) {
+            if (failed.load(std::memory_order_relaxed)) return;  // the call fails anyway
+            try {
+                auto [lo, hi] = chunkRange(begin, total, chunkCount, c);
+                (*body)(lo, hi, c);
+            } catch (...) {
+                std::lock_guard lock(failureMutex);
+                if (!failure) failure = std::current_exception();
+                failed = true;
+            }
+        }
+    }
+};
+
+constexpr int kMaxUnits = 0xffff;
+
+// True on the pool's threads and on a caller inside a parallel call: a nested
+// call runs serially.
+thread_local bool tInsideParallel = false;
+
+// Helper threads and the claim counter. One parallel call at a time (others
+// run serially in their caller).
+class Pool {
+public:
+    static Pool& instance() {
+        static Pool pool;
+        return pool;
+    }
+
+    ~Pool() {
+        stop_ = true;
+        wake_.fetch_add(1, std::memory_order_release);
+        wake_.notify_all();
+        for (std::thread& t : workers_) t.join();
+    }
+
+    // False when another call holds the pool (the caller then runs serially).
+    bool run(Job& job, int units, int helpers) {
+        std::unique_lock lock(callMutex_, std::try_to_lock);
+        if (!lock.owns_lock()) return false;
+        tInsideParallel = true;
+        done_.store(0, std::memory_order_relaxed);
+        job_.store(&job, std::memory_order_relaxed);
+        helpers_.store(helpers, std::memory_order_relaxed);
+        generation_ = (generation_ + 1) & 0xffffffffu;
+        state_.store(generation_ << 32 | uint64_t(units) << 16, std::memory_order_release);
+
+        // Work alone first; wake the helpers once this call has proved long.
+        const double t0 = threadSeconds();
+        bool woken = false;
+        int unit;
+        while ((unit = claim(nullptr)) >= 0) {
+            job.runUnit(unit);
+            done_.fetch_add(1, std::memory_order_acq_rel);
+            if (!woken && threadSeconds() - t0 > kForkAfterSeconds) {
+                woken = true;
+                wakeHelpers(helpers);
+            }
+        }
+        // Wait (asleep) only for the units helpers have started.
+        for (int d; (d = done_.load(std::memory_order_acquire)) != units;)
+            done_.wait(d, std::memory_order_acquire);
+        tInsideParallel = false;
+        return true;
+    }
+
+private:
+    Pool() = default;
+
+    // The next unit of the current call (its job through `job`), or -1 when all
+    // are taken. state_: generation (32 bits) | unit count (16) | next unit (16).
+    int claim(Job** job) {
+        uint64_t s = state_.load(std::memory_order_acquire);
+        for (;;) {
+            const int count = int((s >> 16) & 0xffff), next = int(s & 0xffff);
+            if (next >= count) return -1;
+            // Read before the exchange: if it succeeds the state has not moved, so
+            // this call is still running and the pointer is its job.
+            Job* j = job_.load(std::memory_order_acquire);
+            if (state_.compare_exchange_weak(s, s + 1, std::memory_order_acq_rel,
+                                             std::memory_order_acquire)) {
+                if (job) *job = j;
+                return next;
+            }
+        }
+    }
+
+    void wakeHelpers(int helpers) {
+        const uint32_t seen = wake_.load(std::memory_order_acquire);
+        try {
+            while (int(workers_.size()) < helpers)
+                workers_.emplace_back([this, index = int(workers_.size()), seen] { loop(index, seen); });
+        } catch (const std::system_error&) {
+            // no more threads to be had: the ones there (or the caller alone) do the work
+        }
+        wake_.fetch_add(1, std::memory_order_release);
+        wake_.notify_all();
+    }
+
+    void loop(int index, uint32_t seen) {
+        tInsideParallel = true;
+        for (;;) {
+            wake_.wait(seen, std::memory_order_acquire);
+            seen = wake_.load(std::memory_order_acquire);
+            if (stop_) return;
+            if (index >= helpers_.load(std::memory_order_relaxed)) continue;
+            Job* job = nullptr;
+            for (int unit; (unit = claim(&job)) >= 0;) {
+                job->runUnit(unit);
+                const int count = int((state_.load(std::memory_order_relaxed) >> 16) & 0xffff);
+                if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == count) done_.notify_all();
+            }
+        }
+    }
+
+    std::mutex callMutex_;
+    std::vector<std::thread> workers_;  // grown under callMutex_
+    uint64_t generation_ = 0;           // under callMutex_
+    std::atomic<uint64_t> state_{0};
+    std::atomic<Job*> job_{nullptr};
+    std::atomic<int> helpers_{0};
+    std::atomic<int> done_{0};  // units finished in this call
+    std::atomic<uint32_t> wake_{0};
+    std::atomic<bool> stop_{false};
+};
+
 }  // namespace
 
+int parseThreadCount(const char* text) {
+    if (!text) return 0;
+    errno = 0;
+    char* end = nullptr;
+    const long n = std::strtol(text, &end, 10);
+    if (end == text || *end != '\0' || errno == ERANGE || n < 1 || n > kMaxThreads) return 0;
+    return int(n);
+}
+
 int defaultThreadCount() { return threadCount(); }
-void setDefaultThreadCount(int threads) { threadCount() = std::max(1, threads); }
+void setDefaultThreadCount(int threads) { threadCount() = std::clamp(threads, 1, kMaxThreads); }
 
 void parallelChunks(int64_t begin, int64_t end, int chunkCount,
                     const std::function<void(int64_t, int64_t, int)>& body, int threads) {
     if (end <= begin || chunkCount <= 0) return;
     if (threads <= 0) threads = defaultThreadCount();
-    int64_t total = end - begin;
+    threads = std::min(threads, kMaxThreads);
+    const int64_t total = end - begin;
     chunkCount = int(std::min<int64_t>(chunkCount, total));
-    auto chunkRange = [&](int c) {
-        int64_t lo = begin + total * c / chunkCount;
-        int64_t hi = begin + total * (c + 1) / chunkCount;
-        return std::pair{lo, hi};
-    };
-    threads = std::min(threads, chunkCount);
-    if (threads <= 1) {
-        for (int c = 0; c < chunkCount; ++c) {
-            auto [lo, hi] = chunkRange(c);
-            body(lo, hi, c);
+    const int unit = (chunkCount + kMaxUnits - 1) / kMaxUnits;
+    const int units = (chunkCount + unit - 1) / unit;
+    threads = std::min(threads, units);
+    if (threads > 1 && !tInsideParallel) {
+        Job job{&body, begin, total, chunkCount, unit};
+        if (Pool::instance().run(job, units, threads - 1)) {
+            if (job.failure) std::rethrow_exception(job.failure);
+            return;
         }
-        return;
     }
-    // OpenMP keeps its worker threads between calls, so a frame pays no thread
-    // creation. Chunks are handed out one at a time (dynamic schedule); an
-    // exception cannot leave a parallel region, so the first one is kept and
-    // rethrown after it.
-    std::exception_ptr failure;
-    std::mutex failureMutex;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (int c = 0; c < chunkCount; ++c) {
-        try {
-            auto [lo, hi] = chunkRange(c);
-            body(lo, hi, c);
-        } catch (...) {
-            std::lock_guard lock(failureMutex);
-            if (!failure) failure = std::current_exception();
-        }
+        auto [lo, hi] = chunkRange(begin, total, chunkCount, c);
+        body(lo, hi, c);
     }
-    if (failure) std::rethrow_exception(failure);
 }
 
 void parallelFor(int64_t begin, int64_t end, const std::function<void(int64_t)>& body,
                  int threads) {
     if (threads <= 0) threads = defaultThreadCount();
+    threads = std::min(threads, kMaxThreads);
+    // 16 chunks per thread: the caller's lone start (kForkAfterSeconds) and the
+    // last chunk each cost at most a sixteenth of a thread's share.
     parallelChunks(
-        begin, end, threads * 4,
+        begin, end, threads * 16,
         [&](int64_t lo, int64_t hi, int) {
             for (int64_t i = lo; i < hi; ++i) body(i);
         },

@@ -1,5 +1,6 @@
 #include <sierra/terrain/DiamondSquare.h>
 
+#include <sierra/core/Error.h>
 #include <sierra/core/Parallel.h>
 
 #include <cmath>
@@ -38,6 +39,11 @@ Heightfield generateDiamondSquare(const DiamondSquareDesc& desc) {
     SIERRA_CHECK(std::isfinite(desc.roughness) && desc.roughness > 0.0f,
                  "diamond-square roughness ", desc.roughness,
                  " must be finite and > 0 (default 1)");
+    if (desc.hurst) {
+        const float h = *desc.hurst;
+        SIERRA_CHECK(std::isfinite(h) && h > 0.0f && h <= 2.0f, "diamond-square Hurst exponent ",
+                     h, " must be in (0, 2] (1 = the default scaling, smaller = rougher)");
+    }
     const uint64_t seedHash = splitmix64(desc.seed);
     const double roughness = desc.roughness;
     const int n = size - 1;
@@ -59,8 +65,13 @@ Heightfield generateDiamondSquare(const DiamondSquareDesc& desc) {
         const int half = step / 2;
         // New nodes sit at multiples of half/n in the unit domain: 1/d = half/n.
         const double invD = double(half) / n;
-        const double diamondAmplitude = roughness * std::sqrt(2.0) * invD;
-        const double squareAmplitude = roughness * invD;
+        double diamondAmplitude = roughness * std::sqrt(2.0) * invD;
+        double squareAmplitude = roughness * invD;
+        if (desc.hurst) {
+            const double h = *desc.hurst;
+            diamondAmplitude = roughness * std::pow(std::sqrt(2.0) * invD, h);
+            squareAmplitude = roughness * std::pow(invD, h);
+        }
         const int cells = n / step;
 
         // Diamond step: the centre of each step x step square, from its 4 corners.

@@ -2,8 +2,8 @@
 // SBT refinement in Lindstrom and Pascucci's style: a top-down recursion over
 // vertex coordinates (nothing stored per triangle), flat arrays, no virtual
 // calls, no allocation per frame once the buffers have grown (output and
-// per-chunk buffers are reused; only the worker threads of parallelChunks are
-// created per call when threads > 1).
+// per-chunk buffers are reused; parallelChunks' helper threads are started once
+// and kept).
 //
 // Output: generalized triangle strips in Sierpinski-curve order (the paper's
 // Algorithm 4): the leaves of the tree are visited along the curve, left child
@@ -12,9 +12,11 @@
 // equals the parity of the previous one, the second-to-last vertex is re-sent
 // first so the strip turns (Lindstrom and Pascucci's tstrip-append).
 //
-// Threads: the tree is cut at a fixed level (RefinerDesc::chunkLevel) into
-// disjoint subtrees taken in Sierpinski order; each is refined on its own into
-// its own strip and the strips are joined in that order with primitive restart
+// Threads: small refinements (fewer than kParallelTriangles triangles the
+// previous time) run serially. Otherwise the tree is cut at a fixed level
+// (RefinerDesc::chunkLevel) into disjoint subtrees taken in Sierpinski order;
+// each is refined on its own into its own strip and the strips are joined in
+// that order (the copies in parallel) with primitive restart
 // (kRestartIndex), or continued through degenerate triangles where consecutive
 // subtrees meet along the curve. The cut does not depend on the thread count,
 // so the output is byte-identical for any number of threads.
@@ -70,6 +72,11 @@ float projectionLambda(float viewportHeightPx, float fovyRadians);
 // view-projection matrix (Gribb and Hartmann), clip space -w <= x, y, z <= w.
 std::array<Plane, 6> frustumPlanes(const float viewProjection[16]);
 
+// A refinement whose previous call in the same mode made fewer triangles runs
+// on the calling thread alone, whatever the thread count (the output is the
+// same either way).
+inline constexpr int64_t kParallelTriangles = int64_t(1) << 17;
+
 struct RefinerDesc {
     int threads = 0;      // 0 = sierra::defaultThreadCount()
     int chunkLevel = -1;  // level of the parallel subtrees; -1 = clamp(2n - 10, 0, 6)
@@ -96,7 +103,16 @@ public:
     // sphere lies fully outside a plane is not emitted (the sphere holds both
     // triangles of the pair and all their descendants), and below a sphere
     // fully inside all planes no plane is tested again.
+    //
+    // Decisions are taken in float where the float result provably equals the
+    // double-precision one (a guard band around every threshold, double inside
+    // it): the output is byte-identical to refineViewReference.
     void refineView(const ViewParams& view, StripMesh& out);
+
+    // The baseline of refineView: the same recursion with every test in double
+    // on the three separate arrays (height, error, radius). For tests and
+    // benchmarks.
+    void refineViewReference(const ViewParams& view, StripMesh& out);
 
     int n() const { return n_; }
     int side() const { return side_; }
@@ -105,11 +121,18 @@ public:
 
     struct Op;     // implementation detail (top-level recursion record)
     struct Chunk;  // implementation detail (one subtree's strip)
+    struct Copy {  // implementation detail (one strip's place in the output)
+        const uint32_t* src;
+        int64_t length;
+        int64_t dst;   // offset in the output
+        bool restart;  // a restart index goes at dst - 1
+    };
 
 private:
-    template <bool kView>
+    template <bool kView, bool kFast = false>
     void run(const ViewParams* view, float epsilon, StripMesh& out);
     void buildSplitKeys();
+    void measureMagnitude();
 
     const terrain::Heightfield* field_;
     const VertexErrors* errors_;
@@ -119,6 +142,7 @@ private:
     int chunkLevel_ = 0;
     std::vector<Op> ops_;
     std::vector<Chunk> chunks_;
+    std::vector<Copy> copies_;
     // Split keys for refineFixed: per triangle of levels 0..2n-1, the top 16 bits
     // of its split vertex's error (a monotone, conservative bfloat16), in tree
     // order: the two level-0 triangles are nodes 0 and 1, the children of node k
@@ -130,6 +154,13 @@ private:
     // the 8 of VertexErrors. Empty (exact path only) when an error is NaN or negative.
     std::vector<uint16_t> splitKeys_;
     bool keysBuilt_ = false;  // built by the first refineFixed() with epsilon >= 0
+    // Largest |world coordinate| or radius of the grid (world units), measured
+    // by the first refineView(); -1 until then.
+    double magnitude_ = -1.0;
+    // Triangles of the last refinement in each mode (-1: none yet), the work
+    // estimate that keeps small refinements serial (see kParallelTriangles).
+    int64_t lastViewTriangles_ = -1;
+    int64_t lastFixedTriangles_ = -1;
 };
 
 // Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate

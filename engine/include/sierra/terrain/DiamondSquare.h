@@ -4,6 +4,7 @@
 #include <sierra/terrain/Heightfield.h>
 
 #include <cstdint>
+#include <optional>
 
 namespace sierra::terrain {
 
@@ -12,6 +13,12 @@ struct DiamondSquareDesc {
     uint64_t seed = 1;       // same seed, same grid (on every platform and thread count)
     float roughness = 1.0f;  // amplitude factor of every random offset, > 0
     int threads = 0;         // worker threads, 0 = sierra::defaultThreadCount()
+    // Hurst exponent H in (0, 2]: the offset range of a node is
+    // roughness * dist^H, dist its distance to its parents in the unit domain, so
+    // every level's range is 2^-H times the level above (smaller H: rougher).
+    // Absent (std::nullopt, the default): the errata scaling below, which is the
+    // H = 1 case computed without pow(). Finite values only.
+    std::optional<float> hurst;
 };
 
 // With unit domain [0,1]^2 and 1/d the spacing of the nodes a step creates,
@@ -19,7 +26,9 @@ struct DiamondSquareDesc {
 // (square centres, diagonal to their 4 parents) are offset from their parents'
 // mean uniformly within +-roughness * sqrt(2)/d and square-step nodes (edge
 // midpoints, orthogonal to their 4 parents, 3 on the border) within
-// +-roughness * 1/d (the corrected scaling of the "Fractal Errata").
+// +-roughness * 1/d (the corrected scaling of the "Fractal Errata"). With a
+// Hurst exponent H these ranges become roughness * (sqrt(2)/d)^H and
+// roughness * (1/d)^H.
 // Heights are left unnormalised (typically within a few times roughness);
 // spacing and vertical scale are 1. Each node's random number is a hash of
 // (seed, node index) (splitmix64), so the grid does not depend on threads or on
