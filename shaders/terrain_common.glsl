@@ -1,5 +1,6 @@
 // Shared by the terrain stages: the terrain's data textures and uniform block
 // (engine: render/TerrainGpu.h).
+#include "morph.glsl"
 //
 // uData holds one texel per grid sample (i, j) of the drawn surface (water
 // flattened to sea level):
@@ -74,20 +75,13 @@ Ground groundAt(vec2 xz) {
 }
 
 // The position of grid vertex `vertexId` (a linear index j * side + i) as the
-// SBT draws it: its surface height, geomorphed from its morph base while it
-// blends in.
+// SBT draws it: its surface height, geomorphed from its morph base while its
+// error bound grows through the last quarter of tau (morph.glsl), so the drawn
+// surface stays within tau pixels and nothing pops.
 vec3 terrainVertex(int vertexId) {
     ivec2 ij = ivec2(vertexId % uGrid.x, vertexId / uGrid.x);
     vec4 d = texelFetch(uData, ij, 0);
     float height = d.r;
-    if (uLodEye.w > 0.0) {
-        // The CPU activates the vertex when (lambda e / tau + r) > distance; the
-        // ratio is 1 when it has just become active. Blend from the mean of its
-        // hypotenuse endpoints (where the coarser mesh had the surface) at ratio
-        // 1 to its own height at ratio 2, so vertices never pop.
-        float dist = max(distance(gridToWorld(ij, d.r), uLodEye.xyz), 1e-6);
-        float ratio = (uLodEye.w * d.b + d.a) / dist;
-        height = mix(d.g, d.r, clamp(ratio - 1.0, 0.0, 1.0));
-    }
+    if (uLodEye.w > 0.0) height = morphedHeight(d, gridToWorld(ij, d.r), uLodEye.xyz, uLodEye.w);
     return gridToWorld(ij, height);
 }

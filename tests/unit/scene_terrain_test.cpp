@@ -8,6 +8,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace sierra::scene {
@@ -51,9 +53,16 @@ TEST(SceneTerrain, HeightUnitsChooseTheVerticalScale) {
     EXPECT_EQ(loadTerrain(source).verticalScale(), 3.0f);
 }
 
+TEST(SceneTerrain, HurstReachesTheGenerator) {
+    TerrainSource plain{.generateSize = 65};
+    TerrainSource rough{.generateSize = 65, .hurst = 0.3f};
+    terrain::Heightfield a = loadTerrain(plain), b = loadTerrain(rough);
+    EXPECT_FALSE(std::equal(a.samples().begin(), a.samples().end(), b.samples().begin()));
+    TerrainSource bad{.generateSize = 33, .hurst = -1.0f};
+    EXPECT_THROW(loadTerrain(bad), Error);
+}
+
 TEST(SceneTerrain, RefusesWhatTheTerrainModuleCannotDoYet) {
-    TerrainSource hurst{.generateSize = 33, .hurst = 0.5f};
-    EXPECT_THROW(loadTerrain(hurst), Error);
     TerrainSource channel{.generateSize = 33, .channel = Channel::Red};
     try {
         loadTerrain(channel);

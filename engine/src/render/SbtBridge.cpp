@@ -1,6 +1,7 @@
 #include "render/SbtBridge.h"
 
 #include <sierra/core/Error.h>
+#include <sierra/sbt/Morph.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
 
@@ -29,7 +30,7 @@ uint64_t SbtBridge::refineView(const SbtView& view, std::vector<uint32_t>& out, 
     sbt::ViewParams params;
     params.eye = {view.eye.x, view.eye.y, view.eye.z};
     params.lambda = view.lambda;
-    params.tau = view.tau;
+    params.tau = view.geomorph ? sbt::refinementTau(view.tau) : view.tau;
     params.cull = view.cull;
     for (size_t k = 0; k < 6; ++k)
         params.planes[k] = {view.planes[k].x, view.planes[k].y, view.planes[k].z, view.planes[k].w};

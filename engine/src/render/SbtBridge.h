@@ -20,6 +20,9 @@ struct SbtView {
     float lambda = 1.0f;  // viewport height / (2 tan(fovy / 2))
     float tau = 1.0f;     // pixels
     bool cull = true;
+    // Geomorphing: refine at sbt::refinementTau(tau), so every vertex has
+    // finished blending in by the time its error bound reaches tau.
+    bool geomorph = true;
     std::array<glm::vec4, 6> planes{};
 };
 

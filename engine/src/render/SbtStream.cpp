@@ -49,6 +49,7 @@ MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width
         view.lambda = lv.lambda;
         view.tau = lod.tau;
         view.cull = lod.cull;
+        view.geomorph = lod.geomorph;
         view.planes = camera.frustumPlanes(aspect);
         stats.triangles = terrain.sbt().refineView(view, strip_, lod.threads);
         stats.refineMs = sw.ms();

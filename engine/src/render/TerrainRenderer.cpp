@@ -77,7 +77,7 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
     DrawStats stats;
     MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height,
                                      {.lod = options.lod, .tau = options.tau, .cull = options.cull,
-                                      .threads = options.threads},
+                                      .geomorph = options.geomorph, .threads = options.threads},
                                      stats);
     Stopwatch submit;
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
@@ -107,7 +107,7 @@ DepthImage TerrainRenderer::renderDepth(const Camera& camera, int width, int hei
     MeshStats stats;
     MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height,
                                      {.lod = options.lod, .tau = options.tau, .cull = options.cull,
-                                      .threads = options.threads},
+                                      .geomorph = options.geomorph, .threads = options.threads},
                                      stats);
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
     GLint previousBlock = 0;

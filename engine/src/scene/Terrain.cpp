@@ -86,9 +86,6 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
 terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description) {
     // Fields the scene describes before the terrain module can honour them:
     // refusing is better than rendering something else than asked.
-    if (source.hurst)
-        throw Error(msg("terrain.hurst (--hurst ", *source.hurst,
-                        "): this build's generator has no Hurst exponent; leave it out"));
     if (source.channel != Channel::Grey)
         throw Error(msg("terrain.channel (--channel ", toString(source.channel),
                         "): this build's loaders read grey images only; leave it out"));
@@ -98,9 +95,9 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
     bool metric = false;
     if (source.heightmap.empty()) {
         field = terrain::generateDiamondSquare(
-            {.size = source.generateSize, .seed = source.seed, .roughness = source.roughness});
+            {.size = source.generateSize, .seed = source.seed, .roughness = source.roughness, .hurst = source.hurst});
         what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ", source.seed,
-                   ", roughness ", source.roughness);
+                   ", roughness ", source.roughness, source.hurst ? msg(", Hurst ", *source.hurst) : std::string());
     } else {
         field = terrain::loadHeightfield(source.heightmap,
                                          {.rawWidth = source.rawWidth, .rawHeight = source.rawHeight});

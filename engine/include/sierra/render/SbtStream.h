@@ -37,8 +37,9 @@ struct MeshDraw {
 struct LodSettings {
     Lod lod = Lod::Sbt;
     float tau = 1.0f;  // screen-space error threshold in pixels (SBT), default 1.0
-    bool cull = true;  // SBT: frustum culling by bounding spheres
-    int threads = 0;   // refinement threads, 0 = default
+    bool cull = true;      // SBT: frustum culling by bounding spheres
+    bool geomorph = true;  // SBT: refine for blending vertices in within tau (see sbt/Morph.h)
+    int threads = 0;       // refinement threads, 0 = default
 };
 
 // What the frame's mesh cost and holds. CPU stages in wall-clock ms.
