@@ -93,6 +93,8 @@ void runFrames(const FramesOptions& o) {
     std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(), context.platform().c_str());
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
+    if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
+        std::fprintf(stderr, "%s\n", zones.c_str());
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
     std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());
@@ -255,7 +257,7 @@ void addFramesCommand(CLI::App& app) {
     o->registrar = std::make_unique<scene::SceneOptions>(
         *cmd, o->scene,
         scene::kTerrainOptions | scene::kCameraOptions | scene::kPathOptions | scene::kLightingOptions |
-            scene::kLodOptions | scene::kStyleOptions | scene::kFrameOptions);
+            scene::kLodOptions | scene::kStyleOptions | scene::kFrameOptions | scene::kZoneOptions);
     cmd->add_flag("--compare-full", o->compareFull,
                   "Also render the full grid from each camera: frame-time ratio, PSNR, differing pixels");
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");

@@ -57,6 +57,8 @@ int run(const scene::Scene& s) {
     log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(), ")");
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
+    if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
+        log::info(zones);
     log::info("terrain on the GPU: ", terrain.summary());
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});

@@ -38,10 +38,15 @@ Texture Texture::create(const TextureDesc& desc) {
     texture.width_ = desc.width;
     texture.height_ = desc.target == GL_TEXTURE_1D ? 1 : desc.height;
     texture.target_ = desc.target;
+    texture.layers_ = desc.target == GL_TEXTURE_2D_ARRAY ? desc.layers : 1;
     switch (desc.target) {
         case GL_TEXTURE_1D: glTextureStorage1D(id, desc.levels, desc.format, desc.width); break;
         case GL_TEXTURE_2D:
             glTextureStorage2D(id, desc.levels, desc.format, desc.width, desc.height);
+            break;
+        case GL_TEXTURE_2D_ARRAY:
+            SIERRA_CHECK(desc.layers > 0, "a texture array needs layers, got ", desc.layers);
+            glTextureStorage3D(id, desc.levels, desc.format, desc.width, desc.height, desc.layers);
             break;
         case GL_TEXTURE_2D_MULTISAMPLE:
             glTextureStorage2DMultisample(id, desc.samples, desc.format, desc.width, desc.height,
@@ -50,13 +55,30 @@ Texture Texture::create(const TextureDesc& desc) {
         default: throw Error(msg("unsupported texture target 0x", std::hex, desc.target));
     }
     if (desc.target != GL_TEXTURE_2D_MULTISAMPLE) {
-        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(desc.filter));
+        // With mip levels the minification filter is trilinear; the magnification
+        // filter never uses mips.
+        GLenum minFilter = desc.levels > 1 && desc.filter == GL_LINEAR ? GL_LINEAR_MIPMAP_LINEAR : desc.filter;
+        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(minFilter));
         glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(desc.filter));
         glTextureParameteri(id, GL_TEXTURE_WRAP_S, GLint(desc.wrap));
         glTextureParameteri(id, GL_TEXTURE_WRAP_T, GLint(desc.wrap));
     }
     checkGlErrors("texture creation");
     return texture;
+}
+
+void Texture::uploadLayer(int layer, GLenum format, GLenum type, const void* pixels) {
+    SIERRA_CHECK(target_ == GL_TEXTURE_2D_ARRAY && layer >= 0 && layer < layers_, "layer ", layer,
+                 " of a texture with ", layers_, " layers");
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage3D(id_, 0, 0, 0, layer, width_, height_, 1, format, type, pixels);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    checkGlErrors("texture layer upload");
+}
+
+void Texture::generateMipmaps() {
+    glGenerateTextureMipmap(id_);
+    checkGlErrors("mipmap generation");
 }
 
 void Texture::upload(GLenum format, GLenum type, const void* pixels) {

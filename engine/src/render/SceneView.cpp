@@ -1,7 +1,11 @@
 #include <sierra/render/SceneView.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/render/ZoneSurface.h>
+#include <sierra/scene/Assets.h>
 #include <sierra/scene/Terrain.h>
+
+#include <cmath>
 
 namespace sierra::render {
 
@@ -81,6 +85,34 @@ Lighting sceneLighting(const scene::LightingDesc& l, bool transparent) {
     out.sky = {l.sky.r, l.sky.g, l.sky.b};
     out.transparent = transparent;
     return out;
+}
+
+std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field,
+                              float seaLevel) {
+    const scene::ZonesDesc& z = s.zones;
+    if (z.map.empty()) return {};
+    ZoneSurfaceDesc desc;
+    desc.map = z.map;
+    desc.palette = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+    desc.band = z.band;
+    desc.epsilon = z.epsilon;
+    desc.heightBlend = z.blend == "height";
+    desc.triplanar = z.triplanar;
+    desc.variation = z.variation;
+    desc.debugView = z.debugView == "zones" ? ZoneDebugView::Zones
+                     : z.debugView == "bands" ? ZoneDebugView::Bands
+                                              : ZoneDebugView::None;
+    // Without water every sample is land: the sea sits below the lowest height.
+    desc.autoZones.seaLevel = std::isnan(seaLevel) ? field.range().first - 1.0f : seaLevel;
+    desc.autoZones.deepWater = z.deepWater;
+    desc.autoZones.sandTop = z.sandTop;
+    desc.autoZones.snowLine = z.snowLine;
+    desc.autoZones.rockSlope = z.rockSlope;
+    ZoneSurfaceInfo info;
+    renderer.setSurface(makeZoneSurface(renderer.terrain(), field, desc, &info));
+    return msg("zones: ", z.map == "auto" ? std::string("auto") : z.map, ", ", info.mapWidth, "x", info.mapHeight,
+               ", ", info.zoneCount, " surface types, ", info.borderEdges, " borderline edges, band ", info.band,
+               " px, field ", info.texelsPerPixel, " texel(s) per pixel, built in ", info.buildMs, " ms");
 }
 
 TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& field, float seaLevel) {

@@ -283,6 +283,28 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             ->excludes(debugOut);
     }
 
+    if (groups & kZoneOptions) {
+        const std::string g = "Zones";
+        add("--zones", "Zone tiles: auto (from height and slope) or a zone-map PNG", g, "auto|MAP.png", d.zones.map, 1,
+            [](Scene& s, Words w) { s.zones.map = w[0]; });
+        add("--palette", "Zone palette JSON (surface types, tiles, blend settings)", g, "P.json",
+            d.zones.palette.empty() ? "assets/palettes/default.json" : d.zones.palette, 1,
+            [](Scene& s, Words w) { s.zones.palette = w[0]; });
+        add("--band", "Transition band width in zone-map pixels (0 = none; default: the palette's)", g, "W",
+            d.zones.band < 0.0f ? "palette" : show(d.zones.band), 1,
+            [](Scene& s, Words w) { s.zones.band = parseFloat(w[0], "--band"); });
+        add("--zone-epsilon", "Borderline simplification distance, zone-map pixels", g, "E", show(d.zones.epsilon), 1,
+            [](Scene& s, Words w) { s.zones.epsilon = parseFloat(w[0], "--zone-epsilon"); });
+        add("--blend", "Blend across a band: linear (by distance) or height (tile heights move it)", g,
+            "linear|height", d.zones.blend, 1, [](Scene& s, Words w) { s.zones.blend = w[0]; });
+        addFlag("--triplanar", "Project tiles along the normal's axes on steep slopes", g,
+                [](Scene& s, Words) { s.zones.triplanar = true; });
+        addFlag("--no-tile-variation", "No second, rotated tile sample against visible repetition", g,
+                [](Scene& s, Words) { s.zones.variation = false; });
+        add("--debug-view", "Flat zone colours (zones) or the band blend weight (bands)", g, "none|zones|bands",
+            d.zones.debugView, 1, [](Scene& s, Words w) { s.zones.debugView = w[0]; });
+    }
+
     if (groups & kStyleOptions) {
         addFlag("--wireframe", "Overlay the triangulation", "Style", [](Scene& s, Words) { s.style.wireframe = true; });
         add("--tree-line", "Metric heights: metres above which rock replaces vegetation", "Style", "M",

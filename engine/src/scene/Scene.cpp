@@ -110,6 +110,24 @@ void validateStyle(const StyleDesc& s) {
              msg("must be finite and at least the tree line (", s.treeLine, " m), got ", s.snowLine));
 }
 
+void validateZones(const ZonesDesc& z) {
+    if (z.blend != "linear" && z.blend != "height")
+        fail("zones.blend", "--blend", msg("must be linear or height, got '", z.blend, "'"));
+    if (z.debugView != "none" && z.debugView != "zones" && z.debugView != "bands")
+        fail("zones.debug_view", "--debug-view", msg("must be none, zones or bands, got '", z.debugView, "'"));
+    if (!std::isfinite(z.band) || z.band > 1000.0f)
+        fail("zones.band", "--band", msg("must be a width in zone-map pixels (< 0 = the palette's), got ", z.band));
+    if (!(z.epsilon >= 0.0f) || !std::isfinite(z.epsilon))
+        fail("zones.epsilon", "--zone-epsilon", msg("must be >= 0 zone-map pixels, got ", z.epsilon));
+    for (auto [value, key] : {std::pair{z.deepWater, "zones.deep_water"}, std::pair{z.sandTop, "zones.sand_top"},
+                              std::pair{z.snowLine, "zones.snow_line"}})
+        if (!(value >= 0.0f && value <= 1.0f)) fail(key, "--config", msg("must be a fraction 0..1, got ", value));
+    if (!(z.rockSlope > 0.0f && z.rockSlope < 90.0f))
+        fail("zones.rock_slope", "--config", msg("must be 0..90 degrees, got ", z.rockSlope));
+    if (z.map.empty() && z.debugView != "none")
+        fail("zones.debug_view", "--debug-view", "needs zones (--zones auto or a zone map)");
+}
+
 void validateLod(const LodDesc& l) {
     if (!(l.tau > 0.0f) || !std::isfinite(l.tau))
         fail("lod.tau", "--tau", msg("must be a finite number of pixels > 0, got ", l.tau));
@@ -176,6 +194,7 @@ void validateScene(const Scene& scene) {
     validateLighting(scene.lighting);
     validateLod(scene.lod);
     validateStyle(scene.style);
+    validateZones(scene.zones);
     validateOutput(scene.output);
 }
 

@@ -273,6 +273,21 @@ void readStyle(ObjectReader& r, StyleDesc& s) {
     r.field("snow_line", [&](const Json& v, const std::string& k) { s.snowLine = r.toFloat(v, k); });
 }
 
+void readZones(ObjectReader& r, ZonesDesc& z) {
+    r.field("map", [&](const Json& v, const std::string& k) { z.map = r.toString(v, k); });
+    r.field("palette", [&](const Json& v, const std::string& k) { z.palette = r.toString(v, k); });
+    r.field("band", [&](const Json& v, const std::string& k) { z.band = r.toFloat(v, k); });
+    r.field("epsilon", [&](const Json& v, const std::string& k) { z.epsilon = r.toFloat(v, k); });
+    r.field("blend", [&](const Json& v, const std::string& k) { z.blend = r.toString(v, k); });
+    r.field("triplanar", [&](const Json& v, const std::string& k) { z.triplanar = r.toBool(v, k); });
+    r.field("variation", [&](const Json& v, const std::string& k) { z.variation = r.toBool(v, k); });
+    r.field("debug_view", [&](const Json& v, const std::string& k) { z.debugView = r.toString(v, k); });
+    r.field("deep_water", [&](const Json& v, const std::string& k) { z.deepWater = r.toFloat(v, k); });
+    r.field("sand_top", [&](const Json& v, const std::string& k) { z.sandTop = r.toFloat(v, k); });
+    r.field("snow_line", [&](const Json& v, const std::string& k) { z.snowLine = r.toFloat(v, k); });
+    r.field("rock_slope", [&](const Json& v, const std::string& k) { z.rockSlope = r.toFloat(v, k); });
+}
+
 }  // namespace
 
 Json readJsonFile(const std::string& path) {
@@ -297,6 +312,7 @@ Scene sceneFromJson(const Json& json, const std::string& source, const Scene& ba
     object(top, "lod", [&](ObjectReader& r) { readLod(r, scene.lod); });
     object(top, "output", [&](ObjectReader& r) { readOutput(r, scene.output); });
     object(top, "style", [&](ObjectReader& r) { readStyle(r, scene.style); });
+    object(top, "zones", [&](ObjectReader& r) { readZones(r, scene.zones); });
     top.finish();
     return scene;
 }
@@ -369,8 +385,21 @@ Json sceneToJson(const Scene& s) {
     Json style = {{"wireframe", s.style.wireframe},
                   {"tree_line", number(s.style.treeLine)},
                   {"snow_line", number(s.style.snowLine)}};
+    const ZonesDesc& z = s.zones;
+    Json zones = {{"map", z.map},
+                  {"palette", z.palette},
+                  {"band", number(z.band)},
+                  {"epsilon", number(z.epsilon)},
+                  {"blend", z.blend},
+                  {"triplanar", z.triplanar},
+                  {"variation", z.variation},
+                  {"debug_view", z.debugView},
+                  {"deep_water", number(z.deepWater)},
+                  {"sand_top", number(z.sandTop)},
+                  {"snow_line", number(z.snowLine)},
+                  {"rock_slope", number(z.rockSlope)}};
     return {{"terrain", terrain}, {"camera", camera}, {"path", path},   {"lighting", lighting},
-            {"lod", lod},         {"output", output}, {"style", style}};
+            {"lod", lod},         {"output", output}, {"style", style}, {"zones", zones}};
 }
 
 std::string sceneToText(const Scene& scene) { return sceneToJson(scene).dump(2) + "\n"; }

@@ -77,11 +77,12 @@ public:
 };
 
 struct TextureDesc {
-    GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_1D, _2D or _2D_MULTISAMPLE
+    GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_1D, _2D, _2D_ARRAY or _2D_MULTISAMPLE
     GLenum format = GL_RGBA8;       // sized internal format
     int width = 1;
     int height = 1;                 // ignored for 1D
-    int levels = 1;                 // mip levels (non-multisample)
+    int layers = 0;                 // for GL_TEXTURE_2D_ARRAY
+    int levels = 1;                 // mip levels (non-multisample); > 1 with GL_LINEAR = trilinear
     int samples = 0;                // for GL_TEXTURE_2D_MULTISAMPLE
     GLenum filter = GL_LINEAR;      // min and mag filter
     GLenum wrap = GL_CLAMP_TO_EDGE;
@@ -93,6 +94,10 @@ public:
     static Texture create(const TextureDesc& desc);
     // Uploads a whole level-0 image: `format`/`type` describe `pixels`.
     void upload(GLenum format, GLenum type, const void* pixels);
+    // Uploads level 0 of one layer of a GL_TEXTURE_2D_ARRAY.
+    void uploadLayer(int layer, GLenum format, GLenum type, const void* pixels);
+    // Fills the mip levels below 0 from level 0.
+    void generateMipmaps();
     int width() const { return width_; }
     int height() const { return height_; }
     GLenum target() const { return target_; }
@@ -101,6 +106,7 @@ private:
     int width_ = 0;
     int height_ = 0;
     GLenum target_ = GL_TEXTURE_2D;
+    int layers_ = 1;
 };
 
 class Framebuffer : public GlObject<Framebuffer, detail::deleteFramebuffer> {

@@ -7,6 +7,7 @@
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Scene.h>
 
+#include <string>
 #include <vector>
 
 namespace sierra::render {
@@ -30,5 +31,11 @@ TerrainDesc sceneTerrainDesc(const scene::Scene& scene, const terrain::Heightfie
 Lighting sceneLighting(const scene::LightingDesc& lighting, bool transparent);
 
 glm::vec3 toGlm(const scene::Vec3& v);
+
+// Gives the renderer the scene's surface when it is not the default colour
+// ramp (zone tiles), and returns one line saying what was built ("" for none).
+// `field` and `seaLevel` as for sceneTerrainDesc.
+std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& scene, const terrain::Heightfield& field,
+                              float seaLevel);
 
 }  // namespace sierra::render

@@ -54,7 +54,10 @@ enum OptionGroup : unsigned {
     kStyleOptions = 1u << 7,
     // --size WxH, --msaa 0|2|4|8
     kFrameOptions = 1u << 8,
-    kAllOptions = (1u << 9) - 1,
+    // --zones auto|MAP.png, --palette P.json, --band W, --zone-epsilon E, --blend linear|height,
+    // --triplanar, --no-tile-variation, --debug-view none|zones|bands
+    kZoneOptions = 1u << 9,
+    kAllOptions = (1u << 10) - 1,
 };
 
 class SceneOptions {

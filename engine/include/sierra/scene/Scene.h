@@ -130,6 +130,24 @@ struct StyleDesc {
     bool operator==(const StyleDesc&) const = default;
 };
 
+// Zone tiles with blended transition bands (the terrain pass's zone surface).
+struct ZonesDesc {
+    std::string map;      // "" = no zones (colour ramp), "auto" = from height and slope bands, or a zone-map PNG
+    std::string palette;  // palette JSON; "" = the default (assets/palettes/default.json)
+    float band = -1.0f;   // transition band width in zone-map pixels; < 0 = the palette's; 0 = none
+    float epsilon = 0.5f; // borderline simplification, zone-map pixels, >= 0
+    std::string blend = "height";  // linear (by distance) or height (tile heights move the transition)
+    bool triplanar = false;        // project tiles along the normal's axes on steep slopes
+    bool variation = true;         // blend a second, rotated sample against visible tile repetition
+    std::string debugView = "none";  // none, zones (flat zone colours) or bands (the blend weight)
+    // Auto-zoning thresholds (fractions of the depth and land relief; slope in degrees).
+    float deepWater = 0.35f;
+    float sandTop = 0.04f;
+    float snowLine = 0.75f;
+    float rockSlope = 25.0f;
+    bool operator==(const ZonesDesc&) const = default;
+};
+
 struct Scene {
     TerrainSource terrain;
     CameraDesc camera;
@@ -138,6 +156,7 @@ struct Scene {
     LodDesc lod;
     OutputDesc output;
     StyleDesc style;
+    ZonesDesc zones;
     bool operator==(const Scene&) const = default;
 };
 

@@ -1,0 +1,81 @@
+// Surface function: zone tiles with blended transition bands (engine:
+// render/ZoneSurface.h). Zone-map coordinates: x right, y down (= world +z),
+// the map's pixel centres on the terrain's real samples.
+layout(binding = 3) uniform sampler2DArray uTiles;    // layer = zone id; rgb albedo, a height
+layout(binding = 4) uniform usampler2D uZoneId;       // the zone owning each field texel
+layout(binding = 5) uniform usampler2D uZonePair;     // the zone pair of the nearest borderline
+layout(binding = 6) uniform sampler2D uZoneDistance;  // signed texels to it: < 0 on the pair's first zone's side
+
+layout(std140, binding = 2) uniform Zones {
+    vec4 uZoneMap;    // xy: zone-map size in pixels; z: field texels per pixel; w: band width in pixels
+    vec4 uZoneFlags;  // x: height blend; y: triplanar; z: variation; w: debug view (0 none, 1 zones, 2 bands)
+    vec4 uZoneTile[256];    // x: zone-map pixels per tile repetition; y: height blend 0..1
+    vec4 uZoneColour[256];  // rgb: the zone's palette colour
+};
+
+vec2 zoneMapPosition(vec3 world) {
+    return world.xz / uSpacingValid.zw * (uZoneMap.xy - 1.0) + 0.5;
+}
+
+// A cheap smooth value in [0, 1] that varies over a few tile repetitions.
+float tileVariation(vec2 p) {
+    return 0.5 + 0.25 * (sin(p.x * 0.37 + 1.3 * sin(p.y * 0.23)) + sin(p.y * 0.31 + 1.7 * sin(p.x * 0.19)));
+}
+
+vec4 planarTile(int zone, vec2 uv) {
+    vec4 c = texture(uTiles, vec3(uv, float(zone)));
+    if (uZoneFlags.z > 0.5) {
+        // A second sample, rotated and at another scale, mixed in by a slow
+        // variation: the eye no longer finds the repeat.
+        const mat2 turn = mat2(0.8, 0.6, -0.6, 0.8);
+        vec4 other = texture(uTiles, vec3(turn * uv * 0.61 + 0.37, float(zone)));
+        c = mix(c, other, 0.45 * tileVariation(uv));
+    }
+    return c;
+}
+
+// The tile of `zone` at a map position: planar by default (the document's
+// mapping); with triplanar on, steep slopes take the tile along their normal
+// too, so cliffs do not stretch it.
+vec4 zoneTile(int zone, vec2 mapXY, vec3 world, Ground g) {
+    float size = max(uZoneTile[zone].x, 1e-3);
+    vec4 top = planarTile(zone, mapXY / size);
+    if (uZoneFlags.y < 0.5 || g.slope < 0.05) return top;
+    // World in zone-map pixels, heights too.
+    float pixelsPerUnit = (uZoneMap.x - 1.0) / max(uSpacingValid.z, 1e-6);
+    vec3 p = world * pixelsPerUnit / size;
+    vec3 w = pow(abs(g.normal), vec3(4.0));
+    w /= w.x + w.y + w.z;
+    return top * w.y + planarTile(zone, p.zy) * w.x + planarTile(zone, p.xy) * w.z;
+}
+
+vec3 surfaceAlbedo(vec3 world, Ground g) {
+    vec2 m = zoneMapPosition(world);
+    ivec2 size = ivec2(uZoneMap.xy * uZoneMap.z);
+    ivec2 texel = clamp(ivec2(floor(m * uZoneMap.z)), ivec2(0), size - 1);
+    int zone = int(texelFetch(uZoneId, texel, 0).r);
+    uvec2 pair = texelFetch(uZonePair, texel, 0).rg;
+    float halfBand = 0.5 * uZoneMap.w;
+    float d = texture(uZoneDistance, m / uZoneMap.xy).r / uZoneMap.z;  // zone-map pixels
+    bool inBand = halfBand > 0.0 && pair.x != pair.y && abs(d) < halfBand;
+    float weight = inBand ? smoothstep(-halfBand, halfBand, d) : 0.0;  // of the pair's second zone
+
+    if (uZoneFlags.w > 1.5) {  // bands: the blend weight, black outside every band
+        return inBand ? mix(vec3(0.9, 0.2, 0.1), vec3(0.1, 0.8, 0.2), weight) : vec3(0.05);
+    }
+    if (uZoneFlags.w > 0.5) return uZoneColour[zone].rgb;  // zones: flat palette colours
+
+    if (!inBand) return zoneTile(zone, m, world, g).rgb;  // one tile set away from borders
+    int low = int(pair.x), high = int(pair.y);
+    vec4 a = zoneTile(low, m, world, g);
+    vec4 b = zoneTile(high, m, world, g);
+    if (uZoneFlags.x > 0.5) {
+        // Height blending: where one tile stands higher (stones in sand) it
+        // shows through earlier; the shift vanishes at the band's edges.
+        float strength = 0.5 * (uZoneTile[low].y + uZoneTile[high].y);
+        float shift = strength * (b.a - a.a) * 4.0 * weight * (1.0 - weight);
+        weight = clamp(weight + shift, 0.0, 1.0);
+        weight = smoothstep(0.15, 0.85, weight);
+    }
+    return mix(a.rgb, b.rgb, weight);
+}
