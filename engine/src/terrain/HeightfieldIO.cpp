@@ -202,6 +202,9 @@ Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes,
         if (err == SPNG_EOI) break;
     }
     if (err != SPNG_EOI) check(err, "cannot decode PNG");
+    // The rows end with the deflate stream, before the last IDAT's CRC and the
+    // chunks after it: read on to IEND so those CRCs are checked too.
+    check(spng_decode_chunks(ctx.get()), "cannot decode PNG");
     if (ihdr.interlace_method)
         for (int j = 0; j < height; ++j) convertRow(pixels.data() + rowBytes * j, j);
     return field;
