@@ -328,6 +328,20 @@ TEST_F(TerrainBadInput, EveryRowFailsFastWithAClearMessage) {
         expectRow("FIFO as .tif", path("fifo.tif"), "it is a FIFO (named pipe)");
 #endif
     }
+    // Files larger than the format can be for the limits: refused before reading
+    // (sparse files, so the test writes nothing big).
+    {
+        write("big.hgt", Bytes{});
+        fs::resize_file(path("big.hgt"), 3601ull * 3601 * 2 + 2);
+        expectRow(".hgt larger than SRTM1", path("big.hgt"),
+                  "big.hgt has 25934404 bytes, more than the 25934402 bytes allowed; the largest "
+                  "SRTM tile (3601x3601, SRTM1) is 25934402 bytes");
+        write("big2.npy", Bytes{});
+        fs::resize_file(path("big2.npy"), 5ull << 30);
+        expectRow(".npy of 5 GiB", path("big2.npy"),
+                  "big2.npy has 5368709120 bytes, more than the 2148794376 bytes allowed; a .npy "
+                  "heightmap within the limit of 16385x16385 samples (maxPaddedSide) is smaller");
+    }
     // Non-finite floats: the first bad sample is named.
     {
         const float nan = std::numeric_limits<float>::quiet_NaN();

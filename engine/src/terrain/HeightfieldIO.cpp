@@ -709,6 +709,8 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
     // larger file is refused before it is read.
     const uint64_t samples = maxSamples(options);
     uint64_t maxBytes = 0;
+    std::string reason = msg("a ", ext, " heightmap within the limit of ", options.maxPaddedSide, "x",
+                             options.maxPaddedSide, " samples (maxPaddedSide) is smaller");
     switch (format) {
         case Format::Png:  // RGBA16 stored uncompressed: 8 bytes a sample, plus framing
             maxBytes = samples * 8 + samples / 8 + kHeaderSlack;
@@ -722,6 +724,7 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
             break;
         case Format::Hgt:
             maxBytes = uint64_t(kSrtm1Side) * kSrtm1Side * 2;
+            reason = "the largest SRTM tile (3601x3601, SRTM1) is 25934402 bytes";
             break;
         case Format::Npy:  // float64: 8 bytes a sample
             maxBytes = samples * 8 + kHeaderSlack;
@@ -729,10 +732,7 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
         case Format::Tiff:
             break;
     }
-    const std::vector<uint8_t> bytes = readFileBytes(
-        path, maxBytes,
-        msg("a ", ext, " heightmap of at most ", options.maxPaddedSide, "^2 samples is smaller "
-            "(LoadOptions::maxPaddedSide)"));
+    const std::vector<uint8_t> bytes = readFileBytes(path, maxBytes, reason);
     switch (format) {
         case Format::Png:
             return loadPng(path, bytes, options);
