@@ -13,10 +13,11 @@ sanitize="${SIERRA_SANITIZE:-OFF}"
 packages=(
   build-essential cmake pkg-config
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  libglm-dev libstb-dev libimgui-dev
+  libglm-dev libstb-dev libimgui-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev glslang-tools
   libspng-dev libgdal-dev
+  python-matplotlib-data
 )
 
 missing=()

@@ -1,4 +1,5 @@
-// Shared by the terrain stages: the terrain data texture and grid layout.
+// Shared by the terrain stages: the terrain's data textures and uniform block
+// (engine: render/TerrainGpu.h).
 //
 // uData holds one texel per grid sample (i, j) of the drawn surface (water
 // flattened to sea level):
@@ -8,16 +9,85 @@
 layout(binding = 0) uniform sampler2D uData;
 // The true world heights (the ground below the water too), linearly filtered.
 layout(binding = 2) uniform sampler2D uHeights;
-uniform int uSide;       // samples per side, 2^n + 1
-uniform vec2 uSpacing;   // world distance between samples along x and z
-uniform float uSeaLevel; // world height of the water surface
-uniform vec2 uValidMax;  // world x, z of the last real sample; beyond it lies padding
+
+layout(std140, binding = 1) uniform Terrain {
+    ivec4 uGrid;          // x: samples per side, 2^n + 1
+    vec4 uSpacingValid;   // xy: world distance between samples along x and z; zw: world x, z of the last real sample
+    vec4 uHeightInfo;     // x: world sea level; y: 1 with water; z, w: lowest and highest world height
+};
+
+vec2 terrainSpacing() { return uSpacingValid.xy; }
 
 // True for fragments over the padding added to reach (2^n+1)^2 samples.
 bool overPadding(vec3 world) {
-    return any(greaterThan(world.xz, uValidMax + 1e-3 * uSpacing));
+    return any(greaterThan(world.xz, uSpacingValid.zw + 1e-3 * uSpacingValid.xy));
 }
 
 vec3 gridToWorld(ivec2 ij, float height) {
-    return vec3(float(ij.x) * uSpacing.x, height, float(ij.y) * uSpacing.y);
+    return vec3(float(ij.x) * uSpacingValid.x, height, float(ij.y) * uSpacingValid.y);
+}
+
+// The true height, its normal and the water flag at a ground position, from
+// the full-resolution heights: a simplified mesh shades like the full grid.
+struct Ground {
+    float height;  // world units
+    vec3 normal;   // unit
+    float slope;   // 0 flat .. 1 vertical (1 - normal.y)
+    bool water;    // below sea level (with water on)
+};
+
+// The height at a ground position by a cubic B-spline through the samples
+// (four bilinear fetches): contours such as the coast come out round at any
+// grid resolution, where bilinear interpolation draws them as cell-sized
+// diamonds and squares.
+float smoothHeight(vec2 xz) {
+    vec2 p = xz / uSpacingValid.xy;  // in samples
+    vec2 cell = floor(p);
+    vec2 f = p - cell;
+    vec2 f2 = f * f, f3 = f2 * f;
+    // B-spline weights of the 4 samples along each axis.
+    vec2 w0 = (1.0 - 3.0 * f + 3.0 * f2 - f3) / 6.0;
+    vec2 w1 = (4.0 - 6.0 * f2 + 3.0 * f3) / 6.0;
+    vec2 w2 = (1.0 + 3.0 * f + 3.0 * f2 - 3.0 * f3) / 6.0;
+    vec2 w3 = f3 / 6.0;
+    vec2 g0 = w0 + w1, g1 = w2 + w3;
+    vec2 texel = 1.0 / vec2(uGrid.x);
+    // Bilinear fetches between samples -1..0 and 1..2 weigh each pair exactly.
+    vec2 t0 = (cell - 1.0 + w1 / g0 + 0.5) * texel;
+    vec2 t1 = (cell + 1.0 + w3 / g1 + 0.5) * texel;
+    return g0.y * (g0.x * texture(uHeights, vec2(t0.x, t0.y)).r + g1.x * texture(uHeights, vec2(t1.x, t0.y)).r) +
+           g1.y * (g0.x * texture(uHeights, vec2(t0.x, t1.y)).r + g1.x * texture(uHeights, vec2(t1.x, t1.y)).r);
+}
+
+Ground groundAt(vec2 xz) {
+    vec2 texel = 1.0 / vec2(uGrid.x);
+    vec2 uv = (xz / uSpacingValid.xy + 0.5) * texel;
+    Ground g;
+    g.height = smoothHeight(xz);
+    float dx = texture(uHeights, uv + vec2(texel.x, 0.0)).r - texture(uHeights, uv - vec2(texel.x, 0.0)).r;
+    float dz = texture(uHeights, uv + vec2(0.0, texel.y)).r - texture(uHeights, uv - vec2(0.0, texel.y)).r;
+    g.normal = normalize(vec3(-dx / (2.0 * uSpacingValid.x), 1.0, -dz / (2.0 * uSpacingValid.y)));
+    g.water = uHeightInfo.y > 0.5 && g.height < uHeightInfo.x;
+    if (g.water) g.normal = vec3(0.0, 1.0, 0.0);  // water lies flat
+    g.slope = 1.0 - g.normal.y;
+    return g;
+}
+
+// The position of grid vertex `vertexId` (a linear index j * side + i) as the
+// SBT draws it: its surface height, geomorphed from its morph base while it
+// blends in.
+vec3 terrainVertex(int vertexId) {
+    ivec2 ij = ivec2(vertexId % uGrid.x, vertexId / uGrid.x);
+    vec4 d = texelFetch(uData, ij, 0);
+    float height = d.r;
+    if (uLodEye.w > 0.0) {
+        // The CPU activates the vertex when (lambda e / tau + r) > distance; the
+        // ratio is 1 when it has just become active. Blend from the mean of its
+        // hypotenuse endpoints (where the coarser mesh had the surface) at ratio
+        // 1 to its own height at ratio 2, so vertices never pop.
+        float dist = max(distance(gridToWorld(ij, d.r), uLodEye.xyz), 1e-6);
+        float ratio = (uLodEye.w * d.b + d.a) / dist;
+        height = mix(d.g, d.r, clamp(ratio - 1.0, 0.0, 1.0));
+    }
+    return gridToWorld(ij, height);
 }

@@ -1,5 +1,6 @@
 #version 450 core
-// Wireframe overlay: the triangulation's edges in one colour.
+// Wireframe pass: the triangulation's edges in one colour.
+#include "frame.glsl"
 #include "terrain_common.glsl"
 
 uniform vec4 uColour;

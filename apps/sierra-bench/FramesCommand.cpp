@@ -4,36 +4,37 @@
 
 #include "Commands.h"
 
+#include "AppMain.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/core/Log.h>
 #include <sierra/core/Parallel.h>
+#include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/Scene.h>
+#include <sierra/render/SceneView.h>
+#include <sierra/scene/Options.h>
+#include <sierra/scene/Terrain.h>
 #include <sierra/render/TerrainRenderer.h>
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <limits>
 #include <memory>
 
 namespace sierra::apps {
 namespace {
 
 struct FramesOptions {
-    render::TerrainSource source;
-    std::string size = "1920x1080";
-    float tau = 1.0f;
-    std::string path = "orbit";
-    int frames = 60;
-    std::string lod = "sbt";
-    int threads = 0;
-    int msaa = 0;
+    scene::Scene scene;
+    std::unique_ptr<scene::SceneOptions> registrar;
     bool compareFull = false;
-    bool noGeomorph = false;
     std::string json;
     std::string saveFrames;  // prefix for PNGs of every frame, empty = none
 };
@@ -60,7 +61,7 @@ Stats stats(const std::vector<FrameRecord>& records, double FrameRecord::*field)
 gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& target, const render::Camera& camera,
                       const render::DrawOptions& draw, FrameRecord& record) {
     Stopwatch frame;
-    target.begin(terrain.skyColour());
+    target.begin(render::TerrainRenderer::clearColour(draw.lighting));
     render::DrawStats s = terrain.draw(camera, target.width(), target.height(), draw);
     Stopwatch finish;
     target.resolve();
@@ -82,23 +83,28 @@ gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& tar
 }
 
 void runFrames(const FramesOptions& o) {
-    auto [width, height] = render::parseFrameSize(o.size);
-    render::Lod lod = render::parseLod(o.lod);
-    SIERRA_CHECK(o.tau > 0.0f, "--tau must be positive pixels, got ", o.tau);
-    SIERRA_CHECK(o.path == "orbit" || o.path == "flyover", "--path must be orbit or flyover, got ", o.path);
-
+    const scene::Scene& sc = o.scene;
+    const int width = sc.output.width, height = sc.output.height;
     std::string description;
-    terrain::Heightfield field = render::loadTerrain(o.source, &description);
+    terrain::Heightfield field = scene::loadTerrain(sc.terrain, &description);
+    float seaLevel = scene::resolveSeaLevel(sc.terrain, field);
     std::fprintf(stderr, "terrain: %s\n", description.c_str());
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(), context.platform().c_str());
     render::TerrainRenderer terrain =
-        render::TerrainRenderer::create({.field = &field, .threads = o.threads});
-    render::FrameTarget target = render::FrameTarget::create({.width = width, .height = height, .samples = o.msaa});
-    std::vector<render::Camera> cameras = o.path == "orbit" ? render::orbitPath(terrain.bounds(), o.frames)
-                                                            : render::flyoverPath(terrain.bounds(), o.frames);
-    render::DrawOptions draw{.lod = lod, .tau = o.tau, .geomorph = !o.noGeomorph, .threads = o.threads};
-    render::DrawOptions fullDraw{.lod = render::Lod::Full};
+        render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
+    render::FrameTarget target =
+        render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
+    std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());
+    const int first = sc.path.range ? sc.path.range->first : 0;
+    const int last = sc.path.range ? sc.path.range->last : int(all.size()) - 1;
+    std::vector<render::Camera> cameras(all.begin() + first, all.begin() + last + 1);
+    render::DrawOptions draw = render::sceneDrawOptions(sc);
+    render::Lod lod = draw.lod;
+    render::DrawOptions fullDraw = draw;
+    fullDraw.lod = render::Lod::Full;
+    const std::string lodText = render::lodName(lod);
+    const std::string pathText = scene::toString(sc.path.type);
 
     // One warm-up frame: first-use costs (full-grid index build, shader
     // compilation in the driver) are not frame costs.
@@ -109,23 +115,34 @@ void runFrames(const FramesOptions& o) {
     }
 
     std::vector<FrameRecord> records;
+    Progress progress(o.compareFull ? "frames (and full-grid references)" : "frames", int64_t(cameras.size()));
+    // Saved frames carry their index in the whole sequence; full-grid
+    // references go beside them as NAME_full_0000.png.
+    std::string fullFrames;
+    if (!o.saveFrames.empty()) {
+        std::filesystem::path p(o.saveFrames);
+        fullFrames = (p.parent_path() / (p.stem().string() + "_full" + p.extension().string())).string();
+    }
     for (size_t k = 0; k < cameras.size(); ++k) {
         FrameRecord r;
         gpu::Image image = timedFrame(terrain, target, cameras[k], draw, r);
-        if (!o.saveFrames.empty()) render::writePng(render::sequencePath(o.saveFrames, int(k)), image);
+        if (!o.saveFrames.empty()) render::writePng(render::sequencePath(o.saveFrames, first + int(k)), image);
+        std::string detail = msg(fixed(r.total, 1), " ms, ", r.triangles, " triangles");
         if (o.compareFull) {
             FrameRecord full;
             gpu::Image reference = timedFrame(terrain, target, cameras[k], fullDraw, full);
+            if (!fullFrames.empty()) render::writePng(render::sequencePath(fullFrames, first + int(k)), reference);
             render::ImageDifference d = render::compareImages(image, reference, 8);
             r.psnr = d.psnr;
             r.differing = d.differingShare;
             r.fullTotal = full.total;
+            detail += msg(", full grid ", fixed(full.total, 1), " ms, PSNR ",
+                          std::isfinite(d.psnr) ? fixed(d.psnr, 2) + " dB" : std::string("identical"));
         }
         records.push_back(r);
-        std::fprintf(stderr, "\rframe %zu/%zu: %.1f ms, %llu triangles", k + 1, cameras.size(), r.total,
-                     (unsigned long long)r.triangles);
+        progress.update(int64_t(k + 1), detail);
     }
-    std::fprintf(stderr, "\n");
+    progress.finish();
 
     Stats refine = stats(records, &FrameRecord::refine), upload = stats(records, &FrameRecord::upload),
           drawS = stats(records, &FrameRecord::draw), gpuS = stats(records, &FrameRecord::gpu),
@@ -139,9 +156,10 @@ void runFrames(const FramesOptions& o) {
     double bytes = medianOf(&FrameRecord::bytes);
     double indices = medianOf(&FrameRecord::indices);
 
-    std::printf("sierra-bench frames: %s, %dx%d, %s path, %d frames, lod %s, tau %g px, msaa %d, threads %d\n",
-                description.c_str(), width, height, o.path.c_str(), o.frames, o.lod.c_str(), o.tau, o.msaa,
-                o.threads ? o.threads : defaultThreadCount());
+    std::printf("sierra-bench frames: %s, %dx%d, %s path, %zu frames, lod %s, tau %g px, geomorph %s, msaa %d, "
+                "threads %d\n",
+                description.c_str(), width, height, pathText.c_str(), cameras.size(), lodText.c_str(), draw.tau,
+                draw.geomorph ? "on" : "off", sc.output.msaa, sc.lod.threads ? sc.lod.threads : defaultThreadCount());
     std::printf("renderer: %s\n", context.renderer().c_str());
     std::printf("%-22s %10s %10s %10s\n", "stage (ms)", "median", "p95", "p99");
     auto row = [](const char* name, Stats s) {
@@ -164,12 +182,13 @@ void runFrames(const FramesOptions& o) {
     j["terrain"] = description;
     j["renderer"] = context.renderer();
     j["size"] = {width, height};
-    j["path"] = o.path;
-    j["frames"] = o.frames;
-    j["lod"] = o.lod;
-    j["tau"] = o.tau;
-    j["msaa"] = o.msaa;
-    j["threads"] = o.threads ? o.threads : defaultThreadCount();
+    j["path"] = pathText;
+    j["frames"] = cameras.size();
+    j["lod"] = lodText;
+    j["tau"] = draw.tau;
+    j["geomorph"] = draw.geomorph;
+    j["msaa"] = sc.output.msaa;
+    j["threads"] = sc.lod.threads ? sc.lod.threads : defaultThreadCount();
     auto toJson = [](Stats s) { return nlohmann::json{{"median", s.median}, {"p95", s.p95}, {"p99", s.p99}}; };
     j["ms"] = {{"refine_strip", toJson(refine)}, {"upload", toJson(upload)},   {"draw", toJson(drawS)},
                {"draw_gl_timer", toJson(gpuS)},  {"read_back", toJson(readS)}, {"frame", toJson(total)}};
@@ -183,23 +202,36 @@ void runFrames(const FramesOptions& o) {
         Stats full = stats(records, &FrameRecord::fullTotal);
         Stats psnr = stats(records, &FrameRecord::psnr);
         Stats differing = stats(records, &FrameRecord::differing);
-        double minPsnr = 1e9;
-        for (const FrameRecord& r : records) minPsnr = std::min(minPsnr, r.psnr);
+        // A frame identical to its reference has an infinite PSNR: say so in
+        // words here and as null in the JSON (which has no infinity).
+        double minPsnr = std::numeric_limits<double>::infinity();
+        int identical = 0;
+        for (const FrameRecord& r : records) {
+            minPsnr = std::min(minPsnr, r.psnr);
+            identical += std::isinf(r.psnr);
+        }
+        auto dB = [](double v) { return std::isfinite(v) ? fixed(v, 2) + " dB" : std::string("identical"); };
         std::printf("full-grid frame (ms): median %.3f, p95 %.3f\n", full.median, full.p95);
-        std::printf("frame time ratio %s / full (medians): %.4f (1/%.1f)\n", o.lod.c_str(),
+        std::printf("frame time ratio %s / full (medians): %.4f (1/%.1f)\n", lodText.c_str(),
                     total.median / full.median, full.median / total.median);
-        std::printf("PSNR against full grid: median %.2f dB, min %.2f dB; differing pixels: median %.3f%%\n",
-                    psnr.median, minPsnr, 100.0 * differing.median);
+        std::printf("PSNR against full grid: median %s, min %s; %d of %zu frames identical; differing pixels: "
+                    "median %.3f%%\n",
+                    dB(psnr.median).c_str(), dB(minPsnr).c_str(), identical, records.size(),
+                    100.0 * differing.median);
+        auto psnrJson = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
         j["full_frame"] = toJson(full);
         j["frame_ratio"] = total.median / full.median;
-        j["psnr"] = {{"median", psnr.median}, {"min", minPsnr}};
+        j["psnr"] = {{"median", psnrJson(psnr.median)}, {"min", psnrJson(minPsnr)}, {"identical_frames", identical},
+                     {"note", "dB against the full grid; null = identical frames"}};
         j["differing_share_median"] = differing.median;
     }
     nlohmann::json perFrame = nlohmann::json::array();
     for (const FrameRecord& r : records)
         perFrame.push_back({{"refine", r.refine}, {"upload", r.upload}, {"draw", r.draw}, {"gpu", r.gpu},
                             {"read_back", r.readBack}, {"frame", r.total}, {"triangles", r.triangles},
-                            {"bytes", r.bytes}, {"psnr", o.compareFull ? r.psnr : 0.0}});
+                            {"bytes", r.bytes},
+                            {"psnr", o.compareFull && std::isfinite(r.psnr) ? nlohmann::json(r.psnr)
+                                                                            : nlohmann::json(nullptr)}});
     j["per_frame"] = perFrame;
     if (!o.json.empty()) {
         writeFileAtomic(o.json, j.dump(2) + "\n");
@@ -211,27 +243,28 @@ void runFrames(const FramesOptions& o) {
 
 void addFramesCommand(CLI::App& app) {
     auto o = std::make_shared<FramesOptions>();
+    // The benchmark's own defaults: a 1080p orbit of 60 frames, no MSAA, no
+    // debug snapshot (every other option as in sierra-render).
+    o->scene.output.width = 1920;
+    o->scene.output.height = 1080;
+    o->scene.output.msaa = 0;
+    o->scene.output.debug.clear();
+    o->scene.path.type = scene::PathType::Orbit;
+    o->scene.path.frames = 60;
     CLI::App* cmd = app.add_subcommand("frames", "Time view-dependent frames along a camera path (EGL)");
-    cmd->option_defaults()->always_capture_default();
-    auto* heightmap = cmd->add_option("--heightmap", o->source.heightmap, "Heightmap file (any Sierra loader)")
-                          ->check(CLI::ExistingFile);
-    cmd->add_option("--generate", o->source.generateSize, "Generate a diamond-square terrain of N = 2^k+1 samples")
-        ->excludes(heightmap);
-    cmd->add_option("--seed", o->source.seed, "Seed of the generated terrain");
-    cmd->add_option("--roughness", o->source.roughness, "Roughness of the generated terrain");
-    cmd->add_option("--size", o->size, "Frame size WIDTHxHEIGHT");
-    cmd->add_option("--tau", o->tau, "Screen-space error threshold in pixels");
-    cmd->add_option("--path", o->path, "Camera path")->check(CLI::IsMember({"orbit", "flyover"}));
-    cmd->add_option("--frames", o->frames, "Frames to time")->check(CLI::Range(1, 100000));
-    cmd->add_option("--lod", o->lod, "sbt or full")->check(CLI::IsMember({"sbt", "full"}));
-    cmd->add_option("--threads", o->threads, "Refinement threads (0 = all cores)")->check(CLI::Range(0, 256));
-    cmd->add_option("--msaa", o->msaa, "Multisample count (0 = off)")->check(CLI::IsMember({0, 2, 4, 8}));
+    o->registrar = std::make_unique<scene::SceneOptions>(
+        *cmd, o->scene,
+        scene::kTerrainOptions | scene::kCameraOptions | scene::kPathOptions | scene::kLightingOptions |
+            scene::kLodOptions | scene::kStyleOptions | (scene::kOutputOptions));
     cmd->add_flag("--compare-full", o->compareFull,
                   "Also render the full grid from each camera: frame-time ratio, PSNR, differing pixels");
-    cmd->add_flag("--no-geomorph", o->noGeomorph, "Draw SBT vertices at their heights at once");
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");
     cmd->add_option("--save-frames", o->saveFrames, "Write every frame as PNG (NAME_0000.png, ...)");
-    cmd->callback([o] { runFrames(*o); });
+    cmd->callback([o] {
+        asUsage([&] { o->registrar->apply(); });
+        if (o->registrar->printConfigRequested()) return;
+        runFrames(*o);
+    });
 }
 
 }  // namespace sierra::apps

@@ -1,5 +1,8 @@
-// sierra-bench static --heightmap FILE | --generate N [--seed S --roughness R]
-//                     --max-error E [--repeat K] [--threads T] [--obj FILE] [--json FILE]
+// sierra-bench static [terrain options] --max-error E [--repeat K] [--threads T]
+//                     [--obj FILE] [--json FILE] [--config FILE.json] [--print-config]
+//
+// The terrain options are the scene registrar's (sierra/scene/Options.h), as in
+// every Sierra app; this command needs no GL and links none.
 //
 // The fixed-error SBT mesh of one heightfield: the error pass is timed once,
 // then refinement + strip extraction K times (median and p95). Prints grid size,
@@ -8,11 +11,13 @@
 // and the true maximum vertical distance between the grid and the mesh.
 #include "Commands.h"
 
+#include "AppMain.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
-#include <sierra/render/Scene.h>
+#include <sierra/scene/Options.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
 
@@ -28,17 +33,10 @@ namespace sierra::apps {
 namespace {
 
 struct StaticOptions {
-    std::string heightmap;
-    int generate = 0;
-    uint64_t seed = 1;
-    float roughness = 1.0f;
+    scene::Scene scene;  // only its terrain is used
     float maxError = 0.0f;
     int repeat = 20;
     int threads = 0;
-    int rawWidth = 0;
-    int rawHeight = 0;
-    float spacing = 0.0f;        // 0 = automatic (1; SRTM 90 or 30 m)
-    float verticalScale = 1.0f;  // stored height -> world height
     std::string obj;
     std::string json;
 };
@@ -70,26 +68,15 @@ void writeObj(const std::string& path, const terrain::Heightfield& field,
 }
 
 void runStatic(const StaticOptions& o) {
-    if (o.heightmap.empty() == (o.generate == 0))
-        throw Error("static: give exactly one of --heightmap FILE or --generate N");
     if (!std::isfinite(o.maxError))
         throw Error(msg("static: --max-error must be a finite number (world height units), got ", o.maxError));
     if (o.repeat < 1) throw Error(msg("static: --repeat must be >= 1, got ", o.repeat));
     if (o.threads < 0) throw Error(msg("static: --threads must be >= 0 (0 = all cores), got ", o.threads));
 
-    // The same loading, padding and generation as every Sierra app, but heights
-    // stay in the file's units unless --vertical-scale says otherwise: the
-    // error bound is then in the data's own units.
-    render::TerrainSource terrainSource{.heightmap = o.heightmap,
-                                        .generateSize = o.generate ? o.generate : 1025,
-                                        .seed = o.seed,
-                                        .roughness = o.roughness,
-                                        .rawWidth = o.rawWidth,
-                                        .rawHeight = o.rawHeight,
-                                        .spacing = o.spacing,
-                                        .verticalScale = o.verticalScale};
+    // The same loading, padding and generation as every Sierra app (heights in
+    // the file's units by default here, see addStaticCommand).
     std::string source;
-    terrain::Heightfield field = render::loadTerrain(terrainSource, &source);
+    terrain::Heightfield field = scene::loadTerrain(o.scene.terrain, &source);
     const int inputW = field.width(), inputH = field.height();
     const int threads = o.threads > 0 ? o.threads : defaultThreadCount();
 
@@ -155,28 +142,34 @@ void runStatic(const StaticOptions& o) {
 }  // namespace
 
 void addStaticCommand(CLI::App& app) {
-    auto opts = std::make_shared<StaticOptions>();
+    // The options and the scene registrar live as long as the app: the callback
+    // runs inside app.parse().
+    struct State {
+        StaticOptions options;
+        std::unique_ptr<scene::SceneOptions> sceneOptions;
+    };
+    auto state = std::make_shared<State>();
+    StaticOptions& o = state->options;
+    // Heights stay in the file's units unless --vertical-scale says otherwise:
+    // the error bound is then in the data's own units.
+    o.scene.terrain.verticalScale = 1.0f;
+
     CLI::App* cmd = app.add_subcommand(
         "static", "Fixed-error SBT mesh: size, strip efficiency, extraction speed, true max error");
-    auto* hm = cmd->add_option("--heightmap", opts->heightmap,
-                               "Heightfield file (.png .pgm .r16 .r32 .hgt .npy); padded to (2^n+1)^2 if needed");
-    auto* gen = cmd->add_option("--generate", opts->generate, "Diamond-square fractal of N x N samples (N = 2^n + 1)");
-    hm->excludes(gen);
-    cmd->add_option("--seed", opts->seed, "Seed of --generate (default 1)");
-    cmd->add_option("--roughness", opts->roughness, "Roughness of --generate (default 1)");
-    cmd->add_option("--max-error", opts->maxError,
-                    "Split while the saturated vertex error exceeds this (world height units; < 0 = full grid)")
-        ->required();
-    cmd->add_option("--raw-width", opts->rawWidth, "Width of a .r16/.r32 heightmap");
-    cmd->add_option("--raw-height", opts->rawHeight, "Height of a .r16/.r32 heightmap");
-    cmd->add_option("--spacing", opts->spacing, "World units between samples (0 = automatic: 1, SRTM 90/30 m)");
-    cmd->add_option("--vertical-scale", opts->verticalScale,
-                    "Stored height to world height (default 1: errors in the data's units; 0 = automatic)");
-    cmd->add_option("--repeat", opts->repeat, "Timed extraction runs (default 20)");
-    cmd->add_option("--threads", opts->threads, "Threads (default 0 = all cores)");
-    cmd->add_option("--obj", opts->obj, "Write the mesh as Wavefront OBJ (x = column, y = height, z = row)");
-    cmd->add_option("--json", opts->json, "Write the figures as JSON");
-    cmd->callback([opts] { runStatic(*opts); });
+    state->sceneOptions = std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
+    CLI::Option* maxError = cmd->add_option(
+        "--max-error", o.maxError,
+        "Split while the saturated vertex error exceeds this (world height units; < 0 = full grid); required");
+    cmd->add_option("--repeat", o.repeat, "Timed extraction runs")->capture_default_str();
+    cmd->add_option("--threads", o.threads, "Threads (0 = all cores)")->capture_default_str();
+    cmd->add_option("--obj", o.obj, "Write the mesh as Wavefront OBJ (x = column, y = height, z = row)");
+    cmd->add_option("--json", o.json, "Write the figures as JSON");
+    cmd->callback([state, maxError] {
+        asUsage([&] { state->sceneOptions->apply(); });
+        if (state->sceneOptions->printConfigRequested()) return;
+        if (maxError->count() == 0) throw UsageError("static: --max-error E is required (world height units)");
+        runStatic(state->options);
+    });
 }
 
 }  // namespace sierra::apps

@@ -4,22 +4,15 @@
 
 #include "Commands.h"
 
-#include <sierra/core/Error.h>
+#include "AppMain.h"
 
 #include <cstdio>
 
 int main(int argc, char** argv) {
-    CLI::App app{"sierra-bench: benchmarks of Sierra's SBT extraction and frame pipeline"};
+    CLI::App app{"Benchmarks of Sierra's SBT extraction and frame pipeline", "sierra-bench"};
     app.require_subcommand(1);
     sierra::apps::addStaticCommand(app);
     sierra::apps::addFramesCommand(app);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sierra-bench: error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+    // The subcommands do their work in their callbacks, during parsing.
+    return sierra::apps::runMain(app, argc, argv, nullptr, nullptr);
 }

@@ -18,3 +18,13 @@ run_app(no_egl EXPECT_FAIL MESSAGE "libegl-mesa0"
         COMMAND ${CMAKE_COMMAND} -E env __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json
                 ${RENDER} --generate 65 --out g.png)
 expect_no_file(${WORK_DIR}/g.png)
+# One format and two exit codes in every program: 2 for usage, 1 for runtime.
+run_app(usage_format EXPECT_FAIL EXIT 2 MESSAGE "sierra-render: error: " COMMAND ${RENDER} --bogus)
+run_app(runtime_format EXPECT_FAIL EXIT 1 MESSAGE "sierra-render: error: corrupt.png"
+        COMMAND ${RENDER} --heightmap corrupt.png --out h.png --no-debug)
+run_app(bench_usage EXPECT_FAIL EXIT 2 MESSAGE "sierra-bench: error: " COMMAND ${BENCH} frames --tau 0)
+run_app(bench_runtime EXPECT_FAIL EXIT 1 MESSAGE "sierra-bench: error: corrupt.png"
+        COMMAND ${BENCH} static --heightmap corrupt.png --max-error 1)
+run_app(version EXPECT_OK MESSAGE "sierra-render 0." COMMAND ${RENDER} --version)
+run_app(bench_version EXPECT_OK MESSAGE "sierra-bench 0." COMMAND ${BENCH} --version)
+expect_no_file(${WORK_DIR}/h.png)

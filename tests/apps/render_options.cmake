@@ -1,6 +1,6 @@
 # Options that change what sierra-render writes.
 include(${CMAKE_CURRENT_LIST_DIR}/common.cmake.inc)
-run_app(sequence EXPECT_OK COMMAND ${RENDER} --generate 129 --size 160x90 --frames 3 --orbit --out seq/f.png --no-debug)
+run_app(sequence EXPECT_OK COMMAND ${RENDER} --generate 129 --size 160x90 --frames 3 --path orbit --out seq/f.png --no-debug)
 expect_file(${WORK_DIR}/seq/f_0000.png)
 expect_file(${WORK_DIR}/seq/f_0002.png)
 expect_no_file(${WORK_DIR}/seq/f_0003.png)

@@ -101,6 +101,11 @@ TEST_F(GlContext, StreamRingCyclesRegionsAndGrows) {
 }
 
 TEST_F(GlContext, EveryShaderFileCompilesAndLinks) {
+    // A stage that includes "surface.glsl" is built once per surface function.
+    std::vector<std::string> surfaces;
+    for (const gpu::EmbeddedShader& s : gpu::embeddedShaders())
+        if (s.name.starts_with("surface_")) surfaces.emplace_back(s.name);
+    ASSERT_FALSE(surfaces.empty());
     int stages = 0;
     for (const gpu::EmbeddedShader& s : gpu::embeddedShaders()) {
         std::string name(s.name);
@@ -109,12 +114,23 @@ TEST_F(GlContext, EveryShaderFileCompilesAndLinks) {
         else if (name.ends_with(".frag")) desc.fragment = s.name;
         else if (name.ends_with(".comp")) desc.compute = s.name;
         else continue;
-        EXPECT_NO_THROW(gpu::Program::create(desc)) << name;
+        if (s.source.find("#include \"surface.glsl\"") == std::string_view::npos) {
+            EXPECT_NO_THROW(gpu::Program::create(desc)) << name;
+        } else {
+            for (const std::string& surface : surfaces) {
+                gpu::IncludeAlias alias{"surface.glsl", surface};
+                desc.aliases = std::span<const gpu::IncludeAlias>(&alias, 1);
+                EXPECT_NO_THROW(gpu::Program::create(desc)) << name << " with " << surface;
+            }
+        }
         ++stages;
     }
     EXPECT_GE(stages, 4);
     // The programs Sierra draws with.
-    EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "terrain.frag"}));
+    gpu::IncludeAlias hypsometric{"surface.glsl", "surface_hypsometric.glsl"};
+    EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "terrain.frag",
+                                          .aliases = std::span<const gpu::IncludeAlias>(&hypsometric, 1)}));
+    EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "depth.frag"}));
     EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "wire.frag"}));
     EXPECT_NO_THROW(gpu::Program::create({.vertex = "solid.vert", .fragment = "solid.frag"}));
 }

@@ -13,6 +13,7 @@
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/Scene.h>
 #include <sierra/render/TerrainRenderer.h>
+#include <sierra/scene/Terrain.h>
 #include <sierra/terrain/Padding.h>
 
 #include <cstdlib>
@@ -42,13 +43,14 @@ protected:
     void SetUp() override {
         createContext(kWidth, kHeight);
         field_ = render::loadTerrain({});  // the default scene
-        terrain_.emplace(render::TerrainRenderer::create({.field = &field_}));
+        terrain_.emplace(
+            render::TerrainRenderer::create({.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
         target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
     }
 
     gpu::Image renderFrame(render::Lod lod, float tau = 1.0f) {
-        render::Camera camera = render::defaultCamera(terrain_->bounds());
-        target_->begin(terrain_->skyColour());
+        render::Camera camera = render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
+        target_->begin(render::TerrainRenderer::clearColour({}));
         stats_ = terrain_->draw(camera, kWidth, kHeight, {.lod = lod, .tau = tau});
         return target_->read();
     }
@@ -87,12 +89,13 @@ glm::vec3 meanColour(const gpu::Image& image, int y0, int y1, int x0 = 0, int x1
 
 TEST_F(Golden, FullGridFrameMatchesReference) {
     gpu::Image frame = renderFrame(render::Lod::Full);
-    // Sky on top, terrain below: the frame is upright and not blank.
-    glm::vec3 top = meanColour(frame, 0, 10);
-    glm::vec3 sky = terrain_->skyColour() * 255.0f;
-    EXPECT_LT(glm::length(top - sky), 6.0f) << "top rows are not sky";
-    glm::vec3 bottom = meanColour(frame, kHeight - 40, kHeight);
-    EXPECT_GT(glm::length(bottom - sky), 40.0f) << "bottom rows show no terrain";
+    // Sky around the framed terrain, terrain at the centre: the frame is not
+    // blank, and the margin is kept.
+    glm::vec3 sky = render::Lighting{}.sky * 255.0f;
+    EXPECT_LT(glm::length(meanColour(frame, 0, 10) - sky), 6.0f) << "top rows are not sky";
+    EXPECT_LT(glm::length(meanColour(frame, kHeight - 6, kHeight) - sky), 6.0f) << "bottom rows are not sky";
+    glm::vec3 centre = meanColour(frame, kHeight / 2 - 30, kHeight / 2 + 30, kWidth / 2 - 60, kWidth / 2 + 60);
+    EXPECT_GT(glm::length(centre - sky), 40.0f) << "the centre shows no terrain";
     checkAgainstGolden(frame, "default_full.png");
 }
 
@@ -188,8 +191,8 @@ TEST_F(Golden, DebugSnapshotDrawsAPanelOverTheFrame) {
     render::DebugPanel panel;
     panel.rows = {{"triangles", "12345"}, {"frame", "1.0 ms"}};
     panel.frameTimesMs = {1.0f, 2.0f, 1.5f};
-    render::Camera camera = render::defaultCamera(terrain_->bounds());
-    target_->begin(terrain_->skyColour());
+    render::Camera camera = render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
+    target_->begin(render::TerrainRenderer::clearColour({}));
     terrain_->draw(camera, kWidth, kHeight, {});
     target_->resolve();
     overlay.draw(panel, kWidth, kHeight);
@@ -231,14 +234,14 @@ TEST_F(Padding, PaddedSamplesAreNotDrawn) {
     render::Camera camera;
     camera.position = {32.0f, 120.0f, 32.001f};
     camera.target = {32.0f, 0.0f, 32.0f};
-    camera.up = {0.0f, 0.0f, -1.0f};  // +z (rows) down the image
+    // Looking straight down, north (-z) is up: +z (rows) runs down the image.
     camera.nearPlane = 1.0f;
     camera.farPlane = 1000.0f;
-    target.begin(terrain.skyColour());
-    terrain.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full, .fogDensity = 0.0f});
+    target.begin(render::TerrainRenderer::clearColour({}));
+    terrain.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full, .lighting = {.fogDensity = 0.0f}});
     gpu::Image image = target.read();
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/padding.png", image);
-    glm::vec3 sky = terrain.skyColour() * 255.0f;
+    glm::vec3 sky = render::Lighting{}.sky * 255.0f;
     // Rows 0..32 (real) above the image centre, rows 33..64 (padding) below.
     int cx = kWidth / 2;
     glm::vec3 upper = meanColour(image, kHeight / 2 - 50, kHeight / 2 - 10, cx - 60, cx + 60);

@@ -23,7 +23,8 @@ struct Preprocessed {
     std::vector<std::string> files;
 };
 
-void appendFile(Preprocessed& out, std::string_view file, std::string_view defines, int depth) {
+void appendFile(Preprocessed& out, std::string_view file, std::string_view defines,
+                std::span<const IncludeAlias> aliases, int depth) {
     SIERRA_CHECK(depth < 8, "shader includes nested too deep at ", file);
     int fileIndex = int(out.files.size());
     out.files.emplace_back(file);
@@ -41,8 +42,11 @@ void appendFile(Preprocessed& out, std::string_view file, std::string_view defin
             size_t a = line.find('"'), b = line.rfind('"');
             SIERRA_CHECK(a != std::string::npos && b > a, file, ":", lineNo,
                          ": malformed #include (write #include \"name.glsl\")");
+            std::string name = line.substr(a + 1, b - a - 1);
+            for (const IncludeAlias& alias : aliases)
+                if (alias.name == name) name = std::string(alias.file);
             out.text += msg("#line 1 ", int(out.files.size()), "\n");
-            appendFile(out, line.substr(a + 1, b - a - 1), {}, depth + 1);
+            appendFile(out, name, {}, aliases, depth + 1);
             out.text += msg("#line ", lineNo + 1, " ", fileIndex, "\n");
             continue;
         }
@@ -50,9 +54,9 @@ void appendFile(Preprocessed& out, std::string_view file, std::string_view defin
     }
 }
 
-Preprocessed preprocess(std::string_view file, std::string_view defines) {
+Preprocessed preprocess(std::string_view file, std::string_view defines, std::span<const IncludeAlias> aliases) {
     Preprocessed out;
-    appendFile(out, file, defines, 0);
+    appendFile(out, file, defines, aliases, 0);
     return out;
 }
 
@@ -85,8 +89,9 @@ std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
     return log.c_str();  // drop the terminating zero the driver wrote
 }
 
-GLuint compile(GLenum stage, std::string_view file, std::string_view defines) {
-    Preprocessed source = preprocess(file, defines);
+GLuint compile(GLenum stage, std::string_view file, std::string_view defines,
+               std::span<const IncludeAlias> aliases) {
+    Preprocessed source = preprocess(file, defines, aliases);
     GLuint shader = glCreateShader(stage);
     const char* text = source.text.c_str();
     glShaderSource(shader, 1, &text, nullptr);
@@ -103,8 +108,9 @@ GLuint compile(GLenum stage, std::string_view file, std::string_view defines) {
 
 }  // namespace
 
-std::string preprocessShader(std::string_view file, std::string_view defines) {
-    return preprocess(file, defines).text;
+std::string preprocessShader(std::string_view file, std::string_view defines,
+                             std::span<const IncludeAlias> aliases) {
+    return preprocess(file, defines, aliases).text;
 }
 
 Program Program::create(const ProgramDesc& desc) {
@@ -115,7 +121,7 @@ Program Program::create(const ProgramDesc& desc) {
     try {
         auto add = [&](GLenum stage, std::string_view file) {
             if (file.empty()) return;
-            shaders.push_back(compile(stage, file, desc.defines));
+            shaders.push_back(compile(stage, file, desc.defines, desc.aliases));
             glAttachShader(id, shaders.back());
             names += (names.empty() ? "" : " + ") + std::string(file);
         };

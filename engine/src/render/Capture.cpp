@@ -13,7 +13,7 @@
 
 namespace sierra::render {
 
-void writePng(const std::string& path, const gpu::Image& image) {
+void writePng(const std::string& path, const gpu::Image& image, bool alpha) {
     SIERRA_CHECK(image.width > 0 && image.height > 0 &&
                      image.rgba.size() == size_t(image.width) * image.height * 4,
                  "cannot write ", path, ": the image is empty or inconsistent");
@@ -22,16 +22,18 @@ void writePng(const std::string& path, const gpu::Image& image) {
     std::error_code ec;
     if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
     if (ec) throw Error(msg("cannot create directory ", target.parent_path().string(), ": ", ec.message()));
-    std::vector<uint8_t> rgb(size_t(image.width) * image.height * 3);
+    const int channels = alpha ? 4 : 3;
+    std::vector<uint8_t> rgb(size_t(image.width) * image.height * size_t(channels));
     for (size_t p = 0, n = size_t(image.width) * image.height; p < n; ++p)
-        for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = image.rgba[p * 4 + c];
+        for (int c = 0; c < channels; ++c) rgb[p * size_t(channels) + size_t(c)] = image.rgba[p * 4 + size_t(c)];
     std::vector<uint8_t> png;
     auto append = [](void* context, void* data, int size) {
         auto* out = static_cast<std::vector<uint8_t>*>(context);
         const auto* bytes = static_cast<const uint8_t*>(data);
         out->insert(out->end(), bytes, bytes + size);
     };
-    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, rgb.data(), image.width * 3))
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, channels, rgb.data(),
+                                image.width * channels))
         throw Error(msg("cannot write ", path, ": PNG encoding failed"));
     writeFileAtomic(path, png);
 }

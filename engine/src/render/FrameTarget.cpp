@@ -27,10 +27,10 @@ FrameTarget FrameTarget::create(const FrameTargetDesc& desc) {
     return target;
 }
 
-void FrameTarget::begin(const glm::vec3& clearColour) {
+void FrameTarget::begin(const glm::vec4& clearColour) {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_ ? fbo_.id() : 0);
     glViewport(0, 0, desc_.width, desc_.height);
-    glClearColor(clearColour.r, clearColour.g, clearColour.b, 1.0f);
+    glClearColor(clearColour.r, clearColour.g, clearColour.b, clearColour.a);
     glClearDepth(1.0);
     glDepthMask(GL_TRUE);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

@@ -5,6 +5,7 @@
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 
 namespace sierra::terrain {
@@ -63,6 +64,42 @@ ColourRamp::ColourRamp(const ColourRampDesc& desc) : desc_(desc) {
             add(sea, kAtlasLow);
             add(std::max(hi, sea), kAtlasHigh);
             break;
+        case RampScheme::Elevation: {
+            const float tree = desc.treeLine, snow = desc.snowLine;
+            SIERRA_CHECK(std::isfinite(tree) && std::isfinite(snow) && tree > 0.0f && snow >= tree,
+                         "tree line ", tree, " m and snow line ", snow,
+                         " m: need 0 < tree line <= snow line");
+            constexpr float kSandMetres = 5.0f;
+            float ground = lo;  // where the land colours start
+            if (sea > lo) {
+                add(sea - 2000.0f, kDeepWater);
+                add(sea - 200.0f, kMidWater);
+                add(sea, kShallowWater);
+                add(sea, kSand);
+                add(sea + kSandMetres, kSand);
+                ground = sea + kSandMetres;
+            }
+            // Absolute stops above the ground; those below it are dropped so
+            // the land starts with the colour the ground height has.
+            const Stop land[] = {{0.0f, kLowGrass},        {0.5f * tree, kHighGrass},
+                                 {0.8f * tree, kScrub},    {tree, kBrownRock},
+                                 {snow, kGreyRock},        {snow, kSnow},
+                                 {snow + 1500.0f, kPeak}};
+            size_t first = 0;
+            while (first + 1 < std::size(land) && land[first + 1].height <= ground) ++first;
+            if (land[first].height < ground) {
+                // Interpolate the colour at the ground between the surrounding stops.
+                const Stop& a = land[first];
+                const Stop& b = land[std::min(first + 1, std::size(land) - 1)];
+                float t = b.height > a.height ? std::clamp((ground - a.height) / (b.height - a.height), 0.0f, 1.0f)
+                                              : 1.0f;
+                add(ground, {lerp8(a.colour.r, b.colour.r, t), lerp8(a.colour.g, b.colour.g, t),
+                             lerp8(a.colour.b, b.colour.b, t)});
+                ++first;
+            }
+            for (size_t k = first; k < std::size(land); ++k) add(land[k].height, land[k].colour);
+            break;
+        }
         case RampScheme::Hypsometric: {
             if (sea > lo) {
                 add(lo, kDeepWater);

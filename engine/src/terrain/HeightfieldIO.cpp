@@ -1,5 +1,7 @@
 #include <sierra/terrain/HeightfieldIO.h>
 
+#include "terrain/Npz.h"
+
 #include <sierra/terrain/FileIO.h>
 #include <sierra/terrain/Padding.h>
 
@@ -34,7 +36,7 @@ constexpr int kSrtm1Side = 3601;
 constexpr int16_t kSrtmNoData = -32768;
 
 const char* const kSupported =
-    ".png .pgm .r16 .r32 .hgt .npy"
+    ".png .pgm .r16 .r32 .hgt .npy .npz"
 #ifdef SIERRA_WITH_GDAL
     " .tif .tiff";
 #else
@@ -684,10 +686,10 @@ void checkFieldSize(const std::string& what, int64_t width, int64_t height, int 
 
 Heightfield loadHeightfield(const std::string& path, const LoadOptions& options) {
     const std::string ext = lowerExtension(path);
-    enum class Format { Png, Pgm, R16, R32, Hgt, Npy, Tiff };
+    enum class Format { Png, Pgm, R16, R32, Hgt, Npy, Npz, Tiff };
     static const std::pair<const char*, Format> kFormats[] = {
         {".png", Format::Png},  {".pgm", Format::Pgm},  {".r16", Format::R16},
-        {".r32", Format::R32},  {".hgt", Format::Hgt},  {".npy", Format::Npy},
+        {".r32", Format::R32},  {".hgt", Format::Hgt},  {".npy", Format::Npy},  {".npz", Format::Npz},
         {".tif", Format::Tiff}, {".tiff", Format::Tiff}};
     const auto known = std::find_if(std::begin(kFormats), std::end(kFormats),
                                     [&](const auto& entry) { return ext == entry.first; });
@@ -727,6 +729,7 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
             reason = "the largest SRTM tile (3601x3601, SRTM1) is 25934402 bytes";
             break;
         case Format::Npy:  // float64: 8 bytes a sample
+        case Format::Npz:  // the same array, stored or deflated
             maxBytes = samples * 8 + kHeaderSlack;
             break;
         case Format::Tiff:
@@ -746,6 +749,8 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
             return loadHgt(path, bytes);
         case Format::Npy:
             return loadNpy(path, bytes, options);
+        case Format::Npz:
+            return loadNpy(path, npzMember(path, bytes, {}, maxBytes), options);
         case Format::Tiff:
             break;
     }

@@ -7,10 +7,10 @@
 
 namespace sierra::render {
 
-// Writes an RGBA8 image as an RGB PNG. Written to a temporary name in the same
-// directory, then renamed: a failed write never leaves a half file. Creates the
-// parent directory if needed.
-void writePng(const std::string& path, const gpu::Image& image);
+// Writes an RGBA8 image as an RGB PNG (or RGBA with `alpha`). Written to a
+// temporary name in the same directory, then renamed: a failed write never
+// leaves a half file. Creates the parent directory if needed.
+void writePng(const std::string& path, const gpu::Image& image, bool alpha = false);
 
 // Reads a PNG as RGBA8; throws sierra::Error if it cannot.
 gpu::Image readPng(const std::string& path);

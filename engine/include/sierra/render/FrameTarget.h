@@ -19,8 +19,8 @@ class FrameTarget {
 public:
     static FrameTarget create(const FrameTargetDesc& desc);
 
-    // Binds the target, sets the viewport, clears colour and depth.
-    void begin(const glm::vec3& clearColour);
+    // Binds the target, sets the viewport, clears colour (RGBA) and depth.
+    void begin(const glm::vec4& clearColour);
     // Resolves multisampling into the pbuffer and binds the pbuffer for reading.
     void resolve();
     // resolve() then a synchronous read-back.

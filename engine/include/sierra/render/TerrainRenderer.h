@@ -1,34 +1,47 @@
 #pragma once
-// The terrain pass: one heightfield on the GPU, drawn either as the
-// view-dependent SBT mesh streamed every frame or as the full grid (every
-// cell, indexed triangles), with the same shading so frames compare pixel for
-// pixel.
+// A frame of a terrain as passes: the terrain's GPU data (TerrainGpu), the
+// mesh of the frame (SbtStream: the view-dependent SBT streamed every frame,
+// or the full grid), the per-frame uniform block, then the passes in order:
+// the shaded terrain, the wireframe when asked for, and any pass added with
+// addPass() (the overlays). The SBT and the full grid shade alike, so frames
+// compare pixel for pixel.
 
 #include <sierra/gpu/Objects.h>
-#include <sierra/gpu/Program.h>
-#include <sierra/gpu/StreamRing.h>
 #include <sierra/render/Camera.h>
+#include <sierra/render/FrameUniforms.h>
+#include <sierra/render/Pass.h>
+#include <sierra/render/SbtStream.h>
+#include <sierra/render/TerrainGpu.h>
+#include <sierra/render/passes/DepthPass.h>
 #include <sierra/terrain/Heightfield.h>
 
 #include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace sierra::render {
-
-enum class Lod { Sbt, Full };
-
-Lod parseLod(const std::string& name);  // "sbt" or "full"; throws otherwise
-const char* lodName(Lod lod);
 
 struct TerrainDesc {
     // The terrain, (2^n+1)^2 samples (pad with padToPowerOfTwoPlusOne first).
     const terrain::Heightfield* field = nullptr;
-    // Sea level as a stored height (the units of the heightfield's samples);
-    // NaN = automatic: the height below which 30% of the samples lie.
+    // Sea level as a stored height (the heightfield's units); NaN = no water.
     float seaLevel = std::numeric_limits<float>::quiet_NaN();
-    int threads = 0;  // CPU threads for the error pass and refinement, 0 = default
+    int threads = 0;                      // CPU threads for the error pass, 0 = default
+    std::string surface = "hypsometric";  // the terrain pass's surface function
+    bool metric = false;                  // heights in metres: absolute-elevation colours
+    float treeLine = 2000.0f;             // metres (metric only)
+    float snowLine = 3000.0f;             // metres (metric only)
+};
+
+struct Lighting {
+    // Towards the sun (unit): compass bearing 232.1 degrees (south-west), 52.8 degrees up.
+    glm::vec3 sunDirection = glm::normalize(glm::vec3(-0.45f, 0.75f, 0.35f));
+    float ambient = 0.32f;     // light that reaches faces turned away, 0..1
+    float fogDensity = -1.0f;  // haze per world unit; 0 = off; < 0 = automatic (0.35 / extent)
+    glm::vec3 sky{0.62f, 0.74f, 0.86f};  // sky and fog colour, linear 0..1
+    bool transparent = false;            // sky alpha 0 (RGBA output)
 };
 
 struct DrawOptions {
@@ -36,41 +49,42 @@ struct DrawOptions {
     float tau = 1.0f;        // screen-space error threshold in pixels (SBT), default 1.0
     bool geomorph = true;    // SBT: blend newly active vertices in (no popping)
     bool cull = true;        // SBT: frustum culling by bounding spheres
-    bool wireframe = false;  // overlay the triangulation's edges
+    bool wireframe = false;  // the wireframe pass after the terrain
     int threads = 0;         // refinement threads, 0 = default
-    float fogDensity = -1.0f;  // haze per world unit; < 0 = automatic from the extent
+    Lighting lighting;
 };
 
-// What one draw cost and produced. CPU stages in wall-clock ms; drawMs is GPU
-// time from a timer query, filled by collectGpuTime().
-struct DrawStats {
-    double refineMs = 0.0;   // refinement + strip emission (one pass)
-    double uploadMs = 0.0;   // copy into the persistently mapped ring
-    double submitMs = 0.0;   // CPU time issuing the draw calls
-    double drawMs = 0.0;     // GPU time of the terrain pass
-    uint64_t triangles = 0;  // triangles drawn (strip: non-degenerate)
-    uint64_t indices = 0;    // indices drawn, restarts included
-    uint64_t bytesUploaded = 0;
+// What one frame cost and produced. drawMs is GPU time from a timer query,
+// filled by collectGpuTime().
+struct DrawStats : MeshStats {
+    double submitMs = 0.0;  // CPU time issuing the passes
+    double drawMs = 0.0;    // GPU time of the passes
     double indicesPerTriangle() const { return triangles ? double(indices) / double(triangles) : 0.0; }
 };
 
 class TerrainRenderer {
 public:
-    // Builds the SBT errors and radii, uploads the terrain data and colour ramp.
     static TerrainRenderer create(const TerrainDesc& desc);
     TerrainRenderer(TerrainRenderer&&) noexcept;
     TerrainRenderer& operator=(TerrainRenderer&&) noexcept;
     ~TerrainRenderer();
 
-    // Draws the terrain into the bound framebuffer of size width x height (the
-    // caller clears it). Depth test on, state restored afterwards.
+    // Draws the frame's passes into the bound framebuffer of size width x height
+    // (the caller clears it, see clearColour()). GL state is left as found.
     DrawStats draw(const Camera& camera, int width, int height, const DrawOptions& options);
     // Waits for the GPU timer of the last draw() and stores it in stats.drawMs.
     void collectGpuTime(DrawStats& stats);
+    // Runs after the terrain and wireframe passes, in the order added.
+    void addPass(std::unique_ptr<Pass> pass);
+    // The linear eye-space depth of the terrain from `camera` (NaN where none).
+    DepthImage renderDepth(const Camera& camera, int width, int height, const DrawOptions& options);
 
+    // The frame's clear colour: the sky, alpha 0 when transparent.
+    static glm::vec4 clearColour(const Lighting& lighting);
+
+    TerrainGpu& terrain();
     SceneBounds bounds() const;
-    glm::vec3 skyColour() const;
-    float seaLevel() const;      // stored height units
+    float seaLevel() const;      // stored height units; NaN without water
     int side() const;            // samples per side
     double errorPassMs() const;  // time spent building errors and radii
     const std::string& summary() const;  // one line: grid, spacing, height range
@@ -78,6 +92,7 @@ public:
 private:
     struct State;
     explicit TerrainRenderer(std::unique_ptr<State> state);
+    FrameUniformData frameUniforms(const Camera& camera, int width, int height, const DrawOptions& options) const;
     std::unique_ptr<State> state_;
 };
 

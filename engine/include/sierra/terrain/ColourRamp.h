@@ -24,6 +24,12 @@ enum class RampScheme {
     Plasma,
     // Sober "first atlas" colours: muted blue water, muted green land.
     Atlas,
+    // Absolute elevation for metric heights (metres): water graded by depth
+    // (shallow at sea level, deep 2000 m below), a 5 m sand band above sea
+    // level, grass to half the tree line, scrub and brown rock up to the tree
+    // line, grey rock above it, snow above the snow line. The same height gets
+    // the same colour on every DEM.
+    Elevation,
 };
 
 struct ColourRampDesc {
@@ -31,6 +37,8 @@ struct ColourRampDesc {
     float minHeight = 0.0f;  // stored height of the first colour; lower heights clamp to it
     float maxHeight = 1.0f;  // stored height of the last colour, > minHeight
     float seaLevel = 0.0f;   // water below, land at or above; outside [min, max] = all land/water
+    float treeLine = 2000.0f;  // Elevation: metres above which no vegetation grows
+    float snowLine = 3000.0f;  // Elevation: metres above which snow lies, >= treeLine
 };
 
 // Piecewise-linear colour stops over stored heights. Cheap to copy.

@@ -13,6 +13,8 @@
 //         spacing set to the nominal 90 m (1201) or 30 m (3601)
 //   .npy  NumPy <f4, <f8, <i2, <u2 or |u1, 2-D (rows = height, columns =
 //         width), C order, format version 1.0 or 2.0
+//   .npz  NumPy archive (numpy.savez, stored or deflated): the first member
+//         holding a 2-D array, read as .npy
 //   .tif / .tiff  GeoTIFF band 1, only when built with SIERRA_WITH_GDAL
 // File row 0 is row j = 0. Float input must be finite (NaN/Inf rejected).
 // Every loader throws sierra::Error with one line naming the file, what is

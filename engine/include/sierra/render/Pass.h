@@ -1,0 +1,34 @@
+#pragma once
+// A pass draws one layer of a frame (the shaded terrain, the wireframe, the
+// overlays to come) from what the frame shares: the terrain's GPU data, the
+// mesh the SBT stream prepared, and the per-frame uniform block, already
+// bound. A pass leaves the GL state exactly as it found it (gpu::GlStateScope).
+// A new style is a new pass or a new surface function of the terrain pass,
+// never a copy of the terrain shader.
+
+#include <sierra/render/Camera.h>
+#include <sierra/render/FrameUniforms.h>
+#include <sierra/render/SbtStream.h>
+
+namespace sierra::render {
+
+class TerrainGpu;
+
+struct FrameContext {
+    TerrainGpu& terrain;
+    const MeshDraw& mesh;
+    const FrameUniformData& uniforms;
+    const Camera& camera;
+    int width = 0;   // frame size, pixels
+    int height = 0;
+};
+
+class Pass {
+public:
+    virtual ~Pass() = default;
+    virtual const char* name() const = 0;
+    // Draws into the bound framebuffer with the frame's uniforms bound.
+    virtual void draw(const FrameContext& frame) = 0;
+};
+
+}  // namespace sierra::render

@@ -1,0 +1,34 @@
+#pragma once
+// How a scene (the GL-free description of a render job, sierra/scene) becomes
+// what the renderer draws: the cameras of its frames, the draw options and
+// lighting.
+
+#include <sierra/render/Camera.h>
+#include <sierra/render/TerrainRenderer.h>
+#include <sierra/scene/Scene.h>
+
+#include <vector>
+
+namespace sierra::render {
+
+// Every camera of the scene's sequence (path.frames of them; the range, if
+// any, is the caller's to pick), for a terrain with `bounds`:
+//   - path none: the scene's camera (position, or azimuth / elevation /
+//     distance around the target; absent values from the default camera,
+//     which frames the whole terrain for the frame's aspect ratio);
+//   - orbit: a full turn around the target at the camera's elevation;
+//   - flyover: low across the terrain from south to north;
+//   - keyframes: the scene's keyframes, interpolated.
+std::vector<Camera> sceneCameras(const scene::Scene& scene, const SceneBounds& bounds);
+
+DrawOptions sceneDrawOptions(const scene::Scene& scene);
+
+// The renderer's description of the scene's terrain: `field` as loaded by
+// scene::loadTerrain, the sea level from scene::resolveSeaLevel, metric
+// colouring when its heights are metres.
+TerrainDesc sceneTerrainDesc(const scene::Scene& scene, const terrain::Heightfield& field, float seaLevel);
+Lighting sceneLighting(const scene::LightingDesc& lighting, bool transparent);
+
+glm::vec3 toGlm(const scene::Vec3& v);
+
+}  // namespace sierra::render

@@ -1,0 +1,66 @@
+#pragma once
+// A terrain's data on the GPU and beside it: the heights and the SBT's
+// per-vertex data as textures, the terrain uniform block, its bounds and sea
+// level, and the SBT itself (errors, radii, refinement). Built once per
+// terrain; every pass and the SBT stream read it.
+//
+// Texture units (fixed, shared by every terrain shader, see terrain_common.glsl):
+//   0  uData     RGBA32F: drawn surface height, geomorph base, error, radius
+//   2  uHeights  R32F: true world heights, linearly filtered
+// Units 1 and 3.. belong to the passes (a surface's ramp or tiles).
+
+#include <sierra/gpu/Objects.h>
+#include <sierra/render/Camera.h>
+#include <sierra/terrain/Heightfield.h>
+
+#include <glm/glm.hpp>
+
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace sierra::render {
+
+class SbtBridge;
+
+struct TerrainGpuDesc {
+    // The terrain, (2^n+1)^2 samples (pad with padToPowerOfTwoPlusOne first).
+    const terrain::Heightfield* field = nullptr;
+    // Sea level as a stored height (the heightfield's units); NaN = no water.
+    float seaLevel = std::numeric_limits<float>::quiet_NaN();
+    int threads = 0;  // CPU threads for the error pass, 0 = default
+};
+
+class TerrainGpu {
+public:
+    static TerrainGpu create(const TerrainGpuDesc& desc);
+    TerrainGpu(TerrainGpu&&) noexcept;
+    TerrainGpu& operator=(TerrainGpu&&) noexcept;
+    ~TerrainGpu();
+
+    // Binds the data textures (units 0 and 2) and the terrain uniform block.
+    void bind() const;
+
+    SbtBridge& sbt();
+    // Every grid cell as indexed triangles, built on first use.
+    const gpu::Buffer& fullGridIndices();
+    uint64_t fullGridIndexCount() const;
+
+    SceneBounds bounds() const;      // the real samples' box (padding excluded), world units
+    glm::vec2 worldRange() const;    // lowest and highest world height of the real samples
+    bool hasWater() const;
+    float seaLevel() const;          // stored height units; NaN without water
+    float worldSeaLevel() const;     // world units; NaN without water
+    int side() const;                // samples per side
+    glm::vec2 spacing() const;       // world units between samples along x and z
+    float verticalScale() const;     // stored height -> world height
+    double errorPassMs() const;      // time spent building errors and radii
+    const std::string& summary() const;  // one line: grid, spacing, height range, sea level
+
+private:
+    struct State;
+    explicit TerrainGpu(std::unique_ptr<State> state);
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace sierra::render

@@ -1,0 +1,163 @@
+#pragma once
+// A render job described without GL: where the terrain comes from, the camera
+// and its path, lighting, level of detail, outputs and style. Every app fills
+// one Scene (from its defaults, a --config JSON file and its command line, see
+// SceneJson.h and Options.h) and the renderer reads it.
+//
+// Coordinates: world units, y up, x east, z south (north = -z); the grid's
+// sample (i, j) lies at (i * spacingX, height, j * spacingZ).
+// Angles are degrees. Compass bearings (azimuths) are measured clockwise from
+// north (-z) seen from above: 0 = north (-z), 90 = east (+x), 180 = south (+z),
+// 270 = west (-x). A direction of bearing a and altitude e (above the
+// horizon) is (sin a cos e, sin e, -cos a cos e).
+
+#include <sierra/scene/Terrain.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sierra::scene {
+
+struct Vec3 {
+    float x = 0.0f, y = 0.0f, z = 0.0f;
+    bool operator==(const Vec3&) const = default;
+};
+
+// Linear colour, each channel 0..1.
+struct Rgb {
+    float r = 0.0f, g = 0.0f, b = 0.0f;
+    bool operator==(const Rgb&) const = default;
+};
+
+enum class Projection {
+    Perspective,   // fov is the vertical field of view
+    Orthographic,  // map-like; the view's height covers the framed terrain
+};
+
+struct CameraDesc {
+    std::optional<Vec3> position;   // world units; absent = automatic (fits the whole terrain)
+    std::optional<Vec3> target;     // world units; absent = the terrain's centre
+    // Alternative to `position`: the camera at `distance` from the target, at
+    // compass bearing `azimuth` and `elevation` above the horizon, both seen
+    // from the target (degrees). Any one absent = automatic (the default
+    // camera's value for it). Not given together with `position`.
+    std::optional<float> azimuth;    // degrees clockwise from north (-z)
+    std::optional<float> elevation;  // degrees above the horizon, -90..90
+    std::optional<float> distance;   // world units, > 0
+    float fov = 45.0f;               // vertical field of view in degrees, (0, 180); perspective only
+    Projection projection = Projection::Perspective;
+    bool operator==(const CameraDesc&) const = default;
+};
+
+enum class PathType {
+    None,       // every frame uses `camera`
+    Orbit,      // a full turn around the terrain over the frames, each frame fitting the terrain
+    Flyover,    // a pass over the terrain
+    Keyframes,  // `keyframes`, interpolated smoothly over time
+};
+
+struct Keyframe {
+    float time = 0.0f;  // any unit, increasing along the list; frames are spread evenly first..last time
+    Vec3 position;      // world units
+    Vec3 target;        // world units
+    bool operator==(const Keyframe&) const = default;
+};
+
+// Frames first..last (0-based, inclusive) of a sequence: the files and bytes
+// are those of the whole run, so a farm can split one job.
+struct FrameRange {
+    int first = 0;
+    int last = 0;
+    bool operator==(const FrameRange&) const = default;
+};
+
+struct PathDesc {
+    PathType type = PathType::None;
+    int frames = 1;                   // frames in the whole sequence, >= 1
+    std::optional<FrameRange> range;  // absent = all frames
+    std::vector<Keyframe> keyframes;  // for PathType::Keyframes, at least 2
+    bool operator==(const PathDesc&) const = default;
+};
+
+// The default sun is the direction normalize(-0.45, 0.75, 0.35) Sierra always
+// used (bearing 232.125, altitude 52.7609 degrees: south-west, fairly high).
+inline constexpr float kDefaultSunAzimuth = 232.125f;
+inline constexpr float kDefaultSunAltitude = 52.7609f;
+
+struct LightingDesc {
+    float sunAzimuth = kDefaultSunAzimuth;    // bearing of the sun seen from the ground, degrees
+    float sunAltitude = kDefaultSunAltitude;  // degrees above the horizon, -90..90
+    float ambient = 0.32f;                    // ambient light, fraction of full light, 0..1
+    std::optional<float> fog;                 // density per world unit; absent = automatic
+                                              // (0.35 / the terrain's extent); 0 = off
+    Rgb sky{0.62f, 0.74f, 0.86f};             // background and fog colour
+    bool operator==(const LightingDesc&) const = default;
+};
+
+enum class LodMode {
+    Sbt,   // view-dependent SBT refinement
+    Full,  // every grid cell
+};
+
+struct LodDesc {
+    LodMode mode = LodMode::Sbt;
+    float tau = 1.0f;       // SBT screen-space error threshold in pixels, > 0
+    bool geomorph = true;   // blend newly active vertices in, so none pops
+    bool cull = true;       // frustum culling during refinement
+    int threads = 0;        // CPU threads; 0 = sierra::defaultThreadCount()
+    bool operator==(const LodDesc&) const = default;
+};
+
+struct OutputDesc {
+    int width = 1280;                      // frame size in pixels, 1..16384
+    int height = 720;
+    int msaa = 4;                          // samples per pixel: 0 (off), 2, 4 or 8
+    std::string frame = "out/frame.png";   // frame PNG; sequences: NAME_0000.png, ...
+    std::string debug = "out/debug.png";   // ImGui debug snapshot PNG; empty = none
+    std::string depth;                     // linear eye-space depth .npy (float32, NaN = no terrain); empty = none
+    bool alpha = false;                    // RGBA PNG with a transparent sky
+    bool operator==(const OutputDesc&) const = default;
+};
+
+struct StyleDesc {
+    bool wireframe = false;  // overlay the triangulation
+    // Metric heights are coloured by absolute elevation (metres): vegetation up
+    // to the tree line, rock above it, snow above the snow line. Unitless
+    // heights use a ramp over their own range instead.
+    float treeLine = 2000.0f;  // metres, > 0
+    float snowLine = 3000.0f;  // metres, >= treeLine
+    bool operator==(const StyleDesc&) const = default;
+};
+
+struct Scene {
+    TerrainSource terrain;
+    CameraDesc camera;
+    PathDesc path;
+    LightingDesc lighting;
+    LodDesc lod;
+    OutputDesc output;
+    StyleDesc style;
+    bool operator==(const Scene&) const = default;
+};
+
+// The unit vector towards a direction of compass bearing `azimuth` and
+// `altitude` above the horizon (degrees), in world coordinates (see above).
+Vec3 directionFromAngles(float azimuthDegrees, float altitudeDegrees);
+
+// Names used by the command line and the JSON form (the terrains are in
+// Terrain.h); parse* throw sierra::Error
+// naming `what` (an option or key) and the accepted names.
+const char* toString(Projection projection);  // "perspective" "orthographic"
+const char* toString(PathType type);        // "none" "orbit" "flyover" "keyframes"
+const char* toString(LodMode mode);         // "sbt" "full"
+Projection parseProjection(const std::string& text, const std::string& what);
+PathType parsePathType(const std::string& text, const std::string& what);
+LodMode parseLodMode(const std::string& text, const std::string& what);
+
+// Checks the scene as a whole (ranges, and fields that exclude each other);
+// throws sierra::Error with one line saying what is wrong and what would be
+// right, naming the JSON key and the option (e.g. "lod.tau (--tau)").
+void validateScene(const Scene& scene);
+
+}  // namespace sierra::scene

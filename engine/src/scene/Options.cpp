@@ -1,0 +1,316 @@
+#include <sierra/scene/Options.h>
+
+#include <sierra/core/Error.h>
+#include <sierra/scene/SceneJson.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+namespace sierra::scene {
+namespace {
+
+// Numbers are parsed here rather than by CLI11, so every bad value gets the
+// same kind of message: the option, the text and what was expected.
+float parseFloat(const std::string& text, const std::string& option, const char* expected = "a number") {
+    char* end = nullptr;
+    errno = 0;
+    float v = std::strtof(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+        throw Error(msg(option, " '", text, "': expected ", expected));
+    return v;
+}
+
+int parseInt(const std::string& text, const std::string& option, const char* expected = "an integer") {
+    char* end = nullptr;
+    errno = 0;
+    long v = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno == ERANGE || v < std::numeric_limits<int>::min() ||
+        v > std::numeric_limits<int>::max())
+        throw Error(msg(option, " '", text, "': expected ", expected));
+    return int(v);
+}
+
+uint64_t parseUnsigned(const std::string& text, const std::string& option) {
+    char* end = nullptr;
+    errno = 0;
+    unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+    if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || errno == ERANGE)
+        throw Error(msg(option, " '", text, "': expected an integer 0..", std::numeric_limits<uint64_t>::max()));
+    return uint64_t(v);
+}
+
+Vec3 parseVec3(const std::vector<std::string>& words, const std::string& option) {
+    if (words.size() != 3) throw Error(msg(option, ": expected 3 numbers X Y Z"));
+    return {parseFloat(words[0], option, "a number (X)"), parseFloat(words[1], option, "a number (Y)"),
+            parseFloat(words[2], option, "a number (Z)")};
+}
+
+// "R,G,B", each a number.
+Rgb parseRgb(const std::string& text, const std::string& option) {
+    std::vector<std::string> parts(1);
+    for (char ch : text) {
+        if (ch == ',')
+            parts.emplace_back();
+        else
+            parts.back() += ch;
+    }
+    if (parts.size() != 3) throw Error(msg(option, " '", text, "': expected R,G,B, each 0..1, e.g. 0.62,0.74,0.86"));
+    return {parseFloat(parts[0], option, "R,G,B numbers"), parseFloat(parts[1], option, "R,G,B numbers"),
+            parseFloat(parts[2], option, "R,G,B numbers")};
+}
+
+std::string show(float v) { return msg(v); }
+
+std::string show(const std::optional<float>& v, const char* absent = "auto") { return v ? msg(*v) : absent; }
+
+std::string show(const std::optional<Vec3>& v, const char* absent = "auto") {
+    return v ? msg(v->x, " ", v->y, " ", v->z) : absent;
+}
+
+}  // namespace
+
+CLI::Option* SceneOptions::add(const char* name, const std::string& help, const std::string& group,
+                               const char* typeName, const std::string& defaultText, int values, Setter set) {
+    std::vector<std::string>& storage = values_.emplace_back();
+    CLI::Option* option = app_.add_option(name, storage, help);
+    // Given twice, the last one counts (as a later word overrides an earlier one).
+    option->expected(values)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    option->type_name(typeName)->group(group);
+    if (!defaultText.empty()) option->default_str(defaultText);
+    entries_.push_back({option, &storage, std::move(set)});
+    return option;
+}
+
+CLI::Option* SceneOptions::addFlag(const char* name, const std::string& help, const std::string& group,
+                                   Setter set) {
+    CLI::Option* option = app_.add_flag(name)->description(help)->group(group);
+    entries_.push_back({option, nullptr, std::move(set)});
+    return option;
+}
+
+SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
+    : app_(app), scene_(scene), defaults_(scene) {
+    const Scene& d = defaults_;
+    using Words = const std::vector<std::string>&;
+
+    configOption_ = app_.add_option("--config", config_,
+                                    "Scene file (JSON, see docs/scene.md) loaded first; options given beside it "
+                                    "override it")
+                        ->type_name("FILE.json")
+                        ->group("Scene file");
+    printOption_ = app_.add_flag("--print-config")
+                       ->description("Print the effective scene as JSON and exit")
+                       ->group("Scene file");
+
+    if (groups & kTerrainOptions) {
+        const std::string g = "Terrain";
+        auto* heightmap = add(
+            "--heightmap",
+            "Heightmap to load: .png (8/16-bit grey), .pgm, .r16/.r32 (with --raw-size), .hgt, .npy (.tif with GDAL)",
+            g, "FILE", d.terrain.heightmap.empty() ? "" : d.terrain.heightmap, 1,
+            [](Scene& s, Words w) { s.terrain.heightmap = w[0]; });
+        // The check alone, without its "FILE" appended to the type name in --help.
+        heightmap->check(CLI::Validator(CLI::ExistingFile).description(""));
+        auto* generate = add("--generate", "Generate a diamond-square terrain of N x N samples, N = 2^n + 1", g, "N",
+                             msg(d.terrain.generateSize), 1, [](Scene& s, Words w) {
+                                 s.terrain.heightmap.clear();
+                                 s.terrain.generateSize = parseInt(w[0], "--generate", "an integer 2^n + 1");
+                             });
+        generate->excludes(heightmap);
+        add("--seed", "Seed of the generated terrain", g, "S", msg(d.terrain.seed), 1,
+            [](Scene& s, Words w) { s.terrain.seed = parseUnsigned(w[0], "--seed"); });
+        add("--roughness", "Amplitude factor of the generator's random offsets (> 0)", g, "R",
+            show(d.terrain.roughness), 1,
+            [](Scene& s, Words w) { s.terrain.roughness = parseFloat(w[0], "--roughness"); });
+        add("--hurst", "Generator's per-level amplitude factor 2^-H (default: the generator's own scaling)", g, "H",
+            show(d.terrain.hurst, ""), 1,
+            [](Scene& s, Words w) { s.terrain.hurst = parseFloat(w[0], "--hurst"); });
+        add("--raw-size", "Samples per row and rows of a .r16/.r32 heightmap (each 1..65537)", g, "WxH",
+            d.terrain.rawWidth ? msg(d.terrain.rawWidth, "x", d.terrain.rawHeight) : "", 1, [](Scene& s, Words w) {
+                auto [width, height] = parseRawSize(w[0], "--raw-size");
+                s.terrain.rawWidth = width;
+                s.terrain.rawHeight = height;
+            });
+        add("--spacing", "World units between samples (0 = the file's: 1; SRTM 90/30 m; GeoTIFF pixel size)", g, "S",
+            show(d.terrain.spacing), 1,
+            [](Scene& s, Words w) { s.terrain.spacing = parseFloat(w[0], "--spacing"); });
+        add("--vertical-scale",
+            "Stored height to world height (0 = automatic: 1 for metres, else relief 20% of the extent)", g, "V",
+            show(d.terrain.verticalScale), 1,
+            [](Scene& s, Words w) { s.terrain.verticalScale = parseFloat(w[0], "--vertical-scale"); });
+        std::string seaDefault = d.terrain.seaLevel.mode == SeaLevel::Mode::Value ? show(d.terrain.seaLevel.value)
+                                                                                   : toString(d.terrain.seaLevel.mode);
+        add("--sea-level", "Water level in stored height units, 'auto' (from the data) or 'none'", g, "H|auto|none",
+            seaDefault, 1, [](Scene& s, Words w) {
+                if (w[0] == "auto")
+                    s.terrain.seaLevel = {};
+                else if (w[0] == "none")
+                    s.terrain.seaLevel = {.mode = SeaLevel::Mode::None};
+                else
+                    s.terrain.seaLevel = {.mode = SeaLevel::Mode::Value,
+                                          .value = parseFloat(w[0], "--sea-level", "a height, 'auto' or 'none'")};
+            });
+        add("--height-units", "What heights measure: auto (metres for SRTM/GeoTIFF), m (metres) or none", g,
+            "auto|m|none", toString(d.terrain.heightUnits), 1,
+            [](Scene& s, Words w) { s.terrain.heightUnits = parseHeightUnits(w[0], "--height-units"); });
+        add("--channel", "Height channel of a colour image: luminance, r, g or b (default: grey images only)", g,
+            "NAME", d.terrain.channel == Channel::Grey ? "" : toString(d.terrain.channel), 1,
+            [](Scene& s, Words w) { s.terrain.channel = parseChannel(w[0], "--channel"); });
+    }
+
+    if (groups & kCameraOptions) {
+        const std::string g = "Camera";
+        auto* pos = add("--camera-pos", "Camera position X Y Z in world units (default: fits the whole terrain)", g,
+                        "X Y Z", show(d.camera.position), 3, [](Scene& s, Words w) {
+                            s.camera.position = parseVec3(w, "--camera-pos");
+                            // Given here, it replaces a scene file's orbit-style camera.
+                            s.camera.azimuth.reset();
+                            s.camera.elevation.reset();
+                            s.camera.distance.reset();
+                        });
+        add("--camera-target", "Point the camera looks at, X Y Z (default: the terrain's centre)", g, "X Y Z",
+            show(d.camera.target), 3, [](Scene& s, Words w) { s.camera.target = parseVec3(w, "--camera-target"); });
+        // The three angles replace a scene file's position, as --camera-pos replaces them.
+        auto* azimuth = add("--azimuth", "Camera bearing from the target, degrees clockwise from north (-z)", g, "DEG",
+                            show(d.camera.azimuth), 1, [](Scene& s, Words w) {
+                                s.camera.azimuth = parseFloat(w[0], "--azimuth");
+                                s.camera.position.reset();
+                            });
+        auto* elevation = add("--elevation", "Camera elevation above the horizon seen from the target, degrees", g,
+                              "DEG", show(d.camera.elevation), 1, [](Scene& s, Words w) {
+                                  s.camera.elevation = parseFloat(w[0], "--elevation");
+                                  s.camera.position.reset();
+                              });
+        auto* distance = add("--distance", "Camera distance from the target, world units", g, "D",
+                             show(d.camera.distance), 1, [](Scene& s, Words w) {
+                                 s.camera.distance = parseFloat(w[0], "--distance");
+                                 s.camera.position.reset();
+                             });
+        pos->excludes(azimuth)->excludes(elevation)->excludes(distance);
+        add("--fov", "Vertical field of view in degrees, (0, 180)", g, "DEG", show(d.camera.fov), 1,
+            [](Scene& s, Words w) { s.camera.fov = parseFloat(w[0], "--fov"); });
+        addFlag("--ortho", "Orthographic projection (map-like); tau stays in pixels", g,
+                [](Scene& s, Words) { s.camera.projection = Projection::Orthographic; });
+    }
+
+    if (groups & kPathOptions) {
+        const std::string g = "Camera path";
+        add("--path", "Camera path over the frames: none, orbit, flyover or keyframes (from --config)", g,
+            "none|orbit|flyover|keyframes", toString(d.path.type), 1,
+            [](Scene& s, Words w) { s.path.type = parsePathType(w[0], "--path"); });
+        add("--frames",
+            "N frames, or A:B = frames A..B (0-based, inclusive) of the sequence (its count from --frame-count or "
+            "--config), same files and bytes as the whole run",
+            g, "N|A:B", msg(d.path.frames), 1, [](Scene& s, Words w) {
+                const std::string& text = w[0];
+                size_t colon = text.find(':');
+                if (colon == std::string::npos) {
+                    s.path.frames = parseInt(text, "--frames", "N (>= 1) or A:B");
+                    s.path.range.reset();
+                } else {
+                    const char* expected = "A:B, two integers 0 <= A <= B";
+                    s.path.range = FrameRange{parseInt(text.substr(0, colon), "--frames", expected),
+                                              parseInt(text.substr(colon + 1), "--frames", expected)};
+                }
+            });
+        frameCountOption_ = add("--frame-count", "Frames in the whole sequence, for --frames A:B", g, "N", "", 1,
+            [](Scene& s, Words w) { s.path.frames = parseInt(w[0], "--frame-count"); });
+    }
+
+    if (groups & kLightingOptions) {
+        const std::string g = "Lighting";
+        add("--sun-azimuth", "Sun bearing, degrees clockwise from north (-z)", g, "DEG",
+            show(d.lighting.sunAzimuth), 1,
+            [](Scene& s, Words w) { s.lighting.sunAzimuth = parseFloat(w[0], "--sun-azimuth"); });
+        add("--sun-altitude", "Sun altitude above the horizon, degrees", g, "DEG", show(d.lighting.sunAltitude), 1,
+            [](Scene& s, Words w) { s.lighting.sunAltitude = parseFloat(w[0], "--sun-altitude"); });
+        add("--ambient", "Ambient light, fraction of full light 0..1", g, "A", show(d.lighting.ambient), 1,
+            [](Scene& s, Words w) { s.lighting.ambient = parseFloat(w[0], "--ambient"); });
+        add("--fog", "Fog density per world unit; 0 = off, auto = 0.35 / the terrain's extent", g, "D|auto",
+            show(d.lighting.fog), 1, [](Scene& s, Words w) {
+                if (w[0] == "auto")
+                    s.lighting.fog.reset();
+                else
+                    s.lighting.fog = parseFloat(w[0], "--fog", "a density >= 0 or 'auto'");
+            });
+        add("--sky", "Sky and fog colour, each 0..1", g, "R,G,B",
+            msg(d.lighting.sky.r, ",", d.lighting.sky.g, ",", d.lighting.sky.b), 1,
+            [](Scene& s, Words w) { s.lighting.sky = parseRgb(w[0], "--sky"); });
+    }
+
+    if (groups & kLodOptions) {
+        const std::string g = "Level of detail";
+        add("--lod", "Level of detail: sbt (view-dependent) or full (every grid cell)", g, "sbt|full",
+            toString(d.lod.mode), 1, [](Scene& s, Words w) { s.lod.mode = parseLodMode(w[0], "--lod"); });
+        add("--tau", "SBT screen-space error threshold in pixels (> 0)", g, "PX", show(d.lod.tau), 1,
+            [](Scene& s, Words w) { s.lod.tau = parseFloat(w[0], "--tau"); });
+        addFlag("--no-geomorph", "Do not blend newly active vertices in", g,
+                [](Scene& s, Words) { s.lod.geomorph = false; });
+        addFlag("--no-cull", "Do not cull against the view frustum", g, [](Scene& s, Words) { s.lod.cull = false; });
+        add("--threads", "CPU threads (0 = all cores)", g, "N", msg(d.lod.threads), 1,
+            [](Scene& s, Words w) { s.lod.threads = parseInt(w[0], "--threads"); });
+    }
+
+    if (groups & kOutputOptions) {
+        const std::string g = "Output";
+        add("--size", "Frame size in pixels", g, "WxH", msg(d.output.width, "x", d.output.height), 1,
+            [](Scene& s, Words w) {
+                auto [width, height] = parseFrameSize(w[0], "--size");
+                s.output.width = width;
+                s.output.height = height;
+            });
+        add("--msaa", "Samples per pixel: 0 (off), 2, 4 or 8", g, "N", msg(d.output.msaa), 1,
+            [](Scene& s, Words w) { s.output.msaa = parseInt(w[0], "--msaa", "0, 2, 4 or 8"); });
+        add("--out", "Frame PNG (sequences: NAME_0000.png, ...)", g, "FILE.png", d.output.frame, 1,
+            [](Scene& s, Words w) { s.output.frame = w[0]; });
+        add("--depth-out", "Linear eye-space depth per pixel, float32 .npy (NaN where no terrain)", g, "FILE.npy",
+            d.output.depth, 1, [](Scene& s, Words w) { s.output.depth = w[0]; });
+        addFlag("--alpha", "RGBA PNG with a transparent sky", g, [](Scene& s, Words) { s.output.alpha = true; });
+    }
+
+    if (groups & kDebugOptions) {
+        const std::string g = "Debug";
+        auto* debugOut = add("--debug-out", "ImGui debug snapshot PNG", g, "FILE.png", d.output.debug, 1,
+                             [](Scene& s, Words w) { s.output.debug = w[0]; });
+        addFlag("--no-debug", "Do not write the debug snapshot", g, [](Scene& s, Words) { s.output.debug.clear(); })
+            ->excludes(debugOut);
+    }
+
+    if (groups & kStyleOptions) {
+        addFlag("--wireframe", "Overlay the triangulation", "Style", [](Scene& s, Words) { s.style.wireframe = true; });
+        add("--tree-line", "Metric heights: metres above which rock replaces vegetation", "Style", "M",
+            show(d.style.treeLine), 1, [](Scene& s, Words w) { s.style.treeLine = parseFloat(w[0], "--tree-line"); });
+        add("--snow-line", "Metric heights: metres above which snow lies", "Style", "M", show(d.style.snowLine), 1,
+            [](Scene& s, Words w) { s.style.snowLine = parseFloat(w[0], "--snow-line"); });
+    }
+}
+
+void SceneOptions::apply() {
+    Scene scene = defaults_;
+    if (configOption_->count() > 0) scene = sceneFromJson(readJsonFile(config_), config_, scene);
+    const std::vector<std::string> noWords;
+    for (const Entry& e : entries_)
+        if (e.option->count() > 0) e.set(scene, e.words ? *e.words : noWords);
+    if (frameCountOption_ && frameCountOption_->count() > 0 && !scene.path.range)
+        throw Error("--frame-count goes with --frames A:B (a part of a sequence); --frames N alone gives the count");
+    try {
+        validateScene(scene);
+    } catch (const Error& e) {
+        // The message names the key and the option; say which file the key may come from.
+        if (configOption_->count() > 0) throw Error(msg(config_, " with the command line: ", e.what()));
+        throw;
+    }
+    scene_ = scene;
+    if (printConfigRequested()) {
+        std::string text = sceneToText(scene);
+        std::fwrite(text.data(), 1, text.size(), stdout);
+        std::fflush(stdout);
+    }
+}
+
+bool SceneOptions::printConfigRequested() const { return printOption_->count() > 0; }
+
+}  // namespace sierra::scene

@@ -1,0 +1,25 @@
+# Real DEMs (Debian's python-matplotlib-data ships two) render faithfully by
+# default: water only where the data says so, metric heights at scale 1.
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake.inc)
+set(samples /usr/share/matplotlib/mpl-data/sample_data)
+if(NOT EXISTS ${samples}/jacksboro_fault_dem.npz)
+  message(FATAL_ERROR "the sample DEMs are missing: apt-get install python-matplotlib-data")
+endif()
+set(small --size 160x90 --msaa 0 --no-debug)
+# An inland valley, 236..1076 m: no sea, no beaches, relief at true scale.
+run_app(valley_metric EXPECT_OK MESSAGE "no water"
+        COMMAND ${RENDER} --heightmap ${samples}/jacksboro_fault_dem.npz --height-units m --spacing 90 ${small} --out valley.png)
+string(REGEX MATCH "vertical scale 1[^.0-9]" scale "${LAST_OUTPUT}")
+if(NOT scale)
+  message(FATAL_ERROR "metric heights should be drawn at vertical scale 1:\n${LAST_OUTPUT}")
+endif()
+run_app(valley_unitless EXPECT_OK MESSAGE "no water"
+        COMMAND ${RENDER} --heightmap ${samples}/jacksboro_fault_dem.npz ${small} --out valley2.png)
+# Topography and bathymetry: the sea is at 0 m.
+run_app(coast EXPECT_OK MESSAGE "sea level 0"
+        COMMAND ${RENDER} --heightmap ${samples}/topobathy.npz --height-units m --spacing 3000 ${small} --out coast.png)
+# Asked for, or turned off.
+run_app(valley_sea EXPECT_OK MESSAGE "sea level 500"
+        COMMAND ${RENDER} --heightmap ${samples}/jacksboro_fault_dem.npz --height-units m --sea-level 500 ${small} --out sea.png)
+run_app(generated_dry EXPECT_OK MESSAGE "no water" COMMAND ${RENDER} --generate 65 --sea-level none ${small} --out dry.png)
+expect_different(${WORK_DIR}/valley.png ${WORK_DIR}/sea.png "--sea-level 500")

@@ -1,0 +1,263 @@
+// The command-line registrar: each option lands in its field, a --config file
+// is overridden only by options actually given, --frames A:B selects part of a
+// sequence, and bad values are refused with one clear message.
+
+#include <sierra/core/Error.h>
+#include <sierra/scene/Options.h>
+#include <sierra/scene/SceneJson.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace sierra::scene {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+// Parses `args` as a command line of an app with `defaults` and `groups`.
+Scene parse(const std::vector<std::string>& args, const Scene& defaults = {}, unsigned groups = kAllOptions,
+            bool* printed = nullptr) {
+    CLI::App app{"test"};
+    Scene scene = defaults;
+    SceneOptions options(app, scene, groups);
+    std::vector<const char*> argv{"test"};
+    for (const std::string& a : args) argv.push_back(a.c_str());
+    app.parse(int(argv.size()), argv.data());
+    options.apply();
+    if (printed) *printed = options.printConfigRequested();
+    return scene;
+}
+
+// The sierra::Error message of parsing `args` ("" if none).
+std::string parseError(const std::vector<std::string>& args, const Scene& defaults = {}) {
+    try {
+        parse(args, defaults);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+class SceneOptionsTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               (std::string("sierra_scene_options_") + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        heightmap_ = write("hm.npy", "not read by the registrar");
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string write(const std::string& name, const std::string& text) const {
+        std::ofstream((dir_ / name).string(), std::ios::binary) << text;
+        return (dir_ / name).string();
+    }
+
+    fs::path dir_;
+    std::string heightmap_;
+};
+
+TEST_F(SceneOptionsTest, NoOptionsKeepTheAppDefaults) {
+    Scene defaults;
+    defaults.output.msaa = 0;
+    defaults.output.width = 1920;
+    defaults.path = {.type = PathType::Orbit, .frames = 60};
+    EXPECT_EQ(parse({}, defaults), defaults);
+    EXPECT_EQ(parse({}), Scene{});
+}
+
+TEST_F(SceneOptionsTest, EveryOptionLandsInItsField) {
+    Scene want;
+    want.terrain = {.heightmap = heightmap_,
+                    .generateSize = 1025,
+                    .seed = 18446744073709551615ull,
+                    .roughness = 0.5f,
+                    .hurst = 0.8f,
+                    .rawWidth = 20000,
+                    .rawHeight = 3,
+                    .spacing = 30.0f,
+                    .verticalScale = 2.5f,
+                    .seaLevel = {.mode = SeaLevel::Mode::Value, .value = -4.5f},
+                    .heightUnits = HeightUnits::Metres,
+                    .channel = Channel::Green};
+    want.camera = {.position = Vec3{-5.0f, 10.0f, -3.25f},
+                   .target = Vec3{1.0f, 2.0f, 3.0f},
+                   .fov = 60.0f,
+                   .projection = Projection::Orthographic};
+    want.path = {.type = PathType::Flyover, .frames = 10, .range = FrameRange{3, 5}};
+    want.lighting = {.sunAzimuth = 90.0f, .sunAltitude = 10.0f, .ambient = 0.5f, .fog = 0.0f,
+                     .sky = {0.1f, 0.2f, 0.3f}};
+    want.lod = {.mode = LodMode::Full, .tau = 2.5f, .geomorph = false, .cull = false, .threads = 3};
+    want.output = {.width = 640, .height = 480, .msaa = 2, .frame = "a.png", .debug = "", .depth = "d.npy",
+                   .alpha = true};
+    want.style.wireframe = true;
+    Scene got = parse({"--heightmap", heightmap_, "--seed", "18446744073709551615", "--roughness", "0.5", "--hurst",
+                       "0.8", "--raw-size", "20000x3", "--spacing", "30", "--vertical-scale", "2.5", "--sea-level",
+                       "-4.5", "--height-units", "m", "--channel", "g", "--camera-pos", "-5", "10", "-3.25",
+                       "--camera-target", "1", "2", "3", "--fov", "60", "--ortho", "--path", "flyover", "--frames",
+                       "3:5", "--frame-count", "10", "--sun-azimuth", "90", "--sun-altitude", "10", "--ambient",
+                       "0.5", "--fog", "0", "--sky", "0.1,0.2,0.3", "--lod", "full", "--tau", "2.5", "--no-geomorph",
+                       "--no-cull", "--threads", "3", "--size", "640x480", "--msaa", "2", "--out", "a.png",
+                       "--no-debug", "--depth-out", "d.npy", "--alpha", "--wireframe"});
+    EXPECT_EQ(got, want);
+    EXPECT_EQ(sceneToText(got), sceneToText(want));
+}
+
+TEST_F(SceneOptionsTest, RemainingOptionsLandInTheirFields) {
+    Scene s = parse({"--generate", "257", "--azimuth", "30", "--elevation", "45", "--distance", "900", "--debug-out",
+                     "dbg.png", "--sea-level", "none", "--frames", "7", "--path", "orbit"});
+    EXPECT_TRUE(s.terrain.heightmap.empty());
+    EXPECT_EQ(s.terrain.generateSize, 257);
+    EXPECT_EQ(s.camera.azimuth, 30.0f);
+    EXPECT_EQ(s.camera.elevation, 45.0f);
+    EXPECT_EQ(s.camera.distance, 900.0f);
+    EXPECT_EQ(s.output.debug, "dbg.png");
+    EXPECT_EQ(s.terrain.seaLevel.mode, SeaLevel::Mode::None);
+    EXPECT_EQ(s.path.frames, 7);
+    EXPECT_FALSE(s.path.range);
+    EXPECT_EQ(parse({"--sea-level", "auto"}).terrain.seaLevel.mode, SeaLevel::Mode::Auto);
+    EXPECT_EQ(parse({"--height-units", "none"}).terrain.heightUnits, HeightUnits::None);
+    // Given twice, the last one counts.
+    EXPECT_EQ(parse({"--tau", "1", "--tau", "2"}).lod.tau, 2.0f);
+    EXPECT_EQ(parse({"--fog", "0.5", "--fog", "auto"}).lighting.fog, std::nullopt);
+}
+
+TEST_F(SceneOptionsTest, CommandLineOverridesOnlyWhatItGives) {
+    Scene defaults;
+    defaults.output.msaa = 0;
+    std::string config = write("s.json", R"({"camera": {"fov": 30, "azimuth": 10},
+        "lod": {"tau": 3}, "output": {"width": 320, "height": 200}, "path": {"type": "orbit", "frames": 8}})");
+    Scene s = parse({"--config", config, "--fov", "50", "--size", "64x48"}, defaults);
+    EXPECT_EQ(s.camera.fov, 50.0f);
+    EXPECT_EQ(s.camera.azimuth, 10.0f);
+    EXPECT_EQ(s.lod.tau, 3.0f);
+    EXPECT_EQ(s.output.width, 64);
+    EXPECT_EQ(s.output.height, 48);
+    EXPECT_EQ(s.output.msaa, 0);  // neither the file nor the command line: the app's default
+    EXPECT_EQ(s.path.frames, 8);
+
+    // A position given on the command line replaces the file's angles.
+    Scene p = parse({"--config", config, "--camera-pos", "1", "2", "3"});
+    EXPECT_EQ(p.camera.position, (Vec3{1, 2, 3}));
+    EXPECT_FALSE(p.camera.azimuth);
+    // --generate given beside a file naming a heightmap generates.
+    std::string withMap = write("m.json", msg(R"({"terrain": {"heightmap": ")", heightmap_, R"("}})"));
+    EXPECT_EQ(parse({"--config", withMap}).terrain.heightmap, heightmap_);
+    EXPECT_TRUE(parse({"--config", withMap, "--generate", "65"}).terrain.heightmap.empty());
+}
+
+TEST_F(SceneOptionsTest, FramesRangeTakesItsCountFromConfigOrFrameCount) {
+    std::string config = write("s.json", R"({"path": {"type": "orbit", "frames": 8}})");
+    Scene s = parse({"--config", config, "--frames", "3:5"});
+    EXPECT_EQ(s.path.frames, 8);
+    EXPECT_EQ(s.path.range, (FrameRange{3, 5}));
+    Scene t = parse({"--path", "orbit", "--frames", "0:0", "--frame-count", "2"});
+    EXPECT_EQ(t.path.frames, 2);
+    EXPECT_EQ(t.path.range, (FrameRange{0, 0}));
+
+    EXPECT_THAT(parseError({"--path", "orbit", "--frames", "3:12", "--frame-count", "10"}),
+                AllOf(HasSubstr("--frames"), HasSubstr("3:12"), HasSubstr("< 10")));
+    EXPECT_THAT(parseError({"--path", "orbit", "--frames", "5:3", "--frame-count", "10"}), HasSubstr("5:3"));
+    EXPECT_THAT(parseError({"--path", "orbit", "--frames", "-1:3", "--frame-count", "10"}), HasSubstr("-1:3"));
+    EXPECT_THAT(parseError({"--frames", "3:5"}), HasSubstr("< 1"));  // a count of 1 by default
+    EXPECT_THAT(parseError({"--frames", "a:b"}), AllOf(HasSubstr("--frames 'a'"), HasSubstr("A:B")));
+    EXPECT_THAT(parseError({"--frames", "3:"}), HasSubstr("--frames"));
+    EXPECT_THAT(parseError({"--frames", "0"}), HasSubstr("path.frames (--frames)"));
+    EXPECT_THAT(parseError({"--frames", "5", "--frame-count", "5"}), HasSubstr("--frame-count goes with"));
+}
+
+TEST_F(SceneOptionsTest, RawSizeAllowsTheLoadersLimit) {
+    Scene s = parse({"--raw-size", "20000x3"});
+    EXPECT_EQ(s.terrain.rawWidth, 20000);
+    EXPECT_EQ(s.terrain.rawHeight, 3);
+    EXPECT_EQ(parse({"--raw-size", "65537x65537"}).terrain.rawWidth, 65537);
+    EXPECT_THAT(parseError({"--raw-size", "65538x3"}), AllOf(HasSubstr("--raw-size"), HasSubstr("1..65537")));
+    EXPECT_THAT(parseError({"--raw-size", "20000"}), HasSubstr("WIDTHxHEIGHT"));
+    // The frame size keeps its own, smaller limit.
+    EXPECT_THAT(parseError({"--size", "20000x3"}), AllOf(HasSubstr("--size"), HasSubstr("1..16384")));
+}
+
+TEST_F(SceneOptionsTest, BadValuesGiveClearErrors) {
+    EXPECT_THAT(parseError({"--tau", "0"}), AllOf(HasSubstr("lod.tau (--tau)"), HasSubstr("> 0")));
+    EXPECT_THAT(parseError({"--tau", "abc"}), AllOf(HasSubstr("--tau 'abc'"), HasSubstr("expected a number")));
+    EXPECT_THAT(parseError({"--tau", "1.5px"}), HasSubstr("--tau '1.5px'"));
+    EXPECT_THAT(parseError({"--fov", "180"}), AllOf(HasSubstr("--fov"), HasSubstr("(0, 180)")));
+    EXPECT_THAT(parseError({"--fov", "0"}), HasSubstr("--fov"));
+    EXPECT_THAT(parseError({"--camera-pos", "1", "2", "3", "--camera-target", "1", "2", "3"}),
+                AllOf(HasSubstr("--camera-pos"), HasSubstr("--camera-target")));
+    EXPECT_THAT(parseError({"--camera-pos", "1", "2", "3", "--frames", "3"}),
+                AllOf(HasSubstr("--path keyframes"), HasSubstr("3 frames")));
+    EXPECT_EQ(parseError({"--camera-pos", "1", "2", "3", "--frames", "3", "--path", "orbit"}), "");
+    EXPECT_THAT(parseError({"--msaa", "3"}), AllOf(HasSubstr("--msaa"), HasSubstr("0 (off), 2, 4 or 8")));
+    EXPECT_THAT(parseError({"--sky", "1,2"}), AllOf(HasSubstr("--sky"), HasSubstr("R,G,B")));
+    EXPECT_THAT(parseError({"--sky", "1,2,3"}), AllOf(HasSubstr("--sky"), HasSubstr("0..1")));
+    EXPECT_THAT(parseError({"--sea-level", "deep"}), HasSubstr("--sea-level 'deep'"));
+    EXPECT_THAT(parseError({"--lod", "fast"}), AllOf(HasSubstr("--lod"), HasSubstr("sbt, full")));
+    EXPECT_THAT(parseError({"--path", "spiral"}), AllOf(HasSubstr("--path"), HasSubstr("orbit")));
+    EXPECT_THAT(parseError({"--height-units", "feet"}), HasSubstr("--height-units"));
+    EXPECT_THAT(parseError({"--channel", "alpha"}), HasSubstr("--channel"));
+    EXPECT_THAT(parseError({"--size", "0x5"}), HasSubstr("--size"));
+    EXPECT_THAT(parseError({"--depth-out", "d.png"}), HasSubstr(".npy"));
+    EXPECT_THAT(parseError({"--seed", "-1"}), HasSubstr("--seed"));
+    EXPECT_THAT(parseError({"--threads", "1000"}), HasSubstr("--threads"));
+    EXPECT_THAT(parseError({"--elevation", "95"}), HasSubstr("--elevation"));
+    EXPECT_THAT(parseError({"--distance", "0"}), HasSubstr("--distance"));
+    EXPECT_THAT(parseError({"--ambient", "nan"}), HasSubstr("--ambient"));
+    EXPECT_THAT(parseError({"--roughness", "1e39"}), HasSubstr("--roughness"));
+    EXPECT_THAT(parseError({"--fog", "-1"}), HasSubstr("--fog"));
+    // A bad value from a scene file names the file too.
+    std::string config = write("s.json", R"({"lod": {"tau": -1}})");
+    EXPECT_THAT(parseError({"--config", config}), AllOf(HasSubstr("s.json"), HasSubstr("lod.tau")));
+    EXPECT_EQ(parseError({"--config", config, "--tau", "2"}), "");
+}
+
+TEST_F(SceneOptionsTest, ParserRefusesWhatCannotGoTogether) {
+    EXPECT_THROW(parse({"--camera-pos", "1", "2", "3", "--azimuth", "30"}), CLI::ExcludesError);
+    EXPECT_THROW(parse({"--heightmap", heightmap_, "--generate", "65"}), CLI::ExcludesError);
+    EXPECT_THROW(parse({"--no-debug", "--debug-out", "x.png"}), CLI::ExcludesError);
+    EXPECT_THAT(parseError({"--camera-pos", "1", "2"}), HasSubstr("--camera-pos: expected 3 numbers"));
+    EXPECT_THROW(parse({"--heightmap", (dir_ / "missing.png").string()}), CLI::ValidationError);
+    // An app registers only the groups it needs.
+    EXPECT_THROW(parse({"--fov", "30"}, Scene{}, kTerrainOptions), CLI::ExtrasError);
+    EXPECT_EQ(parse({"--spacing", "2"}, Scene{}, kTerrainOptions).terrain.spacing, 2.0f);
+}
+
+TEST_F(SceneOptionsTest, PrintConfigFedBackGivesTheSameScene) {
+    bool printed = false;
+    ::testing::internal::CaptureStdout();
+    Scene s = parse({"--generate", "129", "--fov", "33.3", "--sky", "0.1,0.7,0.9", "--path", "orbit", "--frames", "12",
+                     "--print-config"},
+                    Scene{}, kAllOptions, &printed);
+    std::string text = ::testing::internal::GetCapturedStdout();
+    EXPECT_TRUE(printed);
+    EXPECT_EQ(text, sceneToText(s));
+    std::string config = write("printed.json", text);
+    Scene back = parse({"--config", config}, Scene{}, kAllOptions, &printed);
+    EXPECT_FALSE(printed);
+    EXPECT_EQ(back, s);
+    EXPECT_EQ(sceneToText(back), text);
+}
+
+TEST_F(SceneOptionsTest, HelpShowsTheAppDefaults) {
+    Scene defaults;
+    defaults.output = {.width = 1920, .height = 1080, .msaa = 0};
+    CLI::App app{"test"};
+    Scene scene = defaults;
+    SceneOptions options(app, scene, kAllOptions);
+    std::string help = app.help();
+    EXPECT_THAT(help, HasSubstr("1920x1080"));
+    EXPECT_THAT(help, HasSubstr("Level of detail"));
+    EXPECT_THAT(help, HasSubstr("--print-config"));
+}
+
+}  // namespace
+}  // namespace sierra::scene

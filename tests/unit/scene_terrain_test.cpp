@@ -1,0 +1,80 @@
+// The scene's conventions and terrain loading: compass bearings map to the
+// documented axes, the default sun is the direction Sierra always used, and
+// loadTerrain honours height units and refuses what it cannot do yet.
+
+#include <sierra/core/Error.h>
+#include <sierra/scene/Scene.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sierra::scene {
+namespace {
+
+using ::testing::HasSubstr;
+
+void expectNear(const Vec3& got, float x, float y, float z, float tolerance) {
+    EXPECT_NEAR(got.x, x, tolerance);
+    EXPECT_NEAR(got.y, y, tolerance);
+    EXPECT_NEAR(got.z, z, tolerance);
+}
+
+TEST(SceneDirections, BearingsFollowTheCompass) {
+    expectNear(directionFromAngles(0, 0), 0, 0, -1, 1e-6f);   // north = -z
+    expectNear(directionFromAngles(90, 0), 1, 0, 0, 1e-6f);   // east = +x
+    expectNear(directionFromAngles(180, 0), 0, 0, 1, 1e-6f);  // south = +z
+    expectNear(directionFromAngles(270, 0), -1, 0, 0, 1e-6f);
+    expectNear(directionFromAngles(123, 90), 0, 1, 0, 1e-6f);  // zenith
+    Vec3 d = directionFromAngles(37, 21);
+    EXPECT_NEAR(d.x * d.x + d.y * d.y + d.z * d.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(std::asin(d.y) * 180.0 / 3.14159265358979, 21.0, 1e-4);
+}
+
+TEST(SceneDirections, DefaultSunKeepsTheFormerDirection) {
+    const float n = std::sqrt(0.45f * 0.45f + 0.75f * 0.75f + 0.35f * 0.35f);
+    Scene scene;
+    expectNear(directionFromAngles(scene.lighting.sunAzimuth, scene.lighting.sunAltitude), -0.45f / n, 0.75f / n,
+               0.35f / n, 2e-6f);
+}
+
+TEST(SceneTerrain, HeightUnitsChooseTheVerticalScale) {
+    TerrainSource source{.generateSize = 33};
+    float automatic = loadTerrain(source).verticalScale();
+    EXPECT_NE(automatic, 1.0f);
+    source.heightUnits = HeightUnits::Metres;
+    EXPECT_EQ(loadTerrain(source).verticalScale(), 1.0f);
+    source.heightUnits = HeightUnits::None;
+    EXPECT_EQ(loadTerrain(source).verticalScale(), automatic);
+    source.verticalScale = 3.0f;  // an explicit scale wins over the units
+    EXPECT_EQ(loadTerrain(source).verticalScale(), 3.0f);
+}
+
+TEST(SceneTerrain, RefusesWhatTheTerrainModuleCannotDoYet) {
+    TerrainSource hurst{.generateSize = 33, .hurst = 0.5f};
+    EXPECT_THROW(loadTerrain(hurst), Error);
+    TerrainSource channel{.generateSize = 33, .channel = Channel::Red};
+    try {
+        loadTerrain(channel);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("--channel r"));
+    }
+}
+
+TEST(SceneTerrain, EnumNamesRoundTrip) {
+    for (HeightUnits u : {HeightUnits::Auto, HeightUnits::Metres, HeightUnits::None})
+        EXPECT_EQ(parseHeightUnits(toString(u), "x"), u);
+    for (Channel c : {Channel::Grey, Channel::Luminance, Channel::Red, Channel::Green, Channel::Blue})
+        EXPECT_EQ(parseChannel(toString(c), "x"), c);
+    for (PathType p : {PathType::None, PathType::Orbit, PathType::Flyover, PathType::Keyframes})
+        EXPECT_EQ(parsePathType(toString(p), "x"), p);
+    for (LodMode m : {LodMode::Sbt, LodMode::Full}) EXPECT_EQ(parseLodMode(toString(m), "x"), m);
+    for (Projection p : {Projection::Perspective, Projection::Orthographic})
+        EXPECT_EQ(parseProjection(toString(p), "x"), p);
+    EXPECT_EQ(parseHeightUnits("metres", "x"), HeightUnits::Metres);
+}
+
+}  // namespace
+}  // namespace sierra::scene
