@@ -15,7 +15,12 @@
 //         width), C order, format version 1.0 or 2.0
 //   .npz  NumPy archive (numpy.savez, stored or deflated): the first member
 //         holding a 2-D array, read as .npy
-//   .tif / .tiff  GeoTIFF band 1, only when built with SIERRA_WITH_GDAL
+//   .tif / .tiff  GeoTIFF band 1, when built with SIERRA_WITH_GDAL (the default
+//         when GDAL is installed); no data from the band's mask (its no-data
+//         value, NaN included, or an internal mask), filled like .hgt; spacing
+//         in metres: a projected system's pixel size, or for a geographic one
+//         (degrees) the pixel size at the latitude of the tile's centre on its
+//         ellipsoid (east-west shrinks with the cosine of the latitude)
 // File row 0 is row j = 0. Float input must be finite (NaN/Inf rejected).
 // Every loader throws sierra::Error with one line naming the file, what is
 // wrong and what would be right; none crashes on bad input.
