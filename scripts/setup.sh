@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Sierra needs (when missing), then configures and
 # builds it in build/ (Release). Sourced by run-default.sh and test.sh; can be
-# run on its own. BUILD_DIR and BUILD_TYPE override the defaults.
+# run on its own. BUILD_DIR and BUILD_TYPE override the defaults;
+# SIERRA_SANITIZE=ON builds with AddressSanitizer and UBSan (the CI's second run).
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${BUILD_DIR:-$root/build}"
 build_type="${BUILD_TYPE:-Release}"
+sanitize="${SIERRA_SANITIZE:-OFF}"
 
 packages=(
   build-essential cmake pkg-config
@@ -14,6 +16,7 @@ packages=(
   libglm-dev libstb-dev libimgui-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev glslang-tools
+  libspng-dev libgdal-dev
   python-matplotlib-data
 )
 
@@ -38,7 +41,7 @@ if ((${#missing[@]})); then
 fi
 
 jobs="$(nproc 2>/dev/null || echo 2)"
-echo "sierra setup: configuring $build_type build in $build_dir"
-cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" >/dev/null
+echo "sierra setup: configuring $build_type build in $build_dir (sanitizers $sanitize)"
+cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" -DSIERRA_SANITIZE="$sanitize" >/dev/null
 echo "sierra setup: building with $jobs jobs"
 cmake --build "$build_dir" -j "$jobs"

@@ -22,6 +22,19 @@ TEST(TerrainPadding, PaddedSide) {
     EXPECT_THROW(paddedSide(65538), Error);
 }
 
+TEST(TerrainPadding, WarnsWhenPaddingIsMoreThanFourTimesTheSamples) {
+    // 1000x3 pads to 1025^2 = 1050625 samples, 350x the 3000 real ones.
+    EXPECT_EQ(paddingWarning(1000, 3),
+              "a 1000x3 heightfield is padded to 1025x1025 = 1050625 samples, 350.2x its 3000 "
+              "real samples (the padding costs memory and refinement time but is not drawn); "
+              "crop or tile it closer to a 2^n+1 square to avoid this");
+    EXPECT_EQ(paddingWarning(1025, 1025), "");
+    EXPECT_NE(paddingWarning(300, 200), "");  // 513^2 / 60000 = 4.39x
+    EXPECT_EQ(paddingWarning(513, 129), "");  // 3.98x
+    EXPECT_NE(paddingWarning(513, 128), "");  // 4.01x
+    EXPECT_EQ(paddingWarning(514, 514), "");  // 1025^2 / 514^2 = 3.98x
+}
+
 TEST(TerrainPadding, Pads300x200To513WithClampedEdgesAndMask) {
     Heightfield f(300, 200);
     for (int j = 0; j < 200; ++j)

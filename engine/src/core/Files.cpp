@@ -2,22 +2,19 @@
 
 #include <sierra/core/Error.h>
 
-#include <array>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
-#include <memory>
 #include <random>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace sierra {
 namespace {
-
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
 // Eight hex digits unique within the process and very likely across processes,
 // so two writers of the same path never share a temporary name.
@@ -35,34 +32,100 @@ std::string tempSuffix() {
     return text;
 }
 
+const char* fileKind(mode_t mode) {
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISSOCK(mode)) return "a socket";
+    if (S_ISLNK(mode)) return "a symbolic link";
+    return "not a regular file";
+}
+
+// Closes a POSIX file descriptor on scope exit.
+struct Fd {
+    int fd = -1;
+    ~Fd() {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+std::string parentDirectory(const std::string& path) {
+    std::string dir = std::filesystem::path(path).parent_path().string();
+    return dir.empty() ? std::string(".") : dir;
+}
+
+// Refuses an existing target that is not a regular file (lstat: a symlink to a
+// regular file is refused too, since rename would replace the link itself).
+void checkTarget(const std::string& path) {
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+        throw Error(msg("cannot write ", path, ": it exists and is ", fileKind(st.st_mode),
+                        ", not a regular file; remove it or choose another output path"));
+}
+
 }  // namespace
 
-std::vector<uint8_t> readFileBytes(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error(msg("cannot open ", path, ": Is a directory; expected a file"));
-    FilePtr file(std::fopen(path.c_str(), "rb"));
-    if (!file) throw Error(msg("cannot open ", path, ": ", std::strerror(errno)));
-    std::vector<uint8_t> bytes;
-    std::array<uint8_t, 1 << 16> buffer;
-    for (;;) {
-        size_t n = std::fread(buffer.data(), 1, buffer.size(), file.get());
-        bytes.insert(bytes.end(), buffer.data(), buffer.data() + n);
-        if (n < buffer.size()) break;
+uint64_t regularFileSize(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0)
+        throw Error(msg("cannot open ", path, ": ", std::strerror(errno)));
+    if (!S_ISREG(st.st_mode))
+        throw Error(msg("cannot open ", path, ": it is ", fileKind(st.st_mode),
+                        "; expected a regular file"));
+    return uint64_t(st.st_size);
+}
+
+std::vector<uint8_t> readFileBytes(const std::string& path, uint64_t maxBytes,
+                                   std::string_view limitReason) {
+    // O_NONBLOCK: opening a FIFO with no writer would otherwise wait forever;
+    // fstat then refuses it. Regular files ignore the flag.
+    Fd file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+    if (file.fd < 0) throw Error(msg("cannot open ", path, ": ", std::strerror(errno)));
+    struct stat st {};
+    if (::fstat(file.fd, &st) != 0)
+        throw Error(msg("cannot read ", path, ": ", std::strerror(errno)));
+    if (!S_ISREG(st.st_mode))
+        throw Error(msg("cannot open ", path, ": it is ", fileKind(st.st_mode),
+                        "; expected a regular file"));
+    const uint64_t size = uint64_t(st.st_size);
+    if (size > maxBytes)
+        throw Error(msg(path, " has ", size, " bytes, more than the ", maxBytes, " bytes allowed",
+                        limitReason.empty() ? "" : "; ", limitReason));
+    std::vector<uint8_t> bytes(size);
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::read(file.fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw Error(msg("cannot read ", path, ": ", std::strerror(errno)));
+        if (n == 0) break;  // shrank while reading: keep what is there
+        done += size_t(n);
     }
-    if (std::ferror(file.get())) throw Error(msg("cannot read ", path, ": ", std::strerror(errno)));
+    bytes.resize(done);
     return bytes;
 }
 
 void writeFileAtomic(const std::string& path, const std::function<void(std::FILE*)>& write) {
+    checkTarget(path);
     const std::string temp = path + ".tmp-" + tempSuffix();
     auto fail = [&](const char* what, int err) {
         std::remove(temp.c_str());
         throw Error(msg("cannot write ", path, ": ", what, " failed (", std::strerror(err),
                         "); check that the directory exists and is writable"));
     };
-    std::FILE* file = std::fopen(temp.c_str(), "wb");
-    if (!file) fail("creating the temporary file", errno);
+    // O_EXCL: never write through something another process put at the name.
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        const int err = errno;
+        throw Error(msg("cannot write ", path, ": creating the temporary file failed (",
+                        std::strerror(err), "); check that the directory exists and is writable"));
+    }
+    std::FILE* file = ::fdopen(fd, "wb");
+    if (!file) {
+        const int err = errno;
+        ::close(fd);
+        fail("opening the temporary file", err);
+    }
     try {
         write(file);
     } catch (...) {
@@ -70,12 +133,29 @@ void writeFileAtomic(const std::string& path, const std::function<void(std::FILE
         std::remove(temp.c_str());
         throw;
     }
-    bool writeOk = std::ferror(file) == 0;
+    bool writeOk = std::fflush(file) == 0 && std::ferror(file) == 0;
     int writeErr = errno;
+    // The data must be on disk before the rename makes it visible, or a crash
+    // could leave the new name pointing at an empty file.
+    bool syncOk = writeOk && ::fsync(::fileno(file)) == 0;
+    int syncErr = errno;
     bool closedOk = std::fclose(file) == 0;
     if (!writeOk) fail("writing", writeErr);
+    if (!syncOk) fail("flushing to disk (fsync)", syncErr);
     if (!closedOk) fail("closing", errno);
+    // Checked again right before the rename: the target may have appeared meanwhile.
+    try {
+        checkTarget(path);
+    } catch (...) {
+        std::remove(temp.c_str());
+        throw;
+    }
     if (std::rename(temp.c_str(), path.c_str()) != 0) fail("renaming the temporary file", errno);
+    // The rename itself lives in the directory: sync it so it survives a crash.
+    // A directory that cannot be opened or synced (some network file systems)
+    // leaves the file complete, so this is best effort.
+    Fd dir{::open(parentDirectory(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)};
+    if (dir.fd >= 0) ::fsync(dir.fd);
 }
 
 void writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes) {
@@ -86,6 +166,26 @@ void writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes) {
 
 void writeFileAtomic(const std::string& path, std::string_view text) {
     writeFileAtomic(path, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+}
+
+void ensureWritableLocation(const std::string& path) {
+    SIERRA_CHECK(!path.empty(), "ensureWritableLocation: empty output path");
+    const std::string dir = parentDirectory(path);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+        throw Error(msg("cannot write ", path, ": cannot create the directory ", dir, " (",
+                        ec.message(), ")"));
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) != 0)
+        throw Error(msg("cannot write ", path, ": ", dir, ": ", std::strerror(errno)));
+    if (!S_ISDIR(st.st_mode))
+        throw Error(msg("cannot write ", path, ": ", dir, " is ", fileKind(st.st_mode),
+                        ", not a directory"));
+    if (::access(dir.c_str(), W_OK | X_OK) != 0)
+        throw Error(msg("cannot write ", path, ": the directory ", dir, " is not writable (",
+                        std::strerror(errno), ")"));
+    checkTarget(path);
 }
 
 }  // namespace sierra

@@ -5,7 +5,7 @@
 #include <sierra/terrain/FileIO.h>
 #include <sierra/terrain/Padding.h>
 
-#include <stb/stb_image.h>
+#include <spng.h>
 
 #include <algorithm>
 #include <bit>
@@ -25,8 +25,10 @@
 namespace sierra::terrain {
 namespace {
 
-// Largest side a loader accepts, as Heightfield does: 65537 = 2^16 + 1.
-constexpr int kMaxSide = 65537;
+// Bytes a loader may read beyond the samples themselves: headers, comments,
+// PNG chunk framing and deflate block headers (1 MiB is far more than any
+// real file's overhead, far less than a hostile one could claim).
+constexpr uint64_t kHeaderSlack = uint64_t(1) << 20;
 
 // SRTM tile sides: 3 arc-second (SRTM3, ~90 m) and 1 arc-second (SRTM1, ~30 m).
 constexpr int kSrtm3Side = 1201;
@@ -47,11 +49,17 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
+// Most samples a field within the limits may hold: width * height never
+// exceeds the padded square.
+uint64_t maxSamples(const LoadOptions& options) {
+    const auto side = uint64_t(std::clamp(options.maxPaddedSide, 3, kMaxSide));
+    return side * side;
+}
+
 // Rejects a size before anything is allocated for it.
-void checkSize(const std::string& path, int64_t width, int64_t height, const char* what) {
-    if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide)
-        throw Error(msg(path, ": ", what, " size ", width, "x", height, " is outside 1..", kMaxSide,
-                        " samples per side"));
+void checkSize(const std::string& path, int64_t width, int64_t height, const char* what,
+               const LoadOptions& options) {
+    checkFieldSize(msg(path, ": ", what), width, height, options.maxPaddedSide);
 }
 
 // Float input must be finite; a no-data value belongs in .hgt or a mask, not NaN.
@@ -83,44 +91,124 @@ uint64_t le64(const uint8_t* p) {
 
 // ---------------------------------------------------------------------------- PNG
 
-struct StbFree {
-    void operator()(void* p) const { stbi_image_free(p); }
+struct SpngFree {
+    void operator()(spng_ctx* ctx) const { spng_ctx_free(ctx); }
 };
 
-Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes) {
+// Largest ancillary chunk data libspng may keep (text, ICC profiles: a
+// heightmap needs none of it), and the cap on any one chunk beyond the file
+// size: a length field claiming more than the file holds fails at once.
+constexpr size_t kPngChunkCache = size_t(8) << 20;
+
+// How a colour PNG's samples become one height (LoadOptions::channel).
+enum class Channel { GreyOnly, Luminance, R, G, B };
+
+Channel parseChannel(const std::string& path, const std::string& name) {
+    if (name.empty()) return Channel::GreyOnly;
+    if (name == "luminance") return Channel::Luminance;
+    if (name == "r") return Channel::R;
+    if (name == "g") return Channel::G;
+    if (name == "b") return Channel::B;
+    throw Error(msg(path, ": unknown channel '", name,
+                    "'; expected luminance, r, g or b (or none for a grey heightmap)"));
+}
+
+Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes,
+                    const LoadOptions& options) {
     static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature, 8) != 0)
         throw Error(msg(path,
                         ": not a PNG file (no PNG signature); expected an 8- or 16-bit "
                         "greyscale PNG"));
-    if (bytes.size() > size_t(INT_MAX))
-        throw Error(
-            msg(path, ": PNG of ", bytes.size(), " bytes is too large to decode (limit 2 GiB)"));
-    const int size = int(bytes.size());
-    int width = 0, height = 0, channels = 0;
-    if (!stbi_info_from_memory(bytes.data(), size, &width, &height, &channels))
-        throw Error(msg(path, ": unreadable PNG header (stb_image: ", stbi_failure_reason(),
-                        "); expected an 8- or 16-bit greyscale PNG"));
-    checkSize(path, width, height, "PNG");
-    const bool sixteen = stbi_is_16_bit_from_memory(bytes.data(), size) != 0;
-    std::unique_ptr<void, StbFree> pixels(
-        sixteen ? static_cast<void*>(
-                      stbi_load_16_from_memory(bytes.data(), size, &width, &height, &channels, 0))
-                : static_cast<void*>(
-                      stbi_load_from_memory(bytes.data(), size, &width, &height, &channels, 0)));
-    if (!pixels)
-        throw Error(msg(path, ": cannot decode PNG (stb_image: ", stbi_failure_reason(),
-                        "); the file is truncated or corrupt"));
+    const Channel channel = parseChannel(path, options.channel);
+    std::unique_ptr<spng_ctx, SpngFree> ctx(spng_ctx_new(0));
+    if (!ctx) throw Error(msg(path, ": cannot decode PNG: out of memory for the decoder"));
+    auto check = [&](int err, const char* what) {
+        if (err != 0)
+            throw Error(msg(path, ": ", what, " (libspng: ", spng_strerror(err),
+                            "); the file is truncated or corrupt"));
+    };
+    // Every CRC is checked, ancillary chunks included: a damaged file is
+    // refused instead of drawn. Limits are set before anything is read.
+    check(spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR), "cannot set up PNG decoding");
+    check(spng_set_image_limits(ctx.get(), kMaxSide, kMaxSide), "cannot set up PNG decoding");
+    check(spng_set_chunk_limits(ctx.get(), std::min<size_t>(bytes.size(), INT32_MAX), kPngChunkCache),
+          "cannot set up PNG decoding");
+    check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()), "cannot set up PNG decoding");
+    spng_ihdr ihdr{};
+    check(spng_get_ihdr(ctx.get(), &ihdr), "unreadable PNG header");
+    checkFieldSize(msg(path, ": PNG"), ihdr.width, ihdr.height, options.maxPaddedSide);
+    const int width = int(ihdr.width), height = int(ihdr.height);
+    const bool grey = ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE ||
+                      ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA;
+    if (!grey && channel == Channel::GreyOnly)
+        throw Error(msg(path, ": PNG is colour (",
+                        ihdr.color_type == SPNG_COLOR_TYPE_INDEXED ? "palette"
+                        : ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR ? "RGB"
+                                                                         : "RGBA",
+                        "); a heightmap must be greyscale (8 or 16 bit), or pick a channel: "
+                        "luminance, r, g or b"));
+    const bool sixteen = ihdr.bit_depth == 16;
+    // Grey: grey+alpha pairs, alpha ignored (grey is expanded to them, 1/2/4-bit
+    // scaled to 8; grey+alpha, 8 or 16 bit, is decoded as stored); colour:
+    // RGBA (palette expanded). 16-bit samples come host-endian.
+    const int fmt = ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA ? SPNG_FMT_PNG
+                    : grey ? (sixteen ? SPNG_FMT_GA16 : SPNG_FMT_GA8)
+                           : (sixteen ? SPNG_FMT_RGBA16 : SPNG_FMT_RGBA8);
+    const int components = grey ? 2 : 4;
+    const size_t rowBytes = size_t(width) * components * (sixteen ? 2 : 1);
+
     Heightfield field(width, height);
-    auto out = field.samples();
-    const size_t count = out.size();
-    if (sixteen) {
-        auto* p = static_cast<const uint16_t*>(pixels.get());
-        for (size_t k = 0; k < count; ++k) out[k] = float(p[k * channels]);
-    } else {
-        auto* p = static_cast<const uint8_t*>(pixels.get());
-        for (size_t k = 0; k < count; ++k) out[k] = float(p[k * channels]);
+    auto sample = [&](const uint8_t* row, int i, int c) -> float {
+        if (sixteen) {
+            uint16_t v;
+            std::memcpy(&v, row + (size_t(i) * components + c) * 2, 2);  // host-endian
+            return float(v);
+        }
+        return float(row[size_t(i) * components + c]);
+    };
+    auto convertRow = [&](const uint8_t* row, int j) {
+        for (int i = 0; i < width; ++i) {
+            float h = 0.0f;
+            if (grey) {
+                h = sample(row, i, 0);
+            } else {
+                switch (channel) {
+                    case Channel::R: h = sample(row, i, 0); break;
+                    case Channel::G: h = sample(row, i, 1); break;
+                    case Channel::B: h = sample(row, i, 2); break;
+                    default:  // Rec. 709 luma weights on the stored values
+                        h = 0.2126f * sample(row, i, 0) + 0.7152f * sample(row, i, 1) +
+                            0.0722f * sample(row, i, 2);
+                        break;
+                }
+            }
+            field.at(i, j) = h;
+        }
+    };
+    check(spng_decode_image(ctx.get(), nullptr, 0, fmt, SPNG_DECODE_PROGRESSIVE),
+          "cannot decode PNG");
+    // Row by row: a non-interlaced image never needs more than one decoded row
+    // besides the heights. An interlaced one fills rows over seven passes, so it
+    // is decoded into a whole image first.
+    std::vector<uint8_t> pixels(ihdr.interlace_method ? rowBytes * height : rowBytes);
+    int err = 0;
+    for (;;) {
+        spng_row_info info{};
+        err = spng_get_row_info(ctx.get(), &info);
+        if (err != 0) break;
+        uint8_t* row = pixels.data() + (ihdr.interlace_method ? rowBytes * info.row_num : 0);
+        err = spng_decode_row(ctx.get(), row, rowBytes);
+        if (err != 0 && err != SPNG_EOI) break;
+        if (!ihdr.interlace_method) convertRow(row, int(info.row_num));
+        if (err == SPNG_EOI) break;
     }
+    if (err != SPNG_EOI) check(err, "cannot decode PNG");
+    // The rows end with the deflate stream, before the last IDAT's CRC and the
+    // chunks after it: read on to IEND so those CRCs are checked too.
+    check(spng_decode_chunks(ctx.get()), "cannot decode PNG");
+    if (ihdr.interlace_method)
+        for (int j = 0; j < height; ++j) convertRow(pixels.data() + rowBytes * j, j);
     return field;
 }
 
@@ -128,8 +216,8 @@ Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes) 
 
 class PgmReader {
   public:
-    PgmReader(const std::string& path, const std::vector<uint8_t>& bytes)
-        : path_(path), bytes_(bytes) {}
+    PgmReader(const std::string& path, const std::vector<uint8_t>& bytes, const LoadOptions& options)
+        : path_(path), bytes_(bytes), options_(options) {}
 
     Heightfield load() {
         if (bytes_.size() < 2 || bytes_[0] != 'P' || (bytes_[1] != '2' && bytes_[1] != '5'))
@@ -140,7 +228,7 @@ class PgmReader {
         const uint64_t height = headerNumber("height");
         const uint64_t maxval = headerNumber("maxval");
         checkSize(path_, int64_t(std::min<uint64_t>(width, INT_MAX)),
-                  int64_t(std::min<uint64_t>(height, INT_MAX)), "PGM");
+                  int64_t(std::min<uint64_t>(height, INT_MAX)), "PGM", options_);
         if (maxval < 1 || maxval > 65535)
             throw Error(msg(path_, ": PGM maxval ", maxval, " is outside 1..65535"));
         const uint64_t count = width * height;
@@ -220,6 +308,7 @@ class PgmReader {
 
     const std::string& path_;
     const std::vector<uint8_t>& bytes_;
+    const LoadOptions& options_;
     size_t pos_ = 0;
 };
 
@@ -243,7 +332,7 @@ Heightfield loadRaw(const std::string& path, const std::vector<uint8_t>& bytes, 
                             " samples); pass rawWidth and rawHeight"));
         width = height = side;
     }
-    checkSize(path, width, height, "raw");
+    checkSize(path, width, height, "raw", options);
     const uint64_t need = uint64_t(width) * uint64_t(height) * sampleBytes;
     if (bytes.size() < need)
         throw Error(msg(path, ": truncated raw file: ", width, "x", height, " ", type,
@@ -257,6 +346,23 @@ Heightfield loadRaw(const std::string& path, const std::vector<uint8_t>& bytes, 
         out[k] = isFloat ? std::bit_cast<float>(le32(&bytes[4 * k])) : float(le16(&bytes[2 * k]));
     if (isFloat) checkFinite(path, field);
     return field;
+}
+
+// The exact byte count of a raw file whose size LoadOptions gives, checked
+// against the file's size before reading; without a size, the most a square
+// grid within the limits can take.
+uint64_t rawFileBytes(const std::string& path, bool isFloat, const LoadOptions& options) {
+    const uint64_t sampleBytes = isFloat ? 4 : 2;
+    const int64_t width = options.rawWidth, height = options.rawHeight;
+    if (width <= 0 || height <= 0) return maxSamples(options) * sampleBytes;
+    checkSize(path, width, height, "raw", options);
+    const uint64_t need = uint64_t(width) * uint64_t(height) * sampleBytes;
+    const uint64_t have = regularFileSize(path);
+    if (have != need)
+        throw Error(msg(path, ": raw file has ", have, " bytes but ", width, "x", height, " ",
+                        isFloat ? "float32" : "uint16", " samples are ", need,
+                        " bytes; check rawWidth and rawHeight"));
+    return need;
 }
 
 // ---------------------------------------------------------------------------- SRTM
@@ -316,7 +422,8 @@ size_t skipBlanks(std::string_view s, size_t pos) {
     return pos;
 }
 
-Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes) {
+Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
+                    const LoadOptions& options) {
     static const uint8_t kMagic[6] = {0x93, 'N', 'U', 'M', 'P', 'Y'};
     if (bytes.size() < 10 || std::memcmp(bytes.data(), kMagic, 6) != 0)
         throw Error(msg(path, ": not a NumPy .npy file (no \\x93NUMPY magic)"));
@@ -395,7 +502,7 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes) 
         throw Error(
             msg(path, ": .npy array has shape (", dims, "); expected a 2-D array (rows, columns)"));
     const int64_t height = int64_t(shape[0]), width = int64_t(shape[1]);
-    checkSize(path, width, height, ".npy array");
+    checkSize(path, width, height, ".npy array", options);
 
     const uint64_t need = uint64_t(width) * uint64_t(height) * uint64_t(type->bytes);
     if (bytes.size() - dataStart < need)
@@ -425,8 +532,36 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes) 
 // ---------------------------------------------------------------------------- GeoTIFF
 
 #ifdef SIERRA_WITH_GDAL
-Heightfield loadGdal(const std::string& path) {
+// Ground spacing in metres of one pixel step of a geographic (degrees)
+// raster, at the latitude of the tile's centre: east-west shrinks with the
+// cosine of the latitude. On the system's ellipsoid: the meridian radius of
+// curvature for north-south, the prime vertical one for east-west.
+std::pair<double, double> geographicSpacing(const OGRSpatialReference& srs, const double geo[6],
+                                            int height) {
+    const double radiansPerUnit = srs.GetAngularUnits(nullptr);  // degrees: pi / 180
+    const double a = srs.GetSemiMajor(nullptr);
+    const double inverseFlattening = srs.GetInvFlattening(nullptr);
+    const double f = inverseFlattening > 0.0 ? 1.0 / inverseFlattening : 0.0;
+    const double e2 = f * (2.0 - f);
+    const double latitude = (geo[3] + geo[5] * height * 0.5) * radiansPerUnit;
+    const double s = std::sin(latitude);
+    const double w = std::sqrt(1.0 - e2 * s * s);
+    const double meridian = a * (1.0 - e2) / (w * w * w);
+    const double primeVertical = a / w;
+    return {std::abs(geo[1]) * radiansPerUnit * primeVertical * std::cos(latitude),
+            std::abs(geo[5]) * radiansPerUnit * meridian};
+}
+
+Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
+    regularFileSize(path);  // a FIFO or a device is refused before GDAL opens it
     GDALAllRegister();
+    // One message for the user: GDAL's own error printing is silenced, its last
+    // message goes into the sierra::Error.
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    struct PopHandler {
+        ~PopHandler() { CPLPopErrorHandler(); }
+    } popHandler;
+    CPLErrorReset();
     struct Closer {
         void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
     };
@@ -438,22 +573,26 @@ Heightfield loadGdal(const std::string& path) {
                         reason.empty() ? "not a raster format GDAL recognises" : reason));
     }
     const int width = data->GetRasterXSize(), height = data->GetRasterYSize();
-    checkSize(path, width, height, "GeoTIFF");
-    GDALRasterBand* band = data->GetRasterBand(1);
+    checkSize(path, width, height, "GeoTIFF", options);
+    GDALRasterBand* band = data->GetRasterCount() > 0 ? data->GetRasterBand(1) : nullptr;
     if (!band) throw Error(msg(path, ": GeoTIFF has no raster band"));
     Heightfield field(width, height);
     if (band->RasterIO(GF_Read, 0, 0, width, height, field.samples().data(), width, height,
-                       GDT_Float32, 0, 0) != CE_None)
+                       GDT_Float32, 0, 0, nullptr) != CE_None)
         throw Error(msg(path, ": GDAL cannot read band 1: ", CPLGetLastErrorMsg()));
-    int hasNoData = 0;
-    const double noData = band->GetNoDataValue(&hasNoData);
-    if (hasNoData) {
+    // No data from the band's mask: its no-data value (NaN included), or an
+    // internal mask or alpha band when the file has one.
+    if (!(band->GetMaskFlags() & GMF_ALL_VALID)) {
         std::vector<uint8_t> mask(field.samples().size(), 1);
+        GDALRasterBand* maskBand = band->GetMaskBand();
+        if (!maskBand || maskBand->RasterIO(GF_Read, 0, 0, width, height, mask.data(), width,
+                                            height, GDT_Byte, 0, 0, nullptr) != CE_None)
+            throw Error(msg(path, ": GDAL cannot read the no-data mask of band 1: ",
+                            CPLGetLastErrorMsg()));
         bool any = false;
         for (size_t k = 0; k < mask.size(); ++k) {
-            float v = field.samples()[k];
-            if (v == float(noData) || (std::isnan(noData) && std::isnan(v))) {
-                mask[k] = 0;
+            mask[k] = mask[k] != 0 ? 1 : 0;
+            if (!mask[k]) {
                 field.samples()[k] = 0.0f;
                 any = true;
             }
@@ -464,12 +603,23 @@ Heightfield loadGdal(const std::string& path) {
         }
     }
     checkFinite(path, field);
-    // Ground spacing only from a projected (metric) system; degrees would make
-    // the terrain absurdly steep.
+    // Ground spacing in metres: a projected system gives it directly (in its
+    // linear unit, converted to metres); a geographic one in degrees is
+    // converted at the tile's latitude. Without a system, 1 (grid units).
     double geo[6];
     const OGRSpatialReference* srs = data->GetSpatialRef();
-    if (data->GetGeoTransform(geo) == CE_None && srs && srs->IsProjected())
-        field.setSpacing(float(std::abs(geo[1])), float(std::abs(geo[5])));
+    if (data->GetGeoTransform(geo) == CE_None && srs) {
+        if (srs->IsProjected()) {
+            const double metres = srs->GetLinearUnits(nullptr);
+            field.setSpacing(float(std::abs(geo[1]) * metres), float(std::abs(geo[5]) * metres));
+        } else if (srs->IsGeographic()) {
+            const auto [dx, dz] = geographicSpacing(*srs, geo, height);
+            if (!(dx > 0.0 && dz > 0.0 && std::isfinite(dx) && std::isfinite(dz)))
+                throw Error(msg(path, ": GeoTIFF pixel size ", geo[1], " x ", geo[5],
+                                " degrees gives no usable ground spacing"));
+            field.setSpacing(float(dx), float(dz));
+        }
+    }
     return field;
 }
 #endif
@@ -516,6 +666,24 @@ void saveNpy(const std::string& path, const Heightfield& field) {
 
 }  // namespace
 
+void checkFieldSize(const std::string& what, int64_t width, int64_t height, int maxPaddedSide) {
+    SIERRA_CHECK(maxPaddedSide >= 3 && maxPaddedSide <= kMaxSide, "maxPaddedSide ", maxPaddedSide,
+                 " is outside 3..", kMaxSide);
+    if (width > kMaxSide || height > kMaxSide || width < 1 || height < 1)
+        throw Error(msg(what, " size ", width, "x", height, " is outside ", kMinSide, "..",
+                        kMaxSide, " samples per side"));
+    if (width < kMinSide || height < kMinSide)
+        throw Error(msg(what, " size ", width, "x", height, ": a heightfield needs at least ",
+                        kMinSide, "x", kMinSide, " samples"));
+    const int side = paddedSide(int(std::max(width, height)));
+    if (side > maxPaddedSide)
+        throw Error(msg(what, " size ", width, "x", height, " pads to a ", side, "x", side,
+                        " grid (", int64_t(side) * side, " samples), over the limit of ",
+                        maxPaddedSide, "x", maxPaddedSide,
+                        " samples (maxPaddedSide, the largest texture side GL drivers "
+                        "usually allow)"));
+}
+
 Heightfield loadHeightfield(const std::string& path, const LoadOptions& options) {
     const std::string ext = lowerExtension(path);
     enum class Format { Png, Pgm, R16, R32, Hgt, Npy, Npz, Tiff };
@@ -531,7 +699,7 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
     const Format format = known->second;
     if (format == Format::Tiff) {
 #ifdef SIERRA_WITH_GDAL
-        return loadGdal(path);
+        return loadGdal(path, options);
 #else
         throw Error(msg(path,
                         ": GeoTIFF needs a build with SIERRA_WITH_GDAL=ON "
@@ -539,12 +707,40 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
                         kSupported));
 #endif
     }
-    const std::vector<uint8_t> bytes = readFileBytes(path);
+    // No format holds more than its largest allowed grid plus some header: a
+    // larger file is refused before it is read.
+    const uint64_t samples = maxSamples(options);
+    uint64_t maxBytes = 0;
+    std::string reason = msg("a ", ext, " heightmap within the limit of ", options.maxPaddedSide, "x",
+                             options.maxPaddedSide, " samples (maxPaddedSide) is smaller");
+    switch (format) {
+        case Format::Png:  // RGBA16 stored uncompressed: 8 bytes a sample, plus framing
+            maxBytes = samples * 8 + samples / 8 + kHeaderSlack;
+            break;
+        case Format::Pgm:  // P5 16-bit: 2 bytes a sample; P2: "65535 " is 6
+            maxBytes = samples * 6 + kHeaderSlack;
+            break;
+        case Format::R16:
+        case Format::R32:
+            maxBytes = rawFileBytes(path, format == Format::R32, options);
+            break;
+        case Format::Hgt:
+            maxBytes = uint64_t(kSrtm1Side) * kSrtm1Side * 2;
+            reason = "the largest SRTM tile (3601x3601, SRTM1) is 25934402 bytes";
+            break;
+        case Format::Npy:  // float64: 8 bytes a sample
+        case Format::Npz:  // the same array, stored or deflated
+            maxBytes = samples * 8 + kHeaderSlack;
+            break;
+        case Format::Tiff:
+            break;
+    }
+    const std::vector<uint8_t> bytes = readFileBytes(path, maxBytes, reason);
     switch (format) {
         case Format::Png:
-            return loadPng(path, bytes);
+            return loadPng(path, bytes, options);
         case Format::Pgm:
-            return PgmReader(path, bytes).load();
+            return PgmReader(path, bytes, options).load();
         case Format::R16:
             return loadRaw(path, bytes, false, options);
         case Format::R32:
@@ -552,9 +748,9 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
         case Format::Hgt:
             return loadHgt(path, bytes);
         case Format::Npy:
-            return loadNpy(path, bytes);
+            return loadNpy(path, bytes, options);
         case Format::Npz:
-            return loadNpy(path, npzMember(path, bytes));
+            return loadNpy(path, npzMember(path, bytes, {}, maxBytes), options);
         case Format::Tiff:
             break;
     }

@@ -95,6 +95,11 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
         if (m.method != 0 && m.method != 8)
             throw fail(msg("member ", m.name, " uses zip method ", m.method, "; .npz members are stored or deflated"));
         if (m.size > maxBytes) throw fail(msg("member ", m.name, " holds ", m.size, " bytes, over the limit of ", maxBytes));
+        // Deflate expands at most 1032:1, so a small member claiming a huge size
+        // is refused before its buffer is allocated.
+        if (m.size > m.compressed * 1032 + 1024)
+            throw fail(msg("member ", m.name, " claims ", m.size, " bytes from ", m.compressed,
+                           " compressed, more than deflate can expand"));
         size_t local = size_t(m.localHeader);
         if (local + 30 > bytes.size() || read32(bytes, local) != 0x04034b50u)
             throw fail(msg("corrupt .npz: no local header for ", m.name));

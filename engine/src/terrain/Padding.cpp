@@ -1,6 +1,7 @@
 #include <sierra/terrain/Padding.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <vector>
 
 namespace sierra::terrain {
@@ -11,6 +12,20 @@ int paddedSide(int size) {
     int side = 3;
     while (side < size) side = 2 * side - 1;  // 2^n + 1 -> 2^(n+1) + 1
     return side;
+}
+
+std::string paddingWarning(int width, int height) {
+    SIERRA_CHECK(width >= 1 && height >= 1, "paddingWarning: empty size ", width, "x", height);
+    const int side = paddedSide(std::max(width, height));
+    const double real = double(width) * double(height);
+    const double padded = double(side) * double(side);
+    if (padded <= kPaddingWarnRatio * real) return "";
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.1f", padded / real);
+    return msg("a ", width, "x", height, " heightfield is padded to ", side, "x", side, " = ",
+               int64_t(side) * side, " samples, ", ratio, "x its ", int64_t(width) * height,
+               " real samples (the padding costs memory and refinement time but is not drawn); "
+               "crop or tile it closer to a 2^n+1 square to avoid this");
 }
 
 Heightfield padToPowerOfTwoPlusOne(const Heightfield& field) {

@@ -5,10 +5,19 @@
 
 #include <sierra/terrain/Heightfield.h>
 
+#include <string>
+
 namespace sierra::terrain {
 
 // Smallest 2^n + 1 >= size (n >= 1, so at least 3). size must be 1..65537.
 int paddedSide(int size);
+
+// Padding costs memory and refinement time but draws nothing. When the padded
+// grid holds more than kPaddingWarnRatio times the real samples, a line for
+// the user (apps print it): "a 1000x3 heightfield is padded to 1025x1025 =
+// 1050625 samples, 350.2x its 3000 real samples; ..."; "" otherwise.
+constexpr double kPaddingWarnRatio = 4.0;
+std::string paddingWarning(int width, int height);
 
 // A square (2^n+1)^2 copy of `field` (2^n+1 = paddedSide(max(width, height))),
 // samples beyond the original edges clamped to the nearest edge sample, with a

@@ -1,0 +1,57 @@
+# Shows that cmake/CheckModuleIncludes.cmake catches wrong includes: each case
+# writes a small engine tree under WORK_DIR, runs the checker on it and expects
+# success, or failure with the given text.
+#   cmake -DCHECKER=<CheckModuleIncludes.cmake> -DWORK_DIR=<dir> -P checker_fixture.cmake
+
+function(run_case name file content expected)
+  set(root "${WORK_DIR}/${name}")
+  file(REMOVE_RECURSE "${root}")
+  # A clean base: core with std and POSIX headers, terrain using core and spng,
+  # gpu's EGL file, render using everything.
+  file(WRITE "${root}/include/sierra/core/Error.h" "#pragma once\n#include <string>\n#include <sys/stat.h>\n")
+  file(WRITE "${root}/src/core/Files.cpp" "#include <sierra/core/Error.h>\n#include <unistd.h>\n")
+  file(WRITE "${root}/src/terrain/Load.cpp" "#include <sierra/core/Error.h>\n#include <spng.h>\n")
+  file(WRITE "${root}/src/gpu/EglContext.cpp" "#include <EGL/egl.h>\n#include <GL/glcorearb.h>\n")
+  file(WRITE "${root}/src/render/Pass.cpp"
+       "#include \"render/Private.h\"\n#include <sierra/gpu/Gl.h>\n#include <glm/glm.hpp>\n#include <imgui.h>\n")
+  if(file)
+    file(WRITE "${root}/${file}" "${content}")
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} -DENGINE_DIR=${root} -P ${CHECKER}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(APPEND out "${err}")
+  if(expected STREQUAL "")
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "case ${name}: the checker refused a clean tree:\n${out}")
+    endif()
+  else()
+    if(rc EQUAL 0)
+      message(FATAL_ERROR "case ${name}: the checker passed a wrong include (${file})")
+    endif()
+    string(FIND "${out}" "${expected}" at)
+    if(at EQUAL -1)
+      message(FATAL_ERROR "case ${name}: expected \"${expected}\" in:\n${out}")
+    endif()
+  endif()
+  message(STATUS "case ${name}: ok")
+endfunction()
+
+run_case(clean "" "" "")
+run_case(terrain_includes_render src/terrain/Bad.cpp "#include <sierra/render/Camera.h>\n"
+         "src/terrain/Bad.cpp:1: module terrain may not include <sierra/render/Camera.h> (it belongs to render; terrain may use: core stb spng gdal zlib)")
+run_case(core_includes_terrain include/sierra/core/Log.h "#pragma once\n\n#include <sierra/terrain/Heightfield.h>\n"
+         "include/sierra/core/Log.h:3: module core may not include <sierra/terrain/Heightfield.h>")
+run_case(sbt_includes_gl src/sbt/Refiner.cpp "#include <sierra/terrain/Heightfield.h>\n#include <GL/glcorearb.h>\n"
+         "src/sbt/Refiner.cpp:2: module sbt may not include <GL/glcorearb.h> (it belongs to gl")
+run_case(gpu_egl_outside_context src/gpu/Objects.cpp "#include <EGL/egl.h>\n"
+         "module gpu may not include <EGL/egl.h> (it belongs to egl, which only src/gpu/EglContext.cpp may include")
+run_case(render_includes_egl src/render/Frame.cpp "#include <EGL/egl.h>\n"
+         "module render may not include <EGL/egl.h>")
+run_case(scene_includes_gpu src/scene/Scene.cpp "#include <nlohmann/json.hpp>\n#include <sierra/gpu/Gl.h>\n"
+         "src/scene/Scene.cpp:2: module scene may not include <sierra/gpu/Gl.h>")
+run_case(terrain_includes_glm src/terrain/Ramp.cpp "#include <glm/glm.hpp>\n"
+         "module terrain may not include <glm/glm.hpp> (it belongs to glm")
+run_case(quoted_cross_module src/sbt/Bridge.cpp "#include \"render/SbtBridge.h\"\n"
+         "module sbt may not include <render/SbtBridge.h>")
+run_case(unknown_module src/physics/Body.cpp "#include <string>\n"
+         "module physics is not in the table")
