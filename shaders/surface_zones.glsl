@@ -22,13 +22,41 @@ float tileVariation(vec2 p) {
     return 0.5 + 0.25 * (sin(p.x * 0.37 + 1.3 * sin(p.y * 0.23)) + sin(p.y * 0.31 + 1.7 * sin(p.x * 0.19)));
 }
 
-vec4 planarTile(int zone, vec2 uv) {
-    vec4 c = texture(uTiles, vec3(uv, float(zone)));
+// One filtered tile sample; `grad` holds d(uv)/dx and d(uv)/dy (taken where
+// control flow is uniform, see surfaceAlbedo).
+vec4 tileSample(int zone, vec2 uv, vec4 grad) {
+#ifdef SIERRA_MANUAL_TILE_FILTER
+    // llvmpipe (Mesa 22.3): filtered texture() on a 2D array texture under
+    // magnification runs about a thousand times slower than texelFetch, so a
+    // close-up takes minutes. Here the mip level comes from the gradients and
+    // four texelFetch calls are blended bilinearly (no anisotropy).
+    vec2 size0 = vec2(textureSize(uTiles, 0).xy);
+    vec2 dx = grad.xy * size0, dy = grad.zw * size0;
+    float lod = max(0.5 * log2(max(dot(dx, dx), dot(dy, dy))), 0.0);
+    int level = min(int(lod + 0.5), textureQueryLevels(uTiles) - 1);
+    ivec2 size = max(ivec2(size0) >> level, ivec2(1));
+    vec2 p = uv * vec2(size) - 0.5;
+    vec2 f = fract(p);
+    ivec2 i0 = ivec2(floor(p));
+    ivec2 a = ((i0 % size) + size) % size;
+    ivec2 b = ((i0 + 1) % size + size) % size;
+    vec4 c00 = texelFetch(uTiles, ivec3(a.x, a.y, zone), level);
+    vec4 c10 = texelFetch(uTiles, ivec3(b.x, a.y, zone), level);
+    vec4 c01 = texelFetch(uTiles, ivec3(a.x, b.y, zone), level);
+    vec4 c11 = texelFetch(uTiles, ivec3(b.x, b.y, zone), level);
+    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+#else
+    return textureGrad(uTiles, vec3(uv, float(zone)), grad.xy, grad.zw);
+#endif
+}
+
+vec4 planarTile(int zone, vec2 uv, vec4 grad) {
+    vec4 c = tileSample(zone, uv, grad);
     if (uZoneFlags.z > 0.5) {
         // A second sample, rotated and at another scale, mixed in by a slow
         // variation: the eye no longer finds the repeat.
         const mat2 turn = mat2(0.8, 0.6, -0.6, 0.8);
-        vec4 other = texture(uTiles, vec3(turn * uv * 0.61 + 0.37, float(zone)));
+        vec4 other = tileSample(zone, turn * uv * 0.61 + 0.37, vec4(turn * grad.xy, turn * grad.zw) * 0.61);
         c = mix(c, other, 0.45 * tileVariation(uv));
     }
     return c;
@@ -37,20 +65,27 @@ vec4 planarTile(int zone, vec2 uv) {
 // The tile of `zone` at a map position: planar by default (the document's
 // mapping); with triplanar on, steep slopes take the tile along their normal
 // too, so cliffs do not stretch it.
-vec4 zoneTile(int zone, vec2 mapXY, vec3 world, Ground g) {
+// mapGrad: the zone-map position's screen derivatives; worldGrad: the
+// world position's (x and y derivatives of the xyz).
+vec4 zoneTile(int zone, vec2 mapXY, vec4 mapGrad, vec3 world, mat2x3 worldGrad, Ground g) {
     float size = max(uZoneTile[zone].x, 1e-3);
-    vec4 top = planarTile(zone, mapXY / size);
+    vec4 top = planarTile(zone, mapXY / size, mapGrad / size);
     if (uZoneFlags.y < 0.5 || g.slope < 0.05) return top;
     // World in zone-map pixels, heights too.
-    float pixelsPerUnit = (uZoneMap.x - 1.0) / max(uSpacingValid.z, 1e-6);
-    vec3 p = world * pixelsPerUnit / size;
+    float scale = (uZoneMap.x - 1.0) / max(uSpacingValid.z, 1e-6) / size;
+    vec3 p = world * scale;
+    mat2x3 pg = worldGrad * scale;
     vec3 w = pow(abs(g.normal), vec3(4.0));
     w /= w.x + w.y + w.z;
-    return top * w.y + planarTile(zone, p.zy) * w.x + planarTile(zone, p.xy) * w.z;
+    return top * w.y + planarTile(zone, p.zy, vec4(pg[0].zy, pg[1].zy)) * w.x +
+           planarTile(zone, p.xy, vec4(pg[0].xy, pg[1].xy)) * w.z;
 }
 
 vec3 surfaceAlbedo(vec3 world, Ground g) {
     vec2 m = zoneMapPosition(world);
+    // Derivatives here, where control flow is still uniform.
+    vec4 mGrad = vec4(dFdx(m), dFdy(m));
+    mat2x3 wGrad = mat2x3(dFdx(world), dFdy(world));
     ivec2 size = ivec2(uZoneMap.xy * uZoneMap.z);
     ivec2 texel = clamp(ivec2(floor(m * uZoneMap.z)), ivec2(0), size - 1);
     int zone = int(texelFetch(uZoneId, texel, 0).r);
@@ -65,10 +100,10 @@ vec3 surfaceAlbedo(vec3 world, Ground g) {
     }
     if (uZoneFlags.w > 0.5) return uZoneColour[zone].rgb;  // zones: flat palette colours
 
-    if (!inBand) return zoneTile(zone, m, world, g).rgb;  // one tile set away from borders
+    if (!inBand) return zoneTile(zone, m, mGrad, world, wGrad, g).rgb;  // one tile set away from borders
     int low = int(pair.x), high = int(pair.y);
-    vec4 a = zoneTile(low, m, world, g);
-    vec4 b = zoneTile(high, m, world, g);
+    vec4 a = zoneTile(low, m, mGrad, world, wGrad, g);
+    vec4 b = zoneTile(high, m, mGrad, world, wGrad, g);
     if (uZoneFlags.x > 0.5) {
         // Height blending: where one tile stands higher (stones in sand) it
         // shows through earlier; the shift vanishes at the band's edges.

@@ -59,6 +59,9 @@ terrain::Heightfield realSamples(const terrain::Heightfield& field, const Terrai
 class ZoneSurface final : public Surface {
 public:
     std::string shaderFile() const override { return "surface_zones.glsl"; }
+    std::string defines() const override {
+        return manualFilter_ ? "#define SIERRA_MANUAL_TILE_FILTER 1\n" : std::string();
+    }
     void bind() const override {
         glBindTextureUnit(3, tiles_.id());
         glBindTextureUnit(4, zoneId_.id());
@@ -68,6 +71,7 @@ public:
     }
 
     gpu::Texture tiles_, zoneId_, zonePair_, distance_;
+    bool manualFilter_ = false;  // llvmpipe: tiles filtered in the shader (see surface_zones.glsl)
     gpu::Buffer uniforms_;
 };
 
@@ -128,7 +132,9 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
                                             .wrap = GL_REPEAT});
     for (size_t k = 0; k < images.size(); ++k)
         surface->tiles_.uploadLayer(int(k), GL_RGBA, GL_UNSIGNED_BYTE, images[k].rgba.data());
-    surface->tiles_.generateMipmaps();
+    if (levels > 1) surface->tiles_.generateMipmaps();
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    surface->manualFilter_ = renderer && std::strstr(renderer, "llvmpipe") != nullptr;
     if (hasExtension("GL_EXT_texture_filter_anisotropic") || hasExtension("GL_ARB_texture_filter_anisotropic")) {
         float limit = 1.0f;
         glGetFloatv(kMaxAnisotropyLimit, &limit);

@@ -19,6 +19,8 @@ public:
     virtual ~Surface() = default;
     // The shader file that stands for "surface.glsl" in terrain.frag.
     virtual std::string shaderFile() const = 0;
+    // Lines inserted after #version when the program is built (driver workarounds, options).
+    virtual std::string defines() const { return {}; }
     // Binds the surface's textures and blocks (inside the terrain pass's state scope).
     virtual void bind() const = 0;
 };

@@ -11,7 +11,8 @@ std::unique_ptr<TerrainPass> TerrainPass::create(std::unique_ptr<Surface> surfac
     auto pass = std::make_unique<TerrainPass>();
     std::string file = surface->shaderFile();
     gpu::IncludeAlias alias{"surface.glsl", file};
-    pass->program_ = gpu::Program::create({.vertex = "terrain.vert", .fragment = "terrain.frag",
+    std::string defines = surface->defines();
+    pass->program_ = gpu::Program::create({.vertex = "terrain.vert", .fragment = "terrain.frag", .defines = defines,
                                            .aliases = std::span<const gpu::IncludeAlias>(&alias, 1)});
     pass->surface_ = std::move(surface);
     return pass;
