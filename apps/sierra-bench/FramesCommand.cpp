@@ -93,6 +93,7 @@ void runFrames(const FramesOptions& o) {
     std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(), context.platform().c_str());
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
+    render::addOverlayPasses(terrain, sc, field);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
     std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());

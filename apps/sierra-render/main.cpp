@@ -58,6 +58,7 @@ int run(const scene::Scene& s) {
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
     log::info("terrain on the GPU: ", terrain.summary());
+    render::addOverlayPasses(terrain, s, field);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});
     std::vector<render::Camera> cameras = render::sceneCameras(s, terrain.bounds());

@@ -1,7 +1,13 @@
 #include <sierra/render/SceneView.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/render/CurvatureGpu.h>
+#include <sierra/render/passes/ContourPass.h>
+#include <sierra/render/passes/HatchPass.h>
+#include <sierra/render/passes/LinePass.h>
 #include <sierra/scene/Terrain.h>
+
+#include <memory>
 
 namespace sierra::render {
 
@@ -87,6 +93,7 @@ TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& 
     return {.field = &field,
             .seaLevel = seaLevel,
             .threads = s.lod.threads,
+            .surface = s.style.overlay.layers.shaded ? "hypsometric" : "paper",
             .metric = scene::metricHeights(s.terrain),
             .treeLine = s.style.treeLine,
             .snowLine = s.style.snowLine};
@@ -100,6 +107,34 @@ DrawOptions sceneDrawOptions(const scene::Scene& s) {
             .wireframe = s.style.wireframe,
             .threads = s.lod.threads,
             .lighting = sceneLighting(s.lighting, s.output.alpha)};
+}
+
+OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field) {
+    const analysis::StyleParams& style = s.style.overlay;
+    OverlayInfo info;
+    if (!style.layers.lines && !style.layers.hatch && !style.layers.contours) return info;
+    SIERRA_CHECK(field.width() == renderer.side() && field.height() == renderer.side(),
+                 "overlays: the heightfield (", field.width(), "x", field.height(),
+                 ") is not the renderer's terrain (", renderer.side(), " samples a side)");
+    if (style.layers.lines || style.layers.hatch) {
+        auto curvature = std::make_shared<CurvatureGpu>(CurvatureGpu::create(field));
+        curvature->compute(style.curvature);
+        if (style.layers.hatch) {
+            renderer.addPass(HatchPass::create(curvature, {.length = style.hatch.length,
+                                                           .width = style.hatch.width,
+                                                           .direction = style.hatch.direction}));
+        }
+        if (style.layers.lines) {
+            // Traced once per terrain and style, from the GPU field read back.
+            analysis::LineSet lines = analysis::traceLines(curvature->read(), analysis::lineOptions(style));
+            info.lines = lines.polylineCount();
+            auto pass = LinePass::create(lines, {.width = style.lines.width});
+            info.segments = pass->segmentCount();
+            renderer.addPass(std::move(pass));
+        }
+    }
+    if (style.layers.contours) renderer.addPass(ContourPass::create());
+    return info;
 }
 
 }  // namespace sierra::render

@@ -14,7 +14,8 @@ constexpr int kRampEntries = 1024;
 }
 
 std::unique_ptr<TerrainPass> TerrainPass::create(const TerrainGpu& terrain, const TerrainPassDesc& desc) {
-    SIERRA_CHECK(desc.surface == "hypsometric", "unknown surface '", desc.surface, "': use hypsometric");
+    SIERRA_CHECK(desc.surface == "hypsometric" || desc.surface == "paper", "unknown surface '", desc.surface,
+                 "': use hypsometric or paper");
     auto pass = std::make_unique<TerrainPass>();
     std::string surfaceFile = "surface_" + desc.surface + ".glsl";
     gpu::IncludeAlias alias{"surface.glsl", surfaceFile};

@@ -1,0 +1,47 @@
+#pragma once
+// Hatch shading over the terrain: one stroke per grid vertex, generated on
+// the GPU from the curvature field (shaders/hatch.vert: instancing with
+// vertex pulling, nothing rebuilt on the CPU per frame), on the vertex's
+// tangent plane, along or across the curvature-weighted axis
+// (analysis::hatchStrokeDirection), with opacity = the largest curvature.
+// Far away the strokes thin out by powers of two and fade with the screen
+// size of a grid cell (see hatch.vert), so a far slope does not turn black;
+// vertices outside the frustum are skipped in the vertex shader.
+
+#include <sierra/analysis/Hatch.h>
+#include <sierra/gpu/Objects.h>
+#include <sierra/gpu/Program.h>
+#include <sierra/render/CurvatureGpu.h>
+#include <sierra/render/Pass.h>
+
+#include <glm/glm.hpp>
+
+#include <memory>
+
+namespace sierra::render {
+
+struct HatchPassDesc {
+    float length = 0.75f;  // stroke length, grid units, > 0
+    float width = 1.0f;    // pixels, > 0
+    analysis::HatchDirection direction = analysis::HatchDirection::Along;
+    glm::vec4 colour{0.0f, 0.0f, 0.0f, 1.0f};  // RGBA 0..1; alpha multiplies the opacity
+};
+
+class HatchPass final : public Pass {
+public:
+    // `curvature` (computed, same grid as the terrain drawn) is shared: the
+    // pass reads its field and gradient textures every frame. Throws
+    // sierra::Error for a length or width <= 0.
+    static std::unique_ptr<HatchPass> create(std::shared_ptr<const CurvatureGpu> curvature,
+                                             const HatchPassDesc& desc = {});
+    const char* name() const override { return "hatch"; }
+    void draw(const FrameContext& frame) override;
+
+private:
+    gpu::Program program_;
+    gpu::VertexArray vao_;
+    std::shared_ptr<const CurvatureGpu> curvature_;
+    HatchPassDesc desc_;
+};
+
+}  // namespace sierra::render
