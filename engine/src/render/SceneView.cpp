@@ -1,6 +1,7 @@
 #include <sierra/render/SceneView.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Log.h>
 #include <sierra/render/CurvatureGpu.h>
 #include <sierra/render/passes/ContourPass.h>
 #include <sierra/render/passes/HatchPass.h>
@@ -134,6 +135,9 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s, c
         }
     }
     if (style.layers.contours) renderer.addPass(ContourPass::create());
+    log::info("overlays: ", style.layers.hatch ? "hatches, " : "", style.layers.lines ? msg(info.lines, " lines (",
+              info.segments, " segments), ") : std::string(), style.layers.contours ? "contour edges, " : "",
+              analysis::curvatureMethodName(style.curvature.method), " curvature on the GPU");
     return info;
 }
 
