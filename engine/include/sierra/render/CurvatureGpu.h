@@ -14,6 +14,8 @@
 #include <sierra/gpu/Program.h>
 #include <sierra/terrain/Heightfield.h>
 
+#include <glm/glm.hpp>
+
 namespace sierra::render {
 
 class CurvatureGpu {
@@ -39,6 +41,7 @@ public:
     // Reads the last compute() back (synchronously) in the CPU's layout.
     analysis::CurvatureField read() const;
 
+    glm::vec2 spacing() const { return {spacingX_, spacingZ_}; }  // world units between samples
     int width() const { return width_; }
     int height() const { return height_; }
 

@@ -22,6 +22,24 @@ std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu>
     pass->vao_ = gpu::VertexArray::create();
     pass->curvature_ = std::move(curvature);
     pass->desc_ = desc;
+    // The view-independent stroke field, once: direction and opacity per sample.
+    const CurvatureGpu& c = *pass->curvature_;
+    gpu::Program strokes = gpu::Program::create({.compute = "hatch_strokes.comp"});
+    pass->strokes_ = gpu::Texture::create(
+        {.format = GL_RGBA32F, .width = c.width(), .height = c.height(), .filter = GL_NEAREST});
+    {
+        gpu::GlStateScope scope;
+        glUseProgram(strokes.id());
+        glUniform2i(strokes.uniform("uSize"), c.width(), c.height());
+        glUniform2f(strokes.uniform("uSpacing"), c.spacing().x, c.spacing().y);
+        glUniform1i(strokes.uniform("uAcross"), desc.direction == analysis::HatchDirection::Across ? 1 : 0);
+        glBindTextureUnit(0, c.texture().id());
+        glBindTextureUnit(1, c.gradient().id());
+        glBindImageTexture(0, pass->strokes_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glDispatchCompute(GLuint((c.width() + 15) / 16), GLuint((c.height() + 15) / 16), 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    }
     return pass;
 }
 
@@ -39,11 +57,9 @@ void HatchPass::draw(const FrameContext& frame) {
     glUseProgram(program_.id());
     glUniform1f(program_.uniform("uLength"), desc_.length);
     glUniform1f(program_.uniform("uWidth"), desc_.width);
-    glUniform1i(program_.uniform("uAcross"), desc_.direction == analysis::HatchDirection::Across ? 1 : 0);
     glUniform4fv(program_.uniform("uColour"), 1, glm::value_ptr(desc_.colour));
     frame.terrain.bind();
-    glBindTextureUnit(3, curvature_->texture().id());
-    glBindTextureUnit(4, curvature_->gradient().id());
+    glBindTextureUnit(3, strokes_.id());
     glBindVertexArray(vao_.id());
     const GLsizei vertices = GLsizei(curvature_->width()) * GLsizei(curvature_->height());
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, vertices);

@@ -1,7 +1,8 @@
 #pragma once
 // Hatch shading over the terrain: one stroke per grid vertex, generated on
-// the GPU from the curvature field (shaders/hatch.vert: instancing with
-// vertex pulling, nothing rebuilt on the CPU per frame), on the vertex's
+// the GPU from the curvature field (shaders/hatch_strokes.comp once, the
+// view-independent direction and opacity; shaders/hatch.vert every frame:
+// instancing with vertex pulling, nothing rebuilt on the CPU), on the vertex's
 // tangent plane, along or across the curvature-weighted axis
 // (analysis::hatchStrokeDirection), with opacity = the largest curvature.
 // Far away the strokes thin out by powers of two and fade with the screen
@@ -29,8 +30,9 @@ struct HatchPassDesc {
 
 class HatchPass final : public Pass {
 public:
-    // `curvature` (computed, same grid as the terrain drawn) is shared: the
-    // pass reads its field and gradient textures every frame. Throws
+    // `curvature` (computed, same grid as the terrain drawn) is read once
+    // into the pass's stroke field; compute() it again and the pass keeps
+    // the strokes of the field it was created with. Throws
     // sierra::Error for a length or width <= 0.
     static std::unique_ptr<HatchPass> create(std::shared_ptr<const CurvatureGpu> curvature,
                                              const HatchPassDesc& desc = {});
@@ -41,6 +43,7 @@ private:
     gpu::Program program_;
     gpu::VertexArray vao_;
     std::shared_ptr<const CurvatureGpu> curvature_;
+    gpu::Texture strokes_;  // RGBA32F: stroke direction and opacity per sample (hatch_strokes.comp)
     HatchPassDesc desc_;
 };
 
