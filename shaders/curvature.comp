@@ -79,7 +79,13 @@ void main() {
 
 layout(binding = 1) uniform sampler2D uGradientTex;  // (dy/dx, dy/dz), NaN = no data
 layout(rgba32f, binding = 0) uniform writeonly image2D uFieldOut;
-uniform int uMethod;     // 0 two-normal, 1 three-normal, 2 three-vertex, 3 edge-angle
+// The method is compiled in (CURVATURE_METHOD 0 two-normal, 1 three-normal,
+// 2 three-vertex, 3 edge-angle): a software rasteriser runs every branch of
+// a uniform switch otherwise.
+#ifndef CURVATURE_METHOD
+#define CURVATURE_METHOD 1
+#endif
+const int uMethod = CURVATURE_METHOD;
 uniform int uDistance;   // reinforcement distance in steps, 1 = none
 uniform float uScale;    // multiplies every value
 uniform vec4 uLevels;    // x: 1 = level control on; y: black; z: white; w: gamma
@@ -176,7 +182,8 @@ void main() {
     if (noData(heightAt(ij))) {
         out4 = vec4(nanValue());
     } else {
-        for (int d = 0; d < 4; ++d) out4[d] = directionValue(ij, d);
+        // Unrolled so each direction's step is a constant.
+        out4 = vec4(directionValue(ij, 0), directionValue(ij, 1), directionValue(ij, 2), directionValue(ij, 3));
     }
     imageStore(uFieldOut, ij, out4);
 }

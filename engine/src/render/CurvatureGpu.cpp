@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace sierra::render {
@@ -21,7 +22,10 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
     c.spacingX_ = field.spacingX();
     c.spacingZ_ = field.spacingZ();
     c.gradientProgram_ = gpu::Program::create({.compute = "curvature.comp", .defines = "#define CURVATURE_GRADIENT 1\n"});
-    c.fieldProgram_ = gpu::Program::create({.compute = "curvature.comp"});
+    for (int m = 0; m < 4; ++m) {
+        std::string defines = "#define CURVATURE_METHOD " + std::to_string(m) + "\n";
+        c.fieldPrograms_[size_t(m)] = gpu::Program::create({.compute = "curvature.comp", .defines = defines});
+    }
 
     std::vector<float> heights(field.samples().begin(), field.samples().end());
     const float scale = field.verticalScale();
@@ -60,11 +64,10 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o) {
         glDispatchCompute(groupsX, groupsY, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     }
-    const gpu::Program& p = fieldProgram_;
+    const gpu::Program& p = fieldPrograms_[size_t(o.method)];
     glUseProgram(p.id());
     glUniform2i(p.uniform("uSize"), width_, height_);
     glUniform2f(p.uniform("uSpacing"), spacingX_, spacingZ_);
-    glUniform1i(p.uniform("uMethod"), int(o.method));
     glUniform1i(p.uniform("uDistance"), o.distance);
     glUniform1f(p.uniform("uScale"), o.scale);
     glUniform4f(p.uniform("uLevels"), o.levels.enabled ? 1.0f : 0.0f, o.levels.black, o.levels.white,

@@ -16,6 +16,8 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
+
 namespace sierra::render {
 
 class CurvatureGpu {
@@ -49,7 +51,7 @@ private:
     int width_ = 0, height_ = 0;
     float spacingX_ = 1.0f, spacingZ_ = 1.0f;
     gpu::Program gradientProgram_;
-    gpu::Program fieldProgram_;
+    std::array<gpu::Program, 4> fieldPrograms_;  // one per CurvatureMethod
     gpu::Texture heights_;
     gpu::Texture gradient_;
     gpu::Texture field_;
