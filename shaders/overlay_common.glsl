@@ -16,17 +16,20 @@ vec3 towardsEye(vec3 world) {
 }
 
 // The point at grid position `grid` on the true surface, moved towards the
-// camera along its view ray (so it stays on the same pixel) by the saturated
-// object-space error of the nearest vertex (how far the SBT mesh can be from
-// the true surface there, whatever tau and geomorph do) plus 0.2% of its
-// distance for depth precision: the depth test then never hides it under the
-// mesh, and it can only win against surfaces within that small distance in
-// front of it.
+// camera along its view ray (so it stays on the same pixel) by as much as the
+// SBT mesh can be off the true surface there, plus 0.2% of its distance for
+// depth precision: the depth test then never hides it under the mesh, and it
+// can only win against surfaces within that small distance in front of it.
+// The mesh's bound: an inactive vertex projects to at most tau pixels, i.e.
+// its error is at most tau * distance / lambda (the refinement's test,
+// distance from the LOD eye); with the nearest vertex's own saturated error
+// as a floor (a vertex blending in by geomorph).
 vec3 overlayPoint(vec2 grid) {
     vec3 world = vec3(grid.x * uSpacingValid.x, trueHeight(grid), grid.y * uSpacingValid.y);
     ivec2 ij = clamp(ivec2(round(grid)), ivec2(0), ivec2(uGrid.x - 1));
     float error = texelFetch(uData, ij, 0).b;
-    float lift = error + 0.002 * distance(world, uEye.xyz);
+    float screenBound = uFrameSize.z > 0.0 ? uFrameSize.w * distance(world, uLodEye.xyz) / uFrameSize.z : 0.0;
+    float lift = max(error, screenBound) + 0.002 * distance(world, uEye.xyz);
     return world + towardsEye(world) * lift;
 }
 

@@ -6,6 +6,7 @@
 
 #include "GlTest.h"
 
+#include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/CurvatureGpu.h>
@@ -138,6 +139,45 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
             << ") on screen, expected (" << expected.x << ", " << expected.y << ")";
     }
     (void)renderer;
+}
+
+// Dark pixels of a frame (lines drawn in black over paper).
+int64_t darkPixels(const gpu::Image& image) {
+    int64_t n = 0;
+    for (size_t p = 0; p < image.rgba.size(); p += 4) n += image.rgba[p] + image.rgba[p + 1] + image.rgba[p + 2] < 3 * 110;
+    return n;
+}
+
+TEST_F(Overlays, LinesNeitherSinkNorFloatAtAnyTau) {
+    // The same lines over the full grid and over SBT meshes of growing tau:
+    // lifted by the SBT's error, they stay as visible as over the full grid
+    // (none sink into a coarse mesh), and not more (none float over ridges
+    // in front of them).
+    terrain::Heightfield field = fractal(129);
+    auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
+    curvature->compute({.scale = 4.0f});
+    analysis::LineSet lines = analysis::traceLines(curvature->read(), {.threshold = 0.5f, .minVertices = 4});
+    auto renderer = render::TerrainRenderer::create({.field = &field, .surface = "paper"});
+    renderer.addPass(render::LinePass::create(lines, {.width = 1.5f}));
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+    render::Camera camera = render::defaultCamera(renderer.bounds(), float(kWidth) / kHeight);
+    auto dark = [&](render::Lod lod, float tau) {
+        target.begin(render::TerrainRenderer::clearColour({}));
+        renderer.draw(camera, kWidth, kHeight, {.lod = lod, .tau = tau});
+        return darkPixels(target.read());
+    };
+    const int64_t full = dark(render::Lod::Full, 1.0f);
+    ASSERT_GT(full, 200) << "too few line pixels to compare";
+    // Up to 4 pixels: beyond, on a frame this small (the terrain is 180 pixels
+    // wide), the coarse mesh's own outline moves enough to hide or reveal
+    // whole slopes (tau 16: 14% fewer line pixels, with the lines on the
+    // mesh where it is drawn).
+    for (float tau : {1.0f, 2.0f, 4.0f}) {
+        const int64_t sbt = dark(render::Lod::Sbt, tau);
+        std::printf("tau %g: %lld dark pixels, full grid %lld\n", double(tau), (long long)sbt, (long long)full);
+        EXPECT_GT(double(sbt), 0.95 * double(full)) << "tau " << tau << ": lines sink into the mesh";
+        EXPECT_LT(double(sbt), 1.05 * double(full)) << "tau " << tau << ": lines float over the mesh";
+    }
 }
 
 // Golden images of overlays on one terrain, compared with the tolerance of
