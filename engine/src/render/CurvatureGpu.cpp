@@ -35,9 +35,7 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
 
     gpu::GlStateScope scope;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    c.heights_ = gpu::Texture::create(
-        {.format = GL_R32F, .width = c.width_, .height = c.height_, .filter = GL_NEAREST});
-    c.heights_.upload(GL_RED, GL_FLOAT, heights.data());
+    c.heights_ = gpu::Buffer::create({.size = heights.size() * sizeof(float), .data = heights.data()});
     c.gradient_ = gpu::Texture::create(
         {.format = GL_RG32F, .width = c.width_, .height = c.height_, .filter = GL_NEAREST});
     c.field_ = gpu::Texture::create(
@@ -45,7 +43,7 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
     return c;
 }
 
-void CurvatureGpu::compute(const analysis::CurvatureOptions& o) {
+void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlanes) {
     analysis::validate(o);
     const int minSide = std::max(3, 2 * o.distance + 1);
     SIERRA_CHECK(width_ >= minSide && height_ >= minSide, "curvature: a ", width_, "x", height_,
@@ -54,8 +52,10 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o) {
     gpu::GlStateScope scope;
     const GLuint groupsX = GLuint((width_ + kGroupSize - 1) / kGroupSize);
     const GLuint groupsY = GLuint((height_ + kGroupSize - 1) / kGroupSize);
-    glBindTextureUnit(0, heights_.id());
-    {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, heights_.id());
+    const bool normalBased =
+        o.method == analysis::CurvatureMethod::TwoNormal || o.method == analysis::CurvatureMethod::ThreeNormal;
+    if (normalBased || tangentPlanes) {
         glUseProgram(gradientProgram_.id());
         glUniform2i(gradientProgram_.uniform("uSize"), width_, height_);
         glUniform2f(gradientProgram_.uniform("uSpacing"), spacingX_, spacingZ_);
@@ -80,6 +80,7 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o) {
     // Any later reader: the hatch pass's texel fetches, or a read-back.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);  // not part of GlState
 }
 
 analysis::CurvatureField CurvatureGpu::read() const {

@@ -119,7 +119,7 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s, c
                  ") is not the renderer's terrain (", renderer.side(), " samples a side)");
     if (style.layers.lines || style.layers.hatch) {
         auto curvature = std::make_shared<CurvatureGpu>(CurvatureGpu::create(field));
-        curvature->compute(style.curvature);
+        curvature->compute(style.curvature, style.layers.hatch);
         if (style.layers.hatch) {
             renderer.addPass(HatchPass::create(curvature, {.length = style.hatch.length,
                                                            .width = style.hatch.width,

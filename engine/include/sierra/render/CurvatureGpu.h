@@ -30,16 +30,16 @@ public:
     // Computes the field into texture(); throws sierra::Error for bad options
     // (analysis::validate) or a grid too small for the stencil, with the
     // CPU's messages. The result is ready for any later GL command.
-    void compute(const analysis::CurvatureOptions& options);
+    // tangentPlanes: also fill gradient() (the hatch strokes need it); the
+    // normal methods fill it anyway.
+    void compute(const analysis::CurvatureOptions& options, bool tangentPlanes = true);
 
     // RGBA32F, width x height: the 4 directions of Curvature.h per sample.
     const gpu::Texture& texture() const { return field_; }
     // RG32F surface gradient (dy/dx, dy/dz) per sample from the options'
     // normals (NaN = no data): the tangent planes of the hatch strokes.
-    // Computed by every compute(), whatever the method.
+    // Filled by compute() unless told otherwise (see there).
     const gpu::Texture& gradient() const { return gradient_; }
-    // R32F world heights (NaN = no data), nearest filtering.
-    const gpu::Texture& heights() const { return heights_; }
     // Reads the last compute() back (synchronously) in the CPU's layout.
     analysis::CurvatureField read() const;
 
@@ -52,7 +52,7 @@ private:
     float spacingX_ = 1.0f, spacingZ_ = 1.0f;
     gpu::Program gradientProgram_;
     std::array<gpu::Program, 4> fieldPrograms_;  // one per CurvatureMethod
-    gpu::Texture heights_;
+    gpu::Buffer heights_;  // world heights, float32 row-major, NaN = no data (a storage buffer)
     gpu::Texture gradient_;
     gpu::Texture field_;
 };
