@@ -22,7 +22,7 @@ layout(binding = 3) uniform sampler2D uStrokes;  // RGBA32F: stroke direction, o
 uniform float uLength;   // grid units
 uniform float uWidth;    // pixels
 
-const float kMinCellPixels = 4.0;
+const float kMinCellPixels = 6.0;
 
 out vec3 vWorld;
 out float vAcross;
