@@ -21,8 +21,10 @@
 layout(binding = 3) uniform sampler2D uStrokes;  // RGBA32F: stroke direction, opacity (hatch_strokes.comp)
 uniform float uLength;   // grid units
 uniform float uWidth;    // pixels
+uniform int uBaseStride;   // instances sit on every uBaseStride-th vertex (HatchPass::baseStride)
+uniform int uLatticeSide;  // instances per lattice row
 
-const float kMinCellPixels = 6.0;
+const float kMinCellPixels = 6.0;  // HatchPass::kMinCellPixels
 
 out vec3 vWorld;
 out float vAcross;
@@ -36,8 +38,7 @@ void main() {
     vAcross = 0.0;
     vAlpha = 0.0;
     vWorld = vec3(0.0);
-    int side = uGrid.x;
-    ivec2 ij = ivec2(gl_InstanceID % side, gl_InstanceID / side);
+    ivec2 ij = ivec2(gl_InstanceID % uLatticeSide, gl_InstanceID / uLatticeSide) * uBaseStride;
     vec4 stroke = texelFetch(uStrokes, ij, 0);
     float opacity = stroke.w;
     if (opacity < 1.0 / 255.0) {

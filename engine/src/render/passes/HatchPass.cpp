@@ -6,6 +6,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sierra::render {
@@ -43,6 +44,30 @@ std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu>
     return pass;
 }
 
+int HatchPass::baseStride(const FrameContext& frame) {
+    const SceneBounds b = frame.terrain.bounds();
+    const Camera& c = frame.camera;
+    const glm::vec3 nearest = glm::clamp(c.position, b.min, b.max);
+    const float distance = glm::length(nearest - c.position);
+    const float spacing = std::min(frame.terrain.spacing().x, frame.terrain.spacing().y);
+    float cellPx = 0.0f;
+    if (c.projection == Projection::Orthographic) {
+        cellPx = spacing * float(frame.height) / std::max(c.orthoHeight, 1e-6f);
+    } else {
+        if (distance <= 0.0f) return 1;  // the camera is inside the terrain's box
+        cellPx = spacing * float(frame.height) / (2.0f * std::tan(glm::radians(c.fovYDegrees) * 0.5f) * distance);
+    }
+    int stride = 1;
+    // hatch.vert keeps a vertex when its stride s (the smallest power of two
+    // with cellPx * s >= kMinCellPixels) divides its indices. Its cellPx is
+    // measured along the view depth, up to about 1.25x this one off-axis, so
+    // the smallest per-vertex stride is >= 0.8 kMinCellPixels / cellPx; the
+    // power of two found here is below 0.7 kMinCellPixels / cellPx, hence
+    // divides it, and the lattice holds every kept vertex.
+    while (cellPx * float(stride) * 2.0f < kMinCellPixels * 0.7f && stride < 4096) stride *= 2;
+    return stride;
+}
+
 void HatchPass::draw(const FrameContext& frame) {
     SIERRA_CHECK(curvature_->width() == frame.terrain.side() && curvature_->height() == frame.terrain.side(),
                  "hatch pass: the curvature field is ", curvature_->width(), "x", curvature_->height(),
@@ -60,9 +85,16 @@ void HatchPass::draw(const FrameContext& frame) {
     glUniform4fv(program_.uniform("uColour"), 1, glm::value_ptr(desc_.colour));
     frame.terrain.bind();
     glBindTextureUnit(3, strokes_.id());
+    // The coarsest lattice every kept stroke is on: the thinning stride of the
+    // largest grid cell on the screen (at the terrain's nearest point), so a
+    // far or small view of a large grid runs the vertex shader for a
+    // fraction of its vertices. hatch.vert thins further per vertex.
+    const int base = baseStride(frame);
+    const int perSide = (frame.terrain.side() - 1) / base + 1;
+    glUniform1i(program_.uniform("uBaseStride"), base);
+    glUniform1i(program_.uniform("uLatticeSide"), perSide);
     glBindVertexArray(vao_.id());
-    const GLsizei vertices = GLsizei(curvature_->width()) * GLsizei(curvature_->height());
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, vertices);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(perSide) * GLsizei(perSide));
 }
 
 }  // namespace sierra::render

@@ -39,7 +39,13 @@ public:
     const char* name() const override { return "hatch"; }
     void draw(const FrameContext& frame) override;
 
+    // Screen size of a grid cell below which strokes thin out (hatch.vert).
+    static constexpr float kMinCellPixels = 6.0f;
+
 private:
+    // The lattice stride of this frame's instances (a power of two).
+    static int baseStride(const FrameContext& frame);
+
     gpu::Program program_;
     gpu::VertexArray vao_;
     std::shared_ptr<const CurvatureGpu> curvature_;
