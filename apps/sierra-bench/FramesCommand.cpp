@@ -95,6 +95,7 @@ void runFrames(const FramesOptions& o) {
         render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
         std::fprintf(stderr, "%s\n", zones.c_str());
+    render::addOverlayPasses(terrain, sc, field);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
     std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());

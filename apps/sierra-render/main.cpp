@@ -60,6 +60,7 @@ int run(const scene::Scene& s) {
     if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
         log::info(zones);
     log::info("terrain on the GPU: ", terrain.summary());
+    render::addOverlayPasses(terrain, s, field);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});
     std::vector<render::Camera> cameras = render::sceneCameras(s, terrain.bounds());

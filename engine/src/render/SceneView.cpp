@@ -1,11 +1,17 @@
 #include <sierra/render/SceneView.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Log.h>
+#include <sierra/render/CurvatureGpu.h>
 #include <sierra/render/ZoneSurface.h>
+#include <sierra/render/passes/ContourPass.h>
+#include <sierra/render/passes/HatchPass.h>
+#include <sierra/render/passes/LinePass.h>
 #include <sierra/scene/Assets.h>
 #include <sierra/scene/Terrain.h>
 
 #include <cmath>
+#include <memory>
 
 namespace sierra::render {
 
@@ -90,6 +96,12 @@ Lighting sceneLighting(const scene::LightingDesc& l, bool transparent) {
 std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field,
                               float seaLevel) {
     const scene::ZonesDesc& z = s.zones;
+    if (!s.style.overlay.layers.shaded) {
+        // Line and hatch styles without shading draw on plain paper, as the
+        // curvature document's figures do.
+        renderer.setSurface(makePaperSurface());
+        return "surface: paper (style without shaded)";
+    }
     if (z.map.empty()) return {};
     ZoneSurfaceDesc desc;
     desc.map = z.map;
@@ -132,6 +144,37 @@ DrawOptions sceneDrawOptions(const scene::Scene& s) {
             .wireframe = s.style.wireframe,
             .threads = s.lod.threads,
             .lighting = sceneLighting(s.lighting, s.output.alpha)};
+}
+
+OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field) {
+    const analysis::StyleParams& style = s.style.overlay;
+    OverlayInfo info;
+    if (!style.layers.lines && !style.layers.hatch && !style.layers.contours) return info;
+    SIERRA_CHECK(field.width() == renderer.side() && field.height() == renderer.side(),
+                 "overlays: the heightfield (", field.width(), "x", field.height(),
+                 ") is not the renderer's terrain (", renderer.side(), " samples a side)");
+    if (style.layers.lines || style.layers.hatch) {
+        auto curvature = std::make_shared<CurvatureGpu>(CurvatureGpu::create(field));
+        curvature->compute(style.curvature, style.layers.hatch);
+        if (style.layers.hatch) {
+            renderer.addPass(HatchPass::create(curvature, {.length = style.hatch.length,
+                                                           .width = style.hatch.width,
+                                                           .direction = style.hatch.direction}));
+        }
+        if (style.layers.lines) {
+            // Traced once per terrain and style, from the GPU field read back.
+            analysis::LineSet lines = analysis::traceLines(curvature->read(), analysis::lineOptions(style));
+            info.lines = lines.polylineCount();
+            auto pass = LinePass::create(lines, {.width = style.lines.width});
+            info.segments = pass->segmentCount();
+            renderer.addPass(std::move(pass));
+        }
+    }
+    if (style.layers.contours) renderer.addPass(ContourPass::create());
+    log::info("overlays: ", style.layers.hatch ? "hatches, " : "", style.layers.lines ? msg(info.lines, " lines (",
+              info.segments, " segments), ") : std::string(), style.layers.contours ? "contour edges, " : "",
+              analysis::curvatureMethodName(style.curvature.method), " curvature on the GPU");
+    return info;
 }
 
 }  // namespace sierra::render

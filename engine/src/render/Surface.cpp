@@ -19,7 +19,15 @@ private:
     gpu::Texture ramp_;
 };
 
+class PaperSurface final : public Surface {
+public:
+    std::string shaderFile() const override { return "surface_paper.glsl"; }
+    void bind() const override {}
+};
+
 }  // namespace
+
+std::unique_ptr<Surface> makePaperSurface() { return std::make_unique<PaperSurface>(); }
 
 std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
     // The ramp spans the terrain's heights in stored units (the shader looks it

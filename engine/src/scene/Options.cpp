@@ -311,6 +311,77 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             show(d.style.treeLine), 1, [](Scene& s, Words w) { s.style.treeLine = parseFloat(w[0], "--tree-line"); });
         add("--snow-line", "Metric heights: metres above which snow lies", "Style", "M", show(d.style.snowLine), 1,
             [](Scene& s, Words w) { s.style.snowLine = parseFloat(w[0], "--snow-line"); });
+        // Curvature overlays (analysis/Style.h). Entries apply in this order,
+        // so --preset comes first and the options after it override it.
+        const std::string o = "Overlays";
+        add("--preset", "Overlay style preset: fig3a..fig3n (line shading), fig4a..fig4h (hatch shading)", o, "NAME",
+            "", 1, [](Scene& s, Words w) {
+                s.style.overlay = loadPreset(w[0]);
+                s.style.preset = w[0];
+            });
+        add("--style", "Layers: any of shaded,lines,hatch,contours (without shaded: plain paper)", o, "LIST",
+            "shaded", 1, [](Scene& s, Words w) {
+                analysis::StyleLayers layers{.shaded = false};
+                std::string name;
+                for (size_t k = 0; k <= w[0].size(); ++k) {
+                    if (k < w[0].size() && w[0][k] != ',') {
+                        name += w[0][k];
+                        continue;
+                    }
+                    if (name == "shaded") layers.shaded = true;
+                    else if (name == "lines") layers.lines = true;
+                    else if (name == "hatch") layers.hatch = true;
+                    else if (name == "contours") layers.contours = true;
+                    else throw Error(msg("--style: unknown layer '", name, "' (expected shaded, lines, hatch or contours)"));
+                    name.clear();
+                }
+                s.style.overlay.layers = layers;
+            });
+        add("--curvature", "Curvature method: two-normal, three-normal, three-vertex or edge-angle", o, "METHOD",
+            analysis::curvatureMethodName(d.style.overlay.curvature.method), 1,
+            [](Scene& s, Words w) { s.style.overlay.curvature.method = analysis::parseCurvatureMethod(w[0]); });
+        add("--curvature-distance", "Curvature reinforcement distance in grid steps (1 = none)", o, "D",
+            msg(d.style.overlay.curvature.distance), 1, [](Scene& s, Words w) {
+                s.style.overlay.curvature.distance = parseInt(w[0], "--curvature-distance");
+            });
+        add("--curvature-scale", "Factor on every curvature value (>= 0)", o, "S",
+            show(d.style.overlay.curvature.scale), 1, [](Scene& s, Words w) {
+                s.style.overlay.curvature.scale = parseFloat(w[0], "--curvature-scale");
+            });
+        add("--normals", "Vertex normals of the curvature: edge, triangle or quad", o, "KIND",
+            analysis::normalMethodName(d.style.overlay.curvature.normals), 1,
+            [](Scene& s, Words w) { s.style.overlay.curvature.normals = analysis::parseNormalMethod(w[0]); });
+        addFlag("--signed", "Keep the sign of the curvature (ridges and valleys apart)", o,
+                [](Scene& s, Words) { s.style.overlay.curvature.signedValues = true; });
+        add("--levels", "Curvature level control: black point, white point, gamma", o, "B,W,G", "", 1,
+            [](Scene& s, Words w) {
+                std::vector<std::string> parts(1);
+                for (char ch : w[0]) {
+                    if (ch == ',') parts.emplace_back();
+                    else parts.back().push_back(ch);
+                }
+                if (parts.size() != 3)
+                    throw Error(msg("--levels '", w[0], "': expected BLACK,WHITE,GAMMA, e.g. 0.1,0.9,1.5"));
+                s.style.overlay.curvature.levels = {.enabled = true,
+                                                    .black = parseFloat(parts[0], "--levels"),
+                                                    .white = parseFloat(parts[1], "--levels"),
+                                                    .gamma = parseFloat(parts[2], "--levels")};
+            });
+        add("--line-width", "Curvature line width in pixels", o, "PX", show(d.style.overlay.lines.width), 1,
+            [](Scene& s, Words w) { s.style.overlay.lines.width = parseFloat(w[0], "--line-width"); });
+        add("--min-length", "Shortest curvature line kept, in vertices (>= 2)", o, "N",
+            msg(d.style.overlay.lines.minLength), 1,
+            [](Scene& s, Words w) { s.style.overlay.lines.minLength = parseInt(w[0], "--min-length"); });
+        add("--line-threshold", "Curvature a vertex needs to be on a line", o, "K",
+            show(d.style.overlay.lines.threshold), 1,
+            [](Scene& s, Words w) { s.style.overlay.lines.threshold = parseFloat(w[0], "--line-threshold"); });
+        add("--hatch-length", "Hatch stroke length in grid units", o, "L", show(d.style.overlay.hatch.length), 1,
+            [](Scene& s, Words w) { s.style.overlay.hatch.length = parseFloat(w[0], "--hatch-length"); });
+        add("--hatch-width", "Hatch stroke width in pixels", o, "PX", show(d.style.overlay.hatch.width), 1,
+            [](Scene& s, Words w) { s.style.overlay.hatch.width = parseFloat(w[0], "--hatch-width"); });
+        add("--hatch-direction", "Hatch strokes along or across the direction of greatest curvature", o, "DIR",
+            analysis::hatchDirectionName(d.style.overlay.hatch.direction), 1,
+            [](Scene& s, Words w) { s.style.overlay.hatch.direction = analysis::parseHatchDirection(w[0]); });
     }
 }
 

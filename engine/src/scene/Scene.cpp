@@ -1,10 +1,14 @@
 #include <sierra/scene/Scene.h>
 
+#include <sierra/scene/Assets.h>
+
 #include <sierra/core/Error.h>
 
 #include "scene/Names.h"
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 
 namespace sierra::scene {
 namespace {
@@ -108,6 +112,16 @@ void validateStyle(const StyleDesc& s) {
     if (!(s.snowLine >= s.treeLine) || !std::isfinite(s.snowLine))
         fail("style.snow_line", "--snow-line",
              msg("must be finite and at least the tree line (", s.treeLine, " m), got ", s.snowLine));
+    // Overlay parameters: the analysis module's own checks and messages.
+    analysis::validate(s.overlay.curvature);
+    analysis::validate(analysis::lineOptions(s.overlay));
+    if (!(s.overlay.lines.width > 0.0f) || !std::isfinite(s.overlay.lines.width))
+        fail("style.lines.width", "--line-width", msg("must be a finite number of pixels > 0, got ", s.overlay.lines.width));
+    if (!(s.overlay.hatch.length > 0.0f) || !std::isfinite(s.overlay.hatch.length))
+        fail("style.hatch.length", "--hatch-length", msg("must be a finite number of grid units > 0, got ",
+                                                          s.overlay.hatch.length));
+    if (!(s.overlay.hatch.width > 0.0f) || !std::isfinite(s.overlay.hatch.width))
+        fail("style.hatch.width", "--hatch-width", msg("must be a finite number of pixels > 0, got ", s.overlay.hatch.width));
 }
 
 void validateZones(const ZonesDesc& z) {
@@ -197,5 +211,15 @@ void validateScene(const Scene& scene) {
     validateZones(scene.zones);
     validateOutput(scene.output);
 }
+
+std::string presetPath(const std::string& name) {
+    const bool line = name.size() == 5 && name.rfind("fig3", 0) == 0 && name[4] >= 'a' && name[4] <= 'n';
+    const bool hatch = name.size() == 5 && name.rfind("fig4", 0) == 0 && name[4] >= 'a' && name[4] <= 'h';
+    SIERRA_CHECK(line || hatch, "unknown preset '", name,
+                 "' (expected fig3a..fig3n for line shading or fig4a..fig4h for hatch shading)");
+    return assetPath("presets/" + name + ".json");
+}
+
+analysis::StyleParams loadPreset(const std::string& name) { return analysis::loadStyleFile(presetPath(name)); }
 
 }  // namespace sierra::scene

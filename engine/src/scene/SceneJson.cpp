@@ -271,6 +271,21 @@ void readStyle(ObjectReader& r, StyleDesc& s) {
     r.field("wireframe", [&](const Json& v, const std::string& k) { s.wireframe = r.toBool(v, k); });
     r.field("tree_line", [&](const Json& v, const std::string& k) { s.treeLine = r.toFloat(v, k); });
     r.field("snow_line", [&](const Json& v, const std::string& k) { s.snowLine = r.toFloat(v, k); });
+    // Overlays: a preset first, then the analysis module's style keys over it.
+    bool preset = false;
+    r.field("preset", [&](const Json& v, const std::string& k) {
+        s.preset = r.toString(v, k);
+        preset = true;
+    });
+    Json keys = Json::object();
+    for (const char* key : {"description", "styles", "curvature", "lines", "hatch", "contours"})
+        r.field(key, [&, key](const Json& v, const std::string&) { keys[key] = v; });
+    if (preset) s.overlay = loadPreset(s.preset);
+    if (!keys.empty()) {
+        Json merged = preset ? Json(analysis::styleToJson(s.overlay)) : Json::object();
+        merged.merge_patch(keys);
+        s.overlay = analysis::styleFromJson(nlohmann::json(merged), r.source());
+    }
 }
 
 void readZones(ObjectReader& r, ZonesDesc& z) {
@@ -398,6 +413,8 @@ Json sceneToJson(const Scene& s) {
                   {"sand_top", number(z.sandTop)},
                   {"snow_line", number(z.snowLine)},
                   {"rock_slope", number(z.rockSlope)}};
+    if (!s.style.preset.empty()) style["preset"] = s.style.preset;
+    style.update(Json(analysis::styleToJson(s.style.overlay)));
     return {{"terrain", terrain}, {"camera", camera}, {"path", path},   {"lighting", lighting},
             {"lod", lod},         {"output", output}, {"style", style}, {"zones", zones}};
 }

@@ -78,6 +78,7 @@ struct Levels {
     float black = 0.0f;  // values at or below give 0, >= 0
     float white = 1.0f;  // values at or above give 1, > black
     float gamma = 1.0f;  // > 0
+    bool operator==(const Levels&) const = default;
 };
 
 struct CurvatureOptions {
@@ -89,6 +90,7 @@ struct CurvatureOptions {
     bool signedValues = false;  // keep the sign of y''
     CurvatureOutput output = CurvatureOutput::Curvature;
     int threads = 0;       // 0 = sierra::defaultThreadCount(); the result does not depend on it
+    bool operator==(const CurvatureOptions&) const = default;
 };
 
 // Throws sierra::Error with one clear message for a bad option (distance < 1,

@@ -44,6 +44,7 @@ struct StyleLayers {
     bool lines = false;     // curvature lines (line shading)
     bool hatch = false;     // hatch strokes (hatch shading)
     bool contours = false;  // view-dependent contour edges
+    bool operator==(const StyleLayers&) const = default;
 };
 
 struct LineStyle {
@@ -52,12 +53,14 @@ struct LineStyle {
     float threshold = 0.5f;    // curvature a vertex needs, after scale and levels
     LinePolarity polarity = LinePolarity::Any;
     bool blended = false;      // blended directions (LineOptions::blended)
+    bool operator==(const LineStyle&) const = default;
 };
 
 struct HatchStyle {
     float length = 0.75f;      // stroke length in grid units (Figure 4 "Hatch Len.")
     float width = 1.0f;        // pixels
     HatchDirection direction = HatchDirection::Along;  // Figure 4 "With" = along, "Perp." = across
+    bool operator==(const HatchStyle&) const = default;
 };
 
 struct StyleParams {
@@ -66,6 +69,7 @@ struct StyleParams {
     CurvatureOptions curvature;  // method, normals, distance, scale, levels, signed
     LineStyle lines;
     HatchStyle hatch;
+    bool operator==(const StyleParams&) const = default;
 };
 
 // The LineOptions that trace this style's lines.

@@ -37,5 +37,16 @@ glm::vec3 toGlm(const scene::Vec3& v);
 // `field` and `seaLevel` as for sceneTerrainDesc.
 std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& scene, const terrain::Heightfield& field,
                               float seaLevel);
+// What addOverlayPasses added.
+struct OverlayInfo {
+    size_t lines = 0;     // polylines traced
+    size_t segments = 0;  // their segments
+};
+
+// Adds the scene's overlay passes (style.overlay: hatches, then lines, then
+// contour edges, over the terrain) to `renderer`, whose terrain is `field`:
+// the curvature field computed on the GPU once, the lines traced once from
+// it. Nothing when the style has no overlay layer.
+OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& scene, const terrain::Heightfield& field);
 
 }  // namespace sierra::render

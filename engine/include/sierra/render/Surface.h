@@ -35,6 +35,10 @@ struct RampSurfaceDesc {
 
 // The hypsometric colour ramp (or the absolute elevation ramp for metric
 // heights) as a 1D texture over the terrain's height range, on unit 1.
+// Plain paper (shaders/surface_paper.glsl): one flat tone whatever the light,
+// for line and hatch styles drawn without shading.
+std::unique_ptr<Surface> makePaperSurface();
+
 std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc = {});
 
 }  // namespace sierra::render

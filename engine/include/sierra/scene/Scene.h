@@ -11,6 +11,7 @@
 // 270 = west (-x). A direction of bearing a and altitude e (above the
 // horizon) is (sin a cos e, sin e, -cos a cos e).
 
+#include <sierra/analysis/Style.h>
 #include <sierra/scene/Terrain.h>
 
 #include <optional>
@@ -127,8 +128,22 @@ struct StyleDesc {
     // heights use a ramp over their own range instead.
     float treeLine = 2000.0f;  // metres, > 0
     float snowLine = 3000.0f;  // metres, >= treeLine
+    // Curvature overlays (analysis/Style.h, docs/presets.md): the layers
+    // (shaded, lines, hatch, contours) and their parameters. A preset loads
+    // assets/presets/NAME.json (see presetPath) first; keys and options given
+    // beside it override it. Default: the shaded terrain, no overlay.
+    std::string preset;  // "" or fig3a .. fig3n, fig4a .. fig4h
+    analysis::StyleParams overlay;
     bool operator==(const StyleDesc&) const = default;
 };
+
+// The file of a preset: NAME.json in $SIERRA_ASSETS/presets when that is set,
+// else in the source tree's assets/presets (compiled in). Throws
+// sierra::Error for a name other than fig3a..fig3n / fig4a..fig4h (listing
+// them) or a missing file.
+std::string presetPath(const std::string& name);
+// The style of a preset (analysis::loadStyleFile of presetPath(name)).
+analysis::StyleParams loadPreset(const std::string& name);
 
 // Zone tiles with blended transition bands (the terrain pass's zone surface).
 struct ZonesDesc {

@@ -1,0 +1,65 @@
+// The GPU curvature field (render::CurvatureGpu, shaders/curvature.comp)
+// beside the CPU reference on the same grid, in one run: compute alone
+// (finished with glFinish) and compute plus the read-back the line tracer
+// needs. Args: size, method (CurvatureMethod order). Run beside
+// BM_Curvature/2049/... for the CPU time of the same field.
+#include <sierra/analysis/Curvature.h>
+#include <sierra/gpu/EglContext.h>
+#include <sierra/render/CurvatureGpu.h>
+#include <sierra/terrain/DiamondSquare.h>
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <memory>
+
+namespace {
+
+namespace analysis = sierra::analysis;
+
+struct GpuSetup {
+    sierra::gpu::EglContext context = sierra::gpu::EglContext::create({.width = 16, .height = 16});
+    sierra::terrain::Heightfield field;
+    std::unique_ptr<sierra::render::CurvatureGpu> curvature;
+};
+
+GpuSetup& setup(int size) {
+    static std::unique_ptr<GpuSetup> s;
+    if (!s || s->field.width() != size) {
+        s.reset();
+        s = std::make_unique<GpuSetup>();
+        s->field = sierra::terrain::generateDiamondSquare({.size = size, .seed = 1, .roughness = 1.0f});
+        auto [lo, hi] = s->field.range();
+        s->field.setVerticalScale(0.1f * float(size - 1) / std::max(1e-6f, hi - lo));
+        s->curvature = std::make_unique<sierra::render::CurvatureGpu>(sierra::render::CurvatureGpu::create(s->field));
+    }
+    return *s;
+}
+
+void BM_CurvatureGpu(benchmark::State& state) {
+    GpuSetup& s = setup(int(state.range(0)));
+    analysis::CurvatureOptions o{.method = analysis::CurvatureMethod(state.range(1))};
+    const bool read = state.range(2) != 0;
+    // The field alone: the gradient pass only where the method needs it.
+    s.curvature->compute(o, false);
+    glFinish();
+    for (auto _ : state) {
+        s.curvature->compute(o, false);
+        if (read) {
+            auto f = s.curvature->read();
+            benchmark::DoNotOptimize(f.values.data());
+        } else {
+            glFinish();
+        }
+    }
+    state.SetItemsProcessed(state.iterations() * s.field.sampleCount());
+    state.SetLabel(std::string(analysis::curvatureMethodName(o.method)) + (read ? " + read-back" : "") + " on " +
+                   s.context.renderer());
+}
+BENCHMARK(BM_CurvatureGpu)
+    ->ArgsProduct({{2049}, {0, 1, 2, 3}, {0}})
+    ->Args({2049, 1, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace

@@ -1,0 +1,43 @@
+#pragma once
+// Line shading over the terrain: the polylines of analysis::traceLines
+// (traced once per terrain and style, a static framework), drawn every frame
+// as antialiased quads expanded in the vertex shader (shaders/line.vert),
+// uWidth pixels wide, alpha = the curvature at each end, black unless a
+// colour is set. Each point is lifted towards the camera along its view ray
+// by the SBT's saturated error at the nearest vertex (overlay_common.glsl),
+// so the lines neither sink into nor float over the mesh at any tau.
+
+#include <sierra/analysis/Lines.h>
+#include <sierra/gpu/Objects.h>
+#include <sierra/gpu/Program.h>
+#include <sierra/render/Pass.h>
+
+#include <glm/glm.hpp>
+
+#include <memory>
+
+namespace sierra::render {
+
+struct LinePassDesc {
+    float width = 1.0f;                    // pixels, > 0
+    glm::vec4 colour{0.0f, 0.0f, 0.0f, 1.0f};  // RGBA 0..1; alpha multiplies the curvature
+};
+
+class LinePass final : public Pass {
+public:
+    // Uploads the segments of `lines` (grid coordinates of the terrain the
+    // pass draws over). Throws sierra::Error for a width <= 0.
+    static std::unique_ptr<LinePass> create(const analysis::LineSet& lines, const LinePassDesc& desc = {});
+    const char* name() const override { return "lines"; }
+    void draw(const FrameContext& frame) override;
+    size_t segmentCount() const { return segments_; }
+
+private:
+    gpu::Program program_;
+    gpu::Buffer buffer_;
+    gpu::VertexArray vao_;
+    size_t segments_ = 0;
+    LinePassDesc desc_;
+};
+
+}  // namespace sierra::render

@@ -1,0 +1,38 @@
+#include <sierra/render/passes/ContourPass.h>
+
+#include <sierra/core/Error.h>
+#include <sierra/gpu/GlStateScope.h>
+#include <sierra/render/TerrainGpu.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+
+namespace sierra::render {
+
+std::unique_ptr<ContourPass> ContourPass::create(const ContourPassDesc& desc) {
+    SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f, "contour pass: width must be > 0 pixels, got ",
+                 desc.width);
+    auto pass = std::make_unique<ContourPass>();
+    pass->program_ = gpu::Program::create({.vertex = "contour.vert", .fragment = "contour.frag"});
+    pass->desc_ = desc;
+    return pass;
+}
+
+void ContourPass::draw(const FrameContext& frame) {
+    gpu::GlStateScope scope;
+    // The same mesh as the terrain pass: equal depths pass LEQUAL.
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(program_.id());
+    glUniform1f(program_.uniform("uWidth"), desc_.width);
+    glUniform4fv(program_.uniform("uColour"), 1, glm::value_ptr(desc_.colour));
+    frame.terrain.bind();
+    frame.mesh.draw();
+}
+
+}  // namespace sierra::render

@@ -1,0 +1,55 @@
+#include <sierra/render/passes/LinePass.h>
+
+#include <sierra/core/Error.h>
+#include <sierra/gpu/GlStateScope.h>
+#include <sierra/render/TerrainGpu.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <vector>
+
+namespace sierra::render {
+
+std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines, const LinePassDesc& desc) {
+    SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f, "line pass: width must be > 0 pixels, got ",
+                 desc.width);
+    auto pass = std::make_unique<LinePass>();
+    pass->desc_ = desc;
+    pass->program_ = gpu::Program::create({.vertex = "line.vert", .fragment = "line.frag"});
+    // Two vec4 per segment: (x, z, alpha, 0) of each end (line.vert's Segment).
+    std::vector<float> data;
+    for (size_t k = 0; k < lines.polylineCount(); ++k) {
+        auto p = lines.polyline(k);
+        for (size_t v = 1; v < p.size(); ++v) {
+            const analysis::LineVertex& a = p[v - 1];
+            const analysis::LineVertex& b = p[v];
+            data.insert(data.end(), {a.x, a.z, a.alpha, 0.0f, b.x, b.z, b.alpha, 0.0f});
+        }
+    }
+    pass->segments_ = data.size() / 8;
+    if (!data.empty()) pass->buffer_ = gpu::Buffer::create({.size = data.size() * sizeof(float), .data = data.data()});
+    pass->vao_ = gpu::VertexArray::create();
+    return pass;
+}
+
+void LinePass::draw(const FrameContext& frame) {
+    if (segments_ == 0) return;
+    gpu::GlStateScope scope;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(program_.id());
+    glUniform1f(program_.uniform("uWidth"), desc_.width);
+    glUniform4fv(program_.uniform("uColour"), 1, glm::value_ptr(desc_.colour));
+    frame.terrain.bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_.id());
+    glBindVertexArray(vao_.id());
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(segments_));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+}
+
+}  // namespace sierra::render

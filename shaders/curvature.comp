@@ -1,0 +1,193 @@
+#version 450 core
+// The curvature field on the GPU: the same four-direction field as the CPU
+// reference (engine: analysis/Curvature.h, whose definitions, border rule and
+// order of operations this copies), in two dispatches of this file:
+//   CURVATURE_GRADIENT: the surface gradient (dy/dx, dy/dz) of every vertex
+//     from its normal (edge, triangle or quad), into uGradientOut (RG32F);
+//   otherwise: the four directions' values of every vertex from the heights
+//     and that gradient, into uFieldOut (RGBA32F, one texel per sample).
+// No data is NaN in the height texture. NaN is detected from its bits and
+// produced from bits, never through arithmetic, so fast-math in a driver
+// cannot drop it; a stencil with a no-data sample gives NaN explicitly.
+layout(local_size_x = 16, local_size_y = 16) in;
+
+uniform ivec2 uSize;     // samples along x and z
+uniform vec2 uSpacing;   // world distance between samples along x and z
+
+bool noData(float v) {
+    uint b = floatBitsToUint(v);
+    return (b & 0x7f800000u) == 0x7f800000u && (b & 0x007fffffu) != 0u;
+}
+float nanValue() { return uintBitsToFloat(0x7fc00000u); }
+// World heights (stored height * vertical scale), NaN = no data, row-major:
+// a storage buffer, whose loads cost a software rasteriser far less than
+// texel fetches.
+layout(std430, binding = 0) readonly buffer Heights { float uHeightData[]; };
+float heightAt(ivec2 ij) { return uHeightData[ij.y * uSize.x + ij.x]; }
+
+#ifdef CURVATURE_GRADIENT
+
+layout(rg32f, binding = 0) uniform writeonly image2D uGradientOut;
+uniform int uNormals;  // 0 edge, 1 triangle, 2 quad (analysis::NormalMethod)
+
+// The 8 neighbours counter-clockwise from above: E, NE, N, NW, W, SW, S, SE.
+const ivec2 kRing[8] = ivec2[8](ivec2(1, 0), ivec2(1, 1), ivec2(0, 1), ivec2(-1, 1), ivec2(-1, 0), ivec2(-1, -1),
+                                ivec2(0, -1), ivec2(1, -1));
+
+vec3 triangleNormal(vec3 a, vec3 b) { return normalize(cross(b, a)); }
+
+void main() {
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(ij, uSize))) return;
+    float yc = heightAt(ij);
+    if (noData(yc)) {
+        imageStore(uGradientOut, ij, vec4(nanValue(), nanValue(), 0.0, 0.0));
+        return;
+    }
+    vec3 e[8];
+    bool ok[8];
+    for (int k = 0; k < 8; ++k) {
+        ivec2 n = ij + kRing[k];
+        ok[k] = all(greaterThanEqual(n, ivec2(0))) && all(lessThan(n, uSize));
+        float y = ok[k] ? heightAt(n) : 0.0;
+        ok[k] = ok[k] && !noData(y);
+        e[k] = vec3(float(kRing[k].x) * uSpacing.x, ok[k] ? y - yc : 0.0, float(kRing[k].y) * uSpacing.y);
+    }
+    vec3 sum = vec3(0.0);
+    if (uNormals == 0) {
+        // Mean edge slope per axis, one-sided at the border or beside no data.
+        float sx = 0.0, sz = 0.0;
+        int nx = 0, nz = 0;
+        if (ok[0]) { sx += e[0].y / uSpacing.x; ++nx; }
+        if (ok[4]) { sx -= e[4].y / uSpacing.x; ++nx; }
+        if (ok[2]) { sz += e[2].y / uSpacing.y; ++nz; }
+        if (ok[6]) { sz -= e[6].y / uSpacing.y; ++nz; }
+        sum = vec3(nx > 0 ? -sx / float(nx) : 0.0, 1.0, nz > 0 ? -sz / float(nz) : 0.0);
+    } else {
+        for (int q = 0; q < 4; ++q) {
+            int a = 2 * q, c = 2 * q + 1, b = (2 * q + 2) & 7;
+            if (uNormals == 1) {
+                if (ok[a] && ok[b]) sum += triangleNormal(e[a], e[b]);
+            } else if (ok[a] && ok[b] && ok[c]) {
+                sum += normalize(triangleNormal(e[a], e[c]) + triangleNormal(e[c], e[b]));
+            }
+        }
+    }
+    if (sum.y <= 0.0) sum = vec3(0.0, 1.0, 0.0);  // no usable neighbour
+    imageStore(uGradientOut, ij, vec4(-sum.x / sum.y, -sum.z / sum.y, 0.0, 0.0));
+}
+
+#else
+
+layout(binding = 1) uniform sampler2D uGradientTex;  // (dy/dx, dy/dz), NaN = no data
+layout(rgba32f, binding = 0) uniform writeonly image2D uFieldOut;
+// The method is compiled in (CURVATURE_METHOD 0 two-normal, 1 three-normal,
+// 2 three-vertex, 3 edge-angle): a software rasteriser runs every branch of
+// a uniform switch otherwise.
+#ifndef CURVATURE_METHOD
+#define CURVATURE_METHOD 1
+#endif
+const int uMethod = CURVATURE_METHOD;
+uniform int uDistance;   // reinforcement distance in steps, 1 = none
+uniform float uScale;    // multiplies every value
+uniform vec4 uLevels;    // x: 1 = level control on; y: black; z: white; w: gamma
+uniform int uSigned;     // 1 = keep the sign of y''
+uniform int uSecond;     // 1 = output y'' itself (CurvatureOutput::SecondDerivative)
+
+const ivec2 kSteps[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(1, 1), ivec2(1, -1));
+
+float equation1(float ypp, float yp) {
+    float t = 1.0 + yp * yp;
+    return abs(ypp) / (t * sqrt(t));
+}
+
+// One measure (m = 1 near, m = distance for reinforcement) centred on c along
+// step s with unit horizontal direction u and step length 1 / invLength.
+// Returns false when a stencil sample has no data.
+bool measure(ivec2 c, ivec2 s, vec2 u, float invLength, int m, out float value, out float ypp) {
+    ivec2 sm = s * m;
+    float invStep = invLength / float(m);
+    value = 0.0;
+    ypp = 0.0;
+    if (uMethod == 0 || uMethod == 1) {
+        vec2 gv = texelFetch(uGradientTex, c, 0).rg;
+        vec2 gn = texelFetch(uGradientTex, c + sm, 0).rg;
+        if (noData(gv.x) || noData(gn.x)) return false;
+        float sv = dot(gv, u), sn = dot(gn, u);
+        if (uMethod == 0) {
+            ypp = (sn - sv) * invStep;
+            value = equation1(ypp, sv);
+        } else {
+            vec2 gp = texelFetch(uGradientTex, c - sm, 0).rg;
+            if (noData(gp.x)) return false;
+            float sp = dot(gp, u);
+            ypp = 0.5 * (sn - sp) * invStep;
+            float t = 1.0 + sv * sv;
+            value = 0.5 * (abs(sv - sp) + abs(sn - sv)) * invStep / (t * sqrt(t));
+        }
+        return true;
+    }
+    float yp = heightAt(c - sm), yv = heightAt(c), yn = heightAt(c + sm);
+    if (noData(yp) || noData(yv) || noData(yn)) return false;
+    if (uMethod == 2) {
+        float s1 = (yv - yp) * invStep, s2 = (yn - yv) * invStep;
+        ypp = (s2 - s1) * invStep;
+        value = equation1(ypp, 0.5 * (s1 + s2));
+    } else {
+        float hx = float(sm.x) * uSpacing.x, hz = float(sm.y) * uSpacing.y;
+        float a = yp - yv, b = yn - yv;
+        float d = -hx * hx + a * b - hz * hz;
+        float cosTheta = d / sqrt((hx * hx + hz * hz + a * a) * (hx * hx + hz * hz + b * b));
+        ypp = a + b;
+        value = clamp(1.0 + cosTheta, 0.0, 1.0);
+    }
+    return true;
+}
+
+// The clamp range of one axis (the stencil centre stays inside the grid).
+ivec2 axisRange(int c, int size, int back, int forward) {
+    if (c == 0) return ivec2(0, size - 1);
+    return c > 0 ? ivec2(back, size - 1 - forward) : ivec2(forward, size - 1 - back);
+}
+
+float directionValue(ivec2 ij, int d) {
+    ivec2 s = kSteps[d];
+    vec2 world = vec2(s) * uSpacing;
+    float len = length(world);
+    float invLength = 1.0 / len;
+    vec2 u = world * invLength;
+    int back = uMethod == 0 ? 0 : uDistance;
+    int forward = uMethod == 0 ? 1 : uDistance;
+    ivec2 ri = axisRange(s.x, uSize.x, back, forward);
+    ivec2 rj = axisRange(s.y, uSize.y, back, forward);
+    ivec2 c = ivec2(clamp(ij.x, ri.x, ri.y), clamp(ij.y, rj.x, rj.y));
+    float value, ypp;
+    if (!measure(c, s, u, invLength, 1, value, ypp)) return nanValue();
+    if (uSecond == 1) return ypp;
+    value *= uScale;
+    if (uDistance > 1) {
+        float far, farYpp;
+        if (!measure(c, s, u, invLength, uDistance, far, farYpp)) return nanValue();
+        value *= far;
+    }
+    if (uLevels.x > 0.5) {
+        float t = clamp((value - uLevels.y) / (uLevels.z - uLevels.y), 0.0, 1.0);
+        value = t > 0.0 ? pow(t, 1.0 / uLevels.w) : 0.0;
+    }
+    return uSigned == 1 && ypp < 0.0 ? -value : value;
+}
+
+void main() {
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(ij, uSize))) return;
+    vec4 out4;
+    if (noData(heightAt(ij))) {
+        out4 = vec4(nanValue());
+    } else {
+        // Unrolled so each direction's step is a constant.
+        out4 = vec4(directionValue(ij, 0), directionValue(ij, 1), directionValue(ij, 2), directionValue(ij, 3));
+    }
+    imageStore(uFieldOut, ij, out4);
+}
+
+#endif

@@ -1,0 +1,64 @@
+// Shared by the overlay passes (lines, hatches): where an overlay point sits
+// so it neither sinks into nor floats over the SBT mesh, and how a world
+// segment becomes an antialiased screen-space quad (wide GL lines are not core
+// profile). Needs frame.glsl and terrain_common.glsl.
+
+// The true world height at a ground position in grid units (bilinear between
+// samples; exact at a vertex).
+float trueHeight(vec2 grid) {
+    vec2 texel = 1.0 / vec2(uGrid.x);
+    return texture(uHeights, (grid + 0.5) * texel).r;
+}
+
+// Unit vector from a world point towards the camera.
+vec3 towardsEye(vec3 world) {
+    return uFog.y > 0.5 ? -uViewDir.xyz : normalize(uEye.xyz - world);
+}
+
+// The point at grid position `grid` on the true surface, moved towards the
+// camera along its view ray (so it stays on the same pixel) by as much as the
+// SBT mesh can be off the true surface there, plus 0.2% of its distance for
+// depth precision: the depth test then never hides it under the mesh, and it
+// can only win against surfaces within that small distance in front of it.
+// The mesh's bound: an inactive vertex projects to at most tau pixels, i.e.
+// its error is at most tau * distance / lambda (the refinement's test,
+// distance from the LOD eye); with the nearest vertex's own saturated error
+// as a floor (a vertex blending in by geomorph).
+vec3 overlayPoint(vec2 grid) {
+    vec3 world = vec3(grid.x * uSpacingValid.x, trueHeight(grid), grid.y * uSpacingValid.y);
+    ivec2 ij = clamp(ivec2(round(grid)), ivec2(0), ivec2(uGrid.x - 1));
+    float error = texelFetch(uData, ij, 0).b;
+    float screenBound = uFrameSize.z > 0.0 ? uFrameSize.w * distance(world, uLodEye.xyz) / uFrameSize.z : 0.0;
+    float lift = max(error, screenBound) + 0.002 * distance(world, uEye.xyz);
+    return world + towardsEye(world) * lift;
+}
+
+// One corner of the screen-space quad around the segment a-b (world), for
+// corner 0..3 of a triangle strip: half-width `halfPx` pixels plus one pixel
+// of antialiasing ramp, extended past each end by the same amount. `across`
+// receives the signed distance from the centre line in pixels. Returns a
+// point outside the clip volume when an end is behind the camera.
+vec4 segmentCorner(vec3 a, vec3 b, int corner, float halfPx, out float across) {
+    vec4 ca = uViewProj * vec4(a, 1.0), cb = uViewProj * vec4(b, 1.0);
+    across = 0.0;
+    if (ca.w <= 1e-6 || cb.w <= 1e-6) return vec4(2.0, 2.0, 2.0, 1.0);
+    vec2 halfSize = 0.5 * uFrameSize.xy;
+    vec2 sa = ca.xy / ca.w * halfSize, sb = cb.xy / cb.w * halfSize;
+    vec2 d = sb - sa;
+    float len = length(d);
+    vec2 dir = len > 1e-6 ? d / len : vec2(1.0, 0.0);
+    vec2 normal = vec2(-dir.y, dir.x);
+    bool atB = (corner & 1) != 0;
+    float side = (corner & 2) != 0 ? 1.0 : -1.0;
+    float extent = halfPx + 1.0;
+    vec4 c = atB ? cb : ca;
+    vec2 offset = normal * side * extent + dir * (atB ? extent : -extent);
+    across = side * extent;
+    c.xy += offset / halfSize * c.w;
+    return c;
+}
+
+// Coverage of a fragment `across` pixels from the centre of a line halfPx wide.
+float lineCoverage(float across, float halfPx) {
+    return clamp(halfPx + 0.5 - abs(across), 0.0, 1.0);
+}

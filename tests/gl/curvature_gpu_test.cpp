@@ -1,0 +1,160 @@
+// The GPU curvature field (shaders/curvature.comp) against the CPU reference
+// (analysis::computeCurvature): every method, normal scheme and option, on a
+// fractal and on analytic surfaces, with no-data samples and the border rule.
+
+#include "GlTest.h"
+
+#include <sierra/analysis/Curvature.h>
+#include <sierra/core/Error.h>
+#include <sierra/gpu/GlStateScope.h>
+#include <sierra/render/CurvatureGpu.h>
+#include <sierra/terrain/DiamondSquare.h>
+
+#include <cmath>
+#include <string>
+
+using namespace sierra;
+using analysis::CurvatureMethod;
+using analysis::CurvatureOptions;
+using analysis::NormalMethod;
+
+namespace {
+
+class CurvatureGpuTest : public test::GlTest {};
+
+// 1e-4 relative or 1e-6 absolute, NaN exactly where the CPU has NaN. Returns
+// the number of mismatches and reports the first few.
+int compareFields(const analysis::CurvatureField& gpu, const analysis::CurvatureField& cpu, const std::string& what) {
+    EXPECT_EQ(gpu.width, cpu.width);
+    EXPECT_EQ(gpu.height, cpu.height);
+    int bad = 0;
+    for (size_t k = 0; k < cpu.values.size(); ++k) {
+        float g = gpu.values[k], c = cpu.values[k];
+        bool ok = std::isnan(c) ? std::isnan(g)
+                                : !std::isnan(g) && std::fabs(g - c) <= std::max(1e-6f, 1e-4f * std::fabs(c));
+        if (!ok && ++bad <= 3) {
+            size_t s = k / 4;
+            ADD_FAILURE() << what << ": sample (" << s % size_t(cpu.width) << ", " << s / size_t(cpu.width)
+                          << ") direction " << k % 4 << ": GPU " << g << ", CPU " << c;
+        }
+    }
+    return bad;
+}
+
+terrain::Heightfield fractal(int size, unsigned seed) {
+    terrain::Heightfield f = terrain::generateDiamondSquare({.size = size, .seed = seed});
+    auto [lo, hi] = f.range();
+    f.setSpacing(1.5f, 1.0f);  // unequal spacing: diagonals are not 45 degrees
+    f.setVerticalScale(0.3f * float(size) / std::max(hi - lo, 1e-3f));
+    return f;
+}
+
+std::vector<CurvatureOptions> allOptionSets() {
+    std::vector<CurvatureOptions> sets;
+    for (NormalMethod n : {NormalMethod::Edge, NormalMethod::Triangle, NormalMethod::Quad}) {
+        sets.push_back({.method = CurvatureMethod::TwoNormal, .normals = n});
+        sets.push_back({.method = CurvatureMethod::ThreeNormal, .normals = n});
+        sets.push_back({.method = CurvatureMethod::ThreeNormal, .normals = n, .distance = 3, .scale = 2.0f});
+    }
+    for (CurvatureMethod m : {CurvatureMethod::ThreeVertex, CurvatureMethod::EdgeAngle}) {
+        sets.push_back({.method = m});
+        sets.push_back({.method = m, .distance = 2, .scale = 0.5f});
+    }
+    CurvatureOptions levels{.method = CurvatureMethod::ThreeVertex, .scale = 4.0f, .signedValues = true};
+    levels.levels = {.enabled = true, .black = 0.1f, .white = 0.9f, .gamma = 2.2f};
+    sets.push_back(levels);
+    sets.push_back({.method = CurvatureMethod::ThreeNormal, .signedValues = true});
+    sets.push_back({.method = CurvatureMethod::EdgeAngle, .signedValues = true});
+    sets.push_back({.method = CurvatureMethod::ThreeVertex, .output = analysis::CurvatureOutput::SecondDerivative});
+    sets.push_back({.method = CurvatureMethod::TwoNormal, .output = analysis::CurvatureOutput::SecondDerivative});
+    return sets;
+}
+
+std::string describe(const CurvatureOptions& o) {
+    return std::string(analysis::curvatureMethodName(o.method)) + "/" + analysis::normalMethodName(o.normals) +
+           " d=" + std::to_string(o.distance) + " scale=" + std::to_string(o.scale) +
+           (o.signedValues ? " signed" : "") + (o.levels.enabled ? " levels" : "") +
+           (o.output == analysis::CurvatureOutput::SecondDerivative ? " y''" : "");
+}
+
+void checkAllMethods(const terrain::Heightfield& field, const std::string& surface) {
+    render::CurvatureGpu gpu = render::CurvatureGpu::create(field);
+    for (const CurvatureOptions& o : allOptionSets()) {
+        gpu.compute(o);
+        analysis::CurvatureField cpu = analysis::computeCurvature(field, o);
+        EXPECT_EQ(compareFields(gpu.read(), cpu, surface + " " + describe(o)), 0) << surface << " " << describe(o);
+    }
+}
+
+TEST_F(CurvatureGpuTest, FractalMatchesCpuForEveryMethod) { checkAllMethods(fractal(65, 7), "fractal"); }
+
+TEST_F(CurvatureGpuTest, NonSquareGridMatchesCpu) {
+    terrain::Heightfield f(37, 21);
+    for (int j = 0; j < f.height(); ++j)
+        for (int i = 0; i < f.width(); ++i) f.at(i, j) = std::sin(0.3f * float(i)) * std::cos(0.2f * float(j)) * 3.0f;
+    checkAllMethods(f, "non-square waves");
+}
+
+TEST_F(CurvatureGpuTest, AnalyticSurfacesMatchCpu) {
+    terrain::Heightfield quadric(33, 33), cylinder(33, 33), bump(33, 33), plane(33, 33);
+    for (int j = 0; j < 33; ++j) {
+        for (int i = 0; i < 33; ++i) {
+            float x = float(i - 16), z = float(j - 16);
+            quadric.at(i, j) = (0.05f * x * x + 0.02f * z * z) / 2.0f + 0.01f * x * z;
+            cylinder.at(i, j) = std::sqrt(std::max(400.0f - z * z, 0.0f));  // axis along x, radius 20
+            bump.at(i, j) = 8.0f * std::exp(-(x * x + z * z) / (2.0f * 36.0f));
+            plane.at(i, j) = 0.3f * x - 0.2f * z + 5.0f;
+        }
+    }
+    checkAllMethods(quadric, "quadric");
+    checkAllMethods(cylinder, "cylinder");
+    checkAllMethods(bump, "gaussian");
+    checkAllMethods(plane, "plane");
+}
+
+TEST_F(CurvatureGpuTest, NoDataIsNanAndDoesNotSpread) {
+    terrain::Heightfield f = fractal(33, 11);
+    std::vector<uint8_t> mask(size_t(f.sampleCount()), 1);
+    mask[size_t(10) * 33 + 12] = 0;  // an interior hole
+    mask[size_t(0) * 33 + 5] = 0;    // on the border
+    mask[size_t(20) * 33 + 20] = 0;  // a 2x2 hole
+    mask[size_t(20) * 33 + 21] = 0;
+    mask[size_t(21) * 33 + 20] = 0;
+    mask[size_t(21) * 33 + 21] = 0;
+    f.setMask(mask);
+    checkAllMethods(f, "no-data");
+    // The hole itself is NaN, a sample well away from it is not.
+    render::CurvatureGpu gpu = render::CurvatureGpu::create(f);
+    gpu.compute({});
+    analysis::CurvatureField field = gpu.read();
+    for (int d = 0; d < 4; ++d) {
+        EXPECT_TRUE(std::isnan(field.at(12, 10, d)));
+        EXPECT_FALSE(std::isnan(field.at(12, 14, d)));
+    }
+}
+
+TEST_F(CurvatureGpuTest, ComputeLeavesGlStateAlone) {
+    terrain::Heightfield f = fractal(33, 5);
+    render::CurvatureGpu gpu = render::CurvatureGpu::create(f);
+    gpu::GlState before = gpu::GlState::capture();
+    gpu.compute({.method = CurvatureMethod::TwoNormal});
+    (void)gpu.read();
+    EXPECT_EQ(before.differences(gpu::GlState::capture()), "");
+}
+
+TEST_F(CurvatureGpuTest, BadOptionsGiveTheCpuMessages) {
+    render::CurvatureGpu gpu = render::CurvatureGpu::create(fractal(17, 1));
+    auto message = [&](const CurvatureOptions& o) {
+        try {
+            gpu.compute(o);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_NE(message({.distance = 0}).find("distance must be an integer >= 1"), std::string::npos);
+    EXPECT_NE(message({.scale = -1.0f}).find("scale must be finite and >= 0"), std::string::npos);
+    EXPECT_NE(message({.distance = 9}).find("too small for reinforcement distance 9"), std::string::npos);
+}
+
+}  // namespace

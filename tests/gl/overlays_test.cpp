@@ -1,0 +1,227 @@
+// The overlay passes (lines, hatches, contour edges): they restore the GL
+// state, hatches on a cylinder run along or across its axis as asked, and
+// golden images of a line preset, a hatch preset and contours on one terrain.
+//
+// SIERRA_UPDATE_GOLDEN=1 rewrites the references in tests/golden/.
+
+#include "GlTest.h"
+
+#include <sierra/core/Error.h>
+#include <sierra/gpu/GlStateScope.h>
+#include <sierra/render/Capture.h>
+#include <sierra/render/CurvatureGpu.h>
+#include <sierra/render/FrameTarget.h>
+#include <sierra/render/SceneView.h>
+#include <sierra/render/TerrainRenderer.h>
+#include <sierra/render/passes/ContourPass.h>
+#include <sierra/render/passes/HatchPass.h>
+#include <sierra/render/passes/LinePass.h>
+#include <sierra/scene/Scene.h>
+#include <sierra/terrain/DiamondSquare.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+using namespace sierra;
+
+namespace {
+
+constexpr int kWidth = 320;
+constexpr int kHeight = 180;
+
+class Overlays : public test::GlTest {
+protected:
+    void SetUp() override { createContext(kWidth, kHeight); }
+};
+
+// Relief as large as the extent: curvature in world units of the order the
+// presets' scales and the 0.5 line threshold expect (at a tenth of that,
+// hardly a vertex reaches the threshold).
+terrain::Heightfield fractal(int size) {
+    terrain::Heightfield field = terrain::generateDiamondSquare({.size = size, .seed = 3});
+    auto [lo, hi] = field.range();
+    field.setVerticalScale(float(size - 1) / std::max(hi - lo, 1e-3f));
+    return field;
+}
+
+TEST_F(Overlays, EveryOverlayPassRestoresTheGlState) {
+    terrain::Heightfield field = fractal(65);
+    auto renderer = render::TerrainRenderer::create({.field = &field});
+    auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
+    curvature->compute({.scale = 4.0f});
+    analysis::LineSet lines = analysis::traceLines(curvature->read(), {.threshold = 0.3f, .minVertices = 3});
+    ASSERT_GT(lines.polylineCount(), 0u);
+    renderer.addPass(render::HatchPass::create(curvature));
+    renderer.addPass(render::LinePass::create(lines, {.width = 2.0f}));
+    renderer.addPass(render::ContourPass::create());
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+    render::Camera camera = render::defaultCamera(renderer.bounds(), float(kWidth) / kHeight);
+    target.begin(render::TerrainRenderer::clearColour({}));
+    gpu::Texture texture = gpu::Texture::create({.width = 4, .height = 4});
+    glEnable(GL_CULL_FACE);
+    glDepthFunc(GL_GREATER);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glBindTextureUnit(3, texture.id());
+    glBindTextureUnit(4, texture.id());
+    gpu::GlState before = gpu::GlState::capture();
+    renderer.draw(camera, kWidth, kHeight, {});
+    EXPECT_EQ(before.differences(gpu::GlState::capture()), "");
+}
+
+TEST_F(Overlays, PassesRejectBadWidths) {
+    EXPECT_THROW(render::LinePass::create({}, {.width = 0.0f}), Error);
+    EXPECT_THROW(render::ContourPass::create({.width = -1.0f}), Error);
+    terrain::Heightfield field = fractal(17);
+    auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
+    EXPECT_THROW(render::HatchPass::create(curvature, {.length = 0.0f}), Error);
+}
+
+// Orientation of the dark strokes in an image: the structure tensor of the
+// grey levels; returns the unit screen direction the strokes run along (the
+// tensor's minor axis: intensity changes least along a stroke). x right, y down.
+glm::vec2 strokeDirection(const gpu::Image& image) {
+    double sxx = 0, syy = 0, sxy = 0;
+    auto grey = [&](int x, int y) {
+        const uint8_t* p = &image.rgba[(size_t(y) * size_t(image.width) + size_t(x)) * 4];
+        return (double(p[0]) + p[1] + p[2]) / 3.0;
+    };
+    for (int y = 1; y + 1 < image.height; ++y)
+        for (int x = 1; x + 1 < image.width; ++x) {
+            double gx = grey(x + 1, y) - grey(x - 1, y), gy = grey(x, y + 1) - grey(x, y - 1);
+            sxx += gx * gx;
+            syy += gy * gy;
+            sxy += gx * gy;
+        }
+    // The eigenvector of the smaller eigenvalue.
+    double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);  // major axis (gradient direction)
+    return {float(-std::sin(angle)), float(std::cos(angle))};
+}
+
+TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
+    // A cylinder of radius 40 with its axis along x: curvature is greatest
+    // along z (across the axis). Seen from straight above, north (-z) up.
+    const int n = 65;
+    terrain::Heightfield field(n, n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            float z = float(j - 32);
+            field.at(i, j) = std::sqrt(std::max(1600.0f - z * z, 0.0f));
+        }
+    auto renderer = render::TerrainRenderer::create({.field = &field, .surface = "paper"});
+    auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
+    curvature->compute({.method = analysis::CurvatureMethod::ThreeVertex, .scale = 40.0f});
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+    render::Camera camera;
+    camera.target = {32.0f, 40.0f, 32.0f};
+    camera.position = {32.0f, 140.0f, 32.0f};
+    camera.projection = render::Projection::Orthographic;
+    camera.orthoHeight = 20.0f;  // the middle of the cylinder only, 9 pixels a cell
+    camera.nearPlane = 1.0f;
+    camera.farPlane = 500.0f;
+    glm::mat4 viewProj = camera.viewProjection(float(kWidth) / kHeight);
+    auto screen = [&](glm::vec3 p) {
+        glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
+        return glm::vec2(c.x / c.w, -c.y / c.w) * glm::vec2(kWidth, kHeight) * 0.5f;  // y down
+    };
+    glm::vec2 zAxis = glm::normalize(screen({32.0f, 40.0f, 33.0f}) - screen({32.0f, 40.0f, 32.0f}));
+    glm::vec2 xAxis = glm::normalize(screen({33.0f, 40.0f, 32.0f}) - screen({32.0f, 40.0f, 32.0f}));
+    for (auto direction : {analysis::HatchDirection::Along, analysis::HatchDirection::Across}) {
+        auto r = render::TerrainRenderer::create({.field = &field, .surface = "paper"});
+        r.addPass(render::HatchPass::create(curvature, {.length = 1.0f, .width = 1.5f, .direction = direction}));
+        target.begin(render::TerrainRenderer::clearColour({}));
+        r.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full});
+        gpu::Image image = target.read();
+        glm::vec2 d = strokeDirection(image);
+        glm::vec2 expected = direction == analysis::HatchDirection::Along ? zAxis : xAxis;
+        EXPECT_GT(std::fabs(glm::dot(d, expected)), 0.95f)
+            << analysis::hatchDirectionName(direction) << ": strokes run along (" << d.x << ", " << d.y
+            << ") on screen, expected (" << expected.x << ", " << expected.y << ")";
+    }
+    (void)renderer;
+}
+
+// Dark pixels of a frame (lines drawn in black over paper).
+int64_t darkPixels(const gpu::Image& image) {
+    int64_t n = 0;
+    for (size_t p = 0; p < image.rgba.size(); p += 4) n += image.rgba[p] + image.rgba[p + 1] + image.rgba[p + 2] < 3 * 110;
+    return n;
+}
+
+TEST_F(Overlays, LinesNeitherSinkNorFloatAtAnyTau) {
+    // The same lines over the full grid and over SBT meshes of growing tau:
+    // lifted by the SBT's error, they stay as visible as over the full grid
+    // (none sink into a coarse mesh), and not more (none float over ridges
+    // in front of them).
+    terrain::Heightfield field = fractal(129);
+    auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
+    curvature->compute({.scale = 4.0f});
+    analysis::LineSet lines = analysis::traceLines(curvature->read(), {.threshold = 0.5f, .minVertices = 4});
+    auto renderer = render::TerrainRenderer::create({.field = &field, .surface = "paper"});
+    renderer.addPass(render::LinePass::create(lines, {.width = 1.5f}));
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+    render::Camera camera = render::defaultCamera(renderer.bounds(), float(kWidth) / kHeight);
+    auto dark = [&](render::Lod lod, float tau) {
+        target.begin(render::TerrainRenderer::clearColour({}));
+        renderer.draw(camera, kWidth, kHeight, {.lod = lod, .tau = tau});
+        return darkPixels(target.read());
+    };
+    const int64_t full = dark(render::Lod::Full, 1.0f);
+    ASSERT_GT(full, 200) << "too few line pixels to compare";
+    // Up to 4 pixels: beyond, on a frame this small (the terrain is 180 pixels
+    // wide), the coarse mesh's own outline moves enough to hide or reveal
+    // whole slopes (tau 16: 14% fewer line pixels, with the lines on the
+    // mesh where it is drawn).
+    for (float tau : {1.0f, 2.0f, 4.0f}) {
+        const int64_t sbt = dark(render::Lod::Sbt, tau);
+        std::printf("tau %g: %lld dark pixels, full grid %lld\n", double(tau), (long long)sbt, (long long)full);
+        EXPECT_GT(double(sbt), 0.95 * double(full)) << "tau " << tau << ": lines sink into the mesh";
+        EXPECT_LT(double(sbt), 1.05 * double(full)) << "tau " << tau << ": lines float over the mesh";
+    }
+}
+
+// Golden images of overlays on one terrain, compared with the tolerance of
+// golden_test.cpp.
+class OverlayGolden : public test::GlTest {
+protected:
+    static constexpr int kW = 480, kH = 270;
+    void SetUp() override { createContext(kW, kH); }
+
+    void check(const std::string& name, const analysis::StyleParams& style) {
+        terrain::Heightfield field = fractal(129);
+        scene::Scene s;
+        s.style.overlay = style;
+        auto renderer = render::TerrainRenderer::create(
+            {.field = &field, .surface = style.layers.shaded ? "hypsometric" : "paper"});
+        render::OverlayInfo info = render::addOverlayPasses(renderer, s, field);
+        std::printf("%s: %zu lines, %zu segments\n", name.c_str(), info.lines, info.segments);
+        auto target = render::FrameTarget::create({.width = kW, .height = kH, .samples = 4});
+        render::Camera camera = render::defaultCamera(renderer.bounds(), float(kW) / kH);
+        target.begin(render::TerrainRenderer::clearColour({}));
+        renderer.draw(camera, kW, kH, {});
+        gpu::Image image = target.read();
+        std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
+        render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name, image);
+        const std::string golden = std::string(SIERRA_GOLDEN_DIR) + "/" + name;
+        const char* env = std::getenv("SIERRA_UPDATE_GOLDEN");
+        if (env && std::string(env) == "1") {
+            render::writePng(golden, image);
+            GTEST_SKIP() << "golden image " << name << " rewritten";
+        }
+        render::ImageDifference d = render::compareImages(image, render::readPng(golden), 24);
+        std::printf("%s against golden: PSNR %.2f dB, %.4f%% pixels differ\n", name.c_str(), d.psnr,
+                    100.0 * d.differingShare);
+        EXPECT_TRUE(d.psnr >= 30.0 && d.differingShare <= 0.02) << "PSNR " << d.psnr << ", differing "
+                                                                << d.differingShare;
+    }
+};
+
+TEST_F(OverlayGolden, LinePresetFig3a) { check("overlay_fig3a.png", scene::loadPreset("fig3a")); }
+TEST_F(OverlayGolden, HatchPresetFig4a) { check("overlay_fig4a.png", scene::loadPreset("fig4a")); }
+TEST_F(OverlayGolden, ContoursOverShadedTerrain) {
+    analysis::StyleParams style;
+    style.layers.contours = true;
+    check("overlay_contours.png", style);
+}
+
+}  // namespace
