@@ -108,7 +108,8 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
             float z = float(j - 32);
             field.at(i, j) = std::sqrt(std::max(1600.0f - z * z, 0.0f));
         }
-    auto renderer = render::TerrainRenderer::create({.field = &field, .surface = "paper"});
+    auto renderer = render::TerrainRenderer::create({.field = &field});
+    renderer.setSurface(render::makePaperSurface());
     auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
     curvature->compute({.method = analysis::CurvatureMethod::ThreeVertex, .scale = 40.0f});
     auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
@@ -127,7 +128,8 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
     glm::vec2 zAxis = glm::normalize(screen({32.0f, 40.0f, 33.0f}) - screen({32.0f, 40.0f, 32.0f}));
     glm::vec2 xAxis = glm::normalize(screen({33.0f, 40.0f, 32.0f}) - screen({32.0f, 40.0f, 32.0f}));
     for (auto direction : {analysis::HatchDirection::Along, analysis::HatchDirection::Across}) {
-        auto r = render::TerrainRenderer::create({.field = &field, .surface = "paper"});
+        auto r = render::TerrainRenderer::create({.field = &field});
+        r.setSurface(render::makePaperSurface());
         r.addPass(render::HatchPass::create(curvature, {.length = 1.0f, .width = 1.5f, .direction = direction}));
         target.begin(render::TerrainRenderer::clearColour({}));
         r.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full});
@@ -157,7 +159,8 @@ TEST_F(Overlays, LinesNeitherSinkNorFloatAtAnyTau) {
     auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
     curvature->compute({.scale = 4.0f});
     analysis::LineSet lines = analysis::traceLines(curvature->read(), {.threshold = 0.5f, .minVertices = 4});
-    auto renderer = render::TerrainRenderer::create({.field = &field, .surface = "paper"});
+    auto renderer = render::TerrainRenderer::create({.field = &field});
+    renderer.setSurface(render::makePaperSurface());
     renderer.addPass(render::LinePass::create(lines, {.width = 1.5f}));
     auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
     render::Camera camera = render::defaultCamera(renderer.bounds(), float(kWidth) / kHeight);
@@ -191,8 +194,8 @@ protected:
         terrain::Heightfield field = fractal(129);
         scene::Scene s;
         s.style.overlay = style;
-        auto renderer = render::TerrainRenderer::create(
-            {.field = &field, .surface = style.layers.shaded ? "hypsometric" : "paper"});
+        auto renderer = render::TerrainRenderer::create({.field = &field});
+        if (!style.layers.shaded) renderer.setSurface(render::makePaperSurface());
         render::OverlayInfo info = render::addOverlayPasses(renderer, s, field);
         std::printf("%s: %zu lines, %zu segments\n", name.c_str(), info.lines, info.segments);
         auto target = render::FrameTarget::create({.width = kW, .height = kH, .samples = 4});
