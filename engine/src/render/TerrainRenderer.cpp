@@ -3,6 +3,7 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/passes/TerrainPass.h>
+#include <sierra/render/passes/PointsPass.h>
 #include <sierra/render/passes/WireframePass.h>
 
 #include <algorithm>
@@ -16,6 +17,7 @@ struct TerrainRenderer::State {
     FrameUniforms uniforms;
     std::unique_ptr<TerrainPass> shaded;
     std::unique_ptr<WireframePass> wireframe;  // built on first use
+    std::unique_ptr<PointsPass> points;        // built on first use
     std::vector<std::unique_ptr<Pass>> extra;
     std::unique_ptr<DepthPass> depth;          // built on first use, per frame size
     gpu::Query timer;
@@ -25,7 +27,8 @@ struct TerrainRenderer::State {
 TerrainRenderer TerrainRenderer::create(const TerrainDesc& desc) {
     TerrainGpu terrain = TerrainGpu::create({.field = desc.field, .seaLevel = desc.seaLevel, .threads = desc.threads});
     auto shaded = TerrainPass::create(terrain, {.surface = desc.surface, .metric = desc.metric,
-                                                .treeLine = desc.treeLine, .snowLine = desc.snowLine});
+                                                .treeLine = desc.treeLine, .snowLine = desc.snowLine,
+                                                .cpt = desc.cpt});
     auto state = std::unique_ptr<State>(new State{
         .terrain = std::move(terrain),
         .stream = SbtStream::create(),
@@ -86,7 +89,11 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
     s.uniforms.update(uniforms);
     FrameContext frame{s.terrain, mesh, uniforms, camera, width, height};
     glBeginQuery(GL_TIME_ELAPSED, s.timer.id());
-    s.shaded->draw(frame);
+    if (options.polygons) s.shaded->draw(frame);
+    if (options.points) {
+        if (!s.points) s.points = PointsPass::create();
+        s.points->draw(frame);
+    }
     if (options.wireframe) {
         if (!s.wireframe) s.wireframe = WireframePass::create();
         s.wireframe->draw(frame);

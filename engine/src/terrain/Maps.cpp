@@ -143,8 +143,9 @@ RgbImage renderMap(const Heightfield& field, MapScheme scheme, const ColourRamp&
 }
 
 int drawText(RgbImage& image, int x, int y, const std::string& text, Rgb colour, int scale) {
-    // ~270 bytes of vertices per character is what the font needs at most.
-    std::vector<char> vertices(text.size() * 300 + 64);
+    // A glyph is up to ~12 quads of 4 vertices of 16 bytes: 1 KiB per
+    // character is ample (the font silently drops quads that do not fit).
+    std::vector<char> vertices(text.size() * 1024 + 1024);
     std::string copy = text;
     const int quads = stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, vertices.data(), int(vertices.size()));
     struct Vertex {

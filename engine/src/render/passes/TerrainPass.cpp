@@ -4,6 +4,7 @@
 #include <sierra/gpu/GlStateScope.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/terrain/ColourRamp.h>
+#include <sierra/terrain/Cpt.h>
 
 #include <cmath>
 
@@ -33,7 +34,8 @@ std::unique_ptr<TerrainPass> TerrainPass::create(const TerrainGpu& terrain, cons
                               .seaLevel = sea,
                               .treeLine = desc.treeLine,
                               .snowLine = desc.snowLine});
-    std::vector<uint8_t> table = ramp.table(kRampEntries);
+    std::vector<uint8_t> table = desc.cpt.empty() ? ramp.table(kRampEntries)
+                                                  : terrain::readCpt(desc.cpt).ramp(range.x, range.y).table(kRampEntries);
     pass->ramp_ = gpu::Texture::create({.target = GL_TEXTURE_1D, .format = GL_RGBA8, .width = kRampEntries});
     pass->ramp_.upload(GL_RGBA, GL_UNSIGNED_BYTE, table.data());
     return pass;

@@ -19,6 +19,9 @@ struct TerrainPassDesc {
     bool metric = false;
     float treeLine = 2000.0f;  // metres
     float snowLine = 3000.0f;  // metres
+    // A GMT .cpt colour table (absolute stored heights) replacing the scheme;
+    // empty = none. Its table is sampled over the terrain's range.
+    std::string cpt;
 };
 
 class TerrainPass final : public Pass {
