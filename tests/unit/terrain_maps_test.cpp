@@ -124,6 +124,28 @@ TEST(Maps, AtlasLegendColoursMatchRampAtLabelledHeights) {
     EXPECT_GT(ink, int(ticks.size()) * 10);
 }
 
+TEST(Maps, DigitsAreDrawnWhole) {
+    // Every stroke of every digit reaches the image: a "0" has ink in the
+    // first and last columns of its box on several rows each.
+    for (const char* text : {"0", "8", "-30 m"}) {
+        RgbImage image{40, 20, std::vector<uint8_t>(40 * 20 * 3, 255)};
+        const int width = drawText(image, 2, 2, text, {0, 0, 0}, 1);
+        EXPECT_GT(width, 3) << text;
+        int x0 = 40, x1 = -1;
+        for (int y = 0; y < 20; ++y)
+            for (int x = 0; x < 40; ++x)
+                if (image.at(x, y).r == 0) x0 = std::min(x0, x), x1 = std::max(x1, x);
+        ASSERT_LT(x0, x1) << text;
+        int left = 0, right = 0;
+        for (int y = 0; y < 20; ++y) left += image.at(x0, y).r == 0, right += image.at(x1, y).r == 0;
+        if (std::string(text) == "0") {
+            EXPECT_GE(left, 3);
+            EXPECT_GE(right, 3);
+        }
+        EXPECT_GE(right, 1) << text;
+    }
+}
+
 TEST(Maps, UnknownSchemeIsAnError) {
     EXPECT_THROW(parseMapScheme("rainbow"), Error);
     EXPECT_EQ(parseMapScheme("hillshade"), MapScheme::Hillshade);

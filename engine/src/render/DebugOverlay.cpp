@@ -76,6 +76,10 @@ namespace {
 void rowsTable(const char* id, const std::vector<std::pair<std::string, std::string>>& rows) {
     if (rows.empty()) return;
     if (ImGui::BeginTable(id, 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+        // Labels are short: a fixed label column leaves the values room to
+        // stay on one line.
+        ImGui::TableSetupColumn("label", ImGuiTableColumnFlags_WidthFixed, 120.0f);
+        ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch);
         for (const auto& [label, value] : rows) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
