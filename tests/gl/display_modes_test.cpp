@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <set>
 
 using namespace sierra;
@@ -150,6 +151,48 @@ TEST_F(TinyScene, PointsShowExactlyTheMeshVertices) {
     EXPECT_LT(used.size(), size_t(kSide * kSide));
 }
 
+// Colour by level: one flat colour per triangle, the same for every triangle
+// of one level and different between levels (read at the centroids).
+TEST_F(TinyScene, ColourByLevelIsOneColourPerLevel) {
+    const render::DrawOptions options{.tau = 2.0f, .geomorph = false, .colourBy = 1};
+    gpu::Image image = draw(options);
+    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/tiny_level.png", image);
+    render::MeshInspection mesh =
+        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull);
+    std::map<int, glm::ivec3> colourOfLevel;
+    int mismatched = 0;
+    for (const auto& t : mesh.triangleList) {
+        const int level = render::triangleLevel(t[0], t[1], t[2], kSide);
+        double ci = 0, cj = 0;
+        for (uint32_t v : t) ci += (v % kSide) / 3.0, cj += (v / kSide) / 3.0;
+        glm::ivec2 p = pixel(ci, cj);
+        const uint8_t* px = &image.rgba[(size_t(p.y) * kSize + p.x) * 4];
+        glm::ivec3 c(px[0], px[1], px[2]);
+        auto [it, fresh] = colourOfLevel.emplace(level, c);
+        if (!fresh && glm::length(glm::vec3(it->second - c)) > 3.0f) ++mismatched;
+    }
+    EXPECT_EQ(mismatched, 0);
+    ASSERT_GE(colourOfLevel.size(), 3u);
+    for (auto a = colourOfLevel.begin(); a != colourOfLevel.end(); ++a)
+        for (auto b = std::next(a); b != colourOfLevel.end(); ++b)
+            EXPECT_GT(glm::length(glm::vec3(a->second - b->second)), 20.0f) << a->first << " vs " << b->first;
+}
+
+// Colour by error: the leaves' split-vertex errors are below tau, so no
+// triangle is red (2 tau); some are not blue (0 px).
+TEST_F(TinyScene, ColourByErrorStaysBelowTau) {
+    gpu::Image image = draw({.tau = 2.0f, .geomorph = false, .colourBy = 2});
+    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/tiny_error.png", image);
+    int red = 0, warm = 0;
+    for (size_t k = 0; k < image.rgba.size(); k += 4) {
+        const int r = image.rgba[k], g = image.rgba[k + 1], b = image.rgba[k + 2];
+        if (r > 200 && g < 100 && b < 100) ++red;
+        if (r > 100 && g > 100 && b < 100) ++warm;  // towards yellow: error near tau
+    }
+    EXPECT_EQ(red, 0);
+    EXPECT_GT(warm, 100);
+}
+
 // Golden frames of the default scene in each display mode.
 class DisplayGolden : public test::GlTest {
 protected:
@@ -188,5 +231,7 @@ protected:
 TEST_F(DisplayGolden, Points) { check({.polygons = false, .points = true}, "display_points.png"); }
 TEST_F(DisplayGolden, Wireframe) { check({.wireframe = true, .polygons = false}, "display_wireframe.png"); }
 TEST_F(DisplayGolden, PolygonsAndWireframe) { check({.wireframe = true}, "display_polygons_wireframe.png"); }
+TEST_F(DisplayGolden, ColourByLevel) { check({.colourBy = 1}, "display_colour_level.png"); }
+TEST_F(DisplayGolden, ColourByError) { check({.colourBy = 2}, "display_colour_error.png"); }
 
 }  // namespace

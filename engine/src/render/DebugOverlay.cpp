@@ -185,6 +185,12 @@ void DebugOverlay::layout(const DebugPanel& panel, int width, int height) {
             if (!section.params.empty()) ImGui::PushItemWidth(plotWidth * 0.5f);
             for (const auto& p : section.params) param(p);
             if (!section.params.empty()) ImGui::PopItemWidth();
+            for (const auto& [rgb, label] : section.swatches) {
+                ImGui::ColorButton(("##" + label).c_str(), ImVec4(rgb[0], rgb[1], rgb[2], 1.0f),
+                                   ImGuiColorEditFlags_NoTooltip, ImVec2(28.0f, 12.0f));
+                ImGui::SameLine();
+                ImGui::TextUnformatted(label.c_str());
+            }
             if (!section.note.empty()) ImGui::TextWrapped("%s", section.note.c_str());
             ImGui::PopID();
         }

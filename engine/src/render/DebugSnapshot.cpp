@@ -154,6 +154,32 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         {.kind = StyleParam::Kind::Number, .name = "tau", .value = f.draw.tau, .min = 0.0f, .max = 16.0f,
          .text = "px"},
     };
+    if (s.style.colourBy == "error") {
+        // The heat map of shaders/debug_colour_geom.glsl.
+        const double tau = f.draw.tau;
+        style.swatches = {{{0.1f, 0.2f, 0.9f}, "0 px"},
+                          {{0.1f, 0.75f, 0.2f}, msg(fixed(tau / 2, 2), " px (tau / 2)")},
+                          {{0.95f, 0.9f, 0.1f}, msg(fixed(tau, 2), " px (tau)")},
+                          {{0.9f, 0.1f, 0.05f}, msg(">= ", fixed(2 * tau, 2), " px (2 tau)")}};
+        style.note = "colour: screen-space error of each triangle's split vertex";
+    } else if (s.style.colourBy == "level") {
+        int levels = 0;
+        while ((1 << (levels / 2)) < field.width() - 1 || levels % 2) ++levels;
+        for (int l = 0; l <= levels; l += std::max(1, levels / 5)) {
+            // hue(0.8 * l / levels) as in the shader
+            const float h = 0.8f * float(l) / float(std::max(levels, 1));
+            std::array<float, 3> rgb;
+            const float offsets[3] = {0.0f, 2.0f / 3.0f, 1.0f / 3.0f};
+            for (int c = 0; c < 3; ++c) {
+                float x = h + offsets[c];
+                x -= std::floor(x);
+                rgb[size_t(c)] = std::clamp(std::abs(x * 6.0f - 3.0f) - 1.0f, 0.0f, 1.0f);
+            }
+            style.swatches.push_back({rgb, msg("SBT level ", l)});
+        }
+        style.note = "colour: each triangle's SBT level";
+    }
+    style.params.push_back({.kind = StyleParam::Kind::Text, .name = "colour by", .text = s.style.colourBy});
     panel.sections.push_back(std::move(style));
     return panel;
 }

@@ -101,6 +101,7 @@ DrawOptions sceneDrawOptions(const scene::Scene& s) {
             .wireframe = s.style.wireframe,
             .polygons = s.style.polygons,
             .points = s.style.points,
+            .colourBy = s.style.colourBy == "level" ? 1 : s.style.colourBy == "error" ? 2 : 0,
             .threads = s.lod.threads,
             .lighting = sceneLighting(s.lighting, s.output.alpha)};
 }

@@ -3,6 +3,7 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/passes/TerrainPass.h>
+#include <sierra/render/passes/DebugColourPass.h>
 #include <sierra/render/passes/PointsPass.h>
 #include <sierra/render/passes/WireframePass.h>
 
@@ -18,6 +19,7 @@ struct TerrainRenderer::State {
     std::unique_ptr<TerrainPass> shaded;
     std::unique_ptr<WireframePass> wireframe;  // built on first use
     std::unique_ptr<PointsPass> points;        // built on first use
+    std::unique_ptr<DebugColourPass> debugColour;  // built on first use
     std::vector<std::unique_ptr<Pass>> extra;
     std::unique_ptr<DepthPass> depth;          // built on first use, per frame size
     gpu::Query timer;
@@ -89,7 +91,13 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
     s.uniforms.update(uniforms);
     FrameContext frame{s.terrain, mesh, uniforms, camera, width, height};
     glBeginQuery(GL_TIME_ELAPSED, s.timer.id());
-    if (options.polygons) s.shaded->draw(frame);
+    if (options.polygons && options.colourBy != 0) {
+        if (!s.debugColour) s.debugColour = DebugColourPass::create();
+        s.debugColour->setMode(options.colourBy == 2 ? ColourBy::Error : ColourBy::Level);
+        s.debugColour->draw(frame);
+    } else if (options.polygons) {
+        s.shaded->draw(frame);
+    }
     if (options.points) {
         if (!s.points) s.points = PointsPass::create();
         s.points->draw(frame);

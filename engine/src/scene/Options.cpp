@@ -295,6 +295,8 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
 
     if (groups & kStyleOptions) {
         addFlag("--wireframe", "Overlay the triangulation", "Style", [](Scene& s, Words) { s.style.wireframe = true; });
+        add("--colour-by", "Colour the polygons by surface, level (SBT level) or error (screen-space error heat map)",
+            "Style", "MODE", "surface", 1, [](Scene& s, Words w) { s.style.colourBy = w[0]; });
         add("--display", "What to draw: any of points, wireframe, polygons, comma-separated", "Style", "LIST",
             "polygons", 1, [](Scene& s, Words w) {
                 s.style.points = s.style.wireframe = s.style.polygons = false;

@@ -108,6 +108,8 @@ void validateStyle(const StyleDesc& s) {
     if (!(s.snowLine >= s.treeLine) || !std::isfinite(s.snowLine))
         fail("style.snow_line", "--snow-line",
              msg("must be finite and at least the tree line (", s.treeLine, " m), got ", s.snowLine));
+    if (s.colourBy != "surface" && s.colourBy != "level" && s.colourBy != "error")
+        fail("style.colour_by", "--colour-by", msg("must be surface, level or error, got '", s.colourBy, "'"));
     if (!s.polygons && !s.points && !s.wireframe)
         fail("style.polygons", "--display", "draws nothing: name at least one of points, wireframe, polygons");
 }

@@ -278,6 +278,7 @@ void readStyle(ObjectReader& r, StyleDesc& s) {
     r.field("cpt", [&](const Json& v, const std::string& k) { s.cpt = r.toString(v, k); });
     r.field("polygons", [&](const Json& v, const std::string& k) { s.polygons = r.toBool(v, k); });
     r.field("points", [&](const Json& v, const std::string& k) { s.points = r.toBool(v, k); });
+    r.field("colour_by", [&](const Json& v, const std::string& k) { s.colourBy = r.toString(v, k); });
 }
 
 }  // namespace
@@ -380,7 +381,8 @@ Json sceneToJson(const Scene& s) {
                   {"snow_line", number(s.style.snowLine)},
                   {"cpt", s.style.cpt},
                   {"polygons", s.style.polygons},
-                  {"points", s.style.points}};
+                  {"points", s.style.points},
+                  {"colour_by", s.style.colourBy}};
     return {{"terrain", terrain}, {"camera", camera}, {"path", path},   {"lighting", lighting},
             {"lod", lod},         {"output", output}, {"style", style}};
 }

@@ -8,6 +8,7 @@
 // by side (DebugSection::column), for which the caller narrows the frame (see
 // snapshotFrameWidth) so the panel never covers the terrain.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -51,6 +52,8 @@ struct DebugSection {
     std::vector<StyleParam> params;
     std::string note;  // a line under the rows, e.g. what is not available
     int column = 0;    // column layout: 0 = left half of the panel, 1 = right half
+    // A legend: colour swatches (RGB 0..1) with what they mean.
+    std::vector<std::pair<std::array<float, 3>, std::string>> swatches;
 };
 
 struct DebugPanel {

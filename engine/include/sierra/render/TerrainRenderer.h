@@ -53,6 +53,9 @@ struct DrawOptions {
     bool wireframe = false;  // the wireframe pass after the terrain
     bool polygons = true;    // the shaded terrain pass (false: points and/or lines only)
     bool points = false;     // the mesh's vertices as points after the terrain
+    // Polygons coloured by SBT level or split-vertex screen error instead of
+    // the surface function (0 surface, 1 level, 2 error; see DebugColourPass.h).
+    int colourBy = 0;
     int threads = 0;         // refinement threads, 0 = default
     Lighting lighting;
 };

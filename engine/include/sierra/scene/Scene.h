@@ -127,6 +127,7 @@ struct StyleDesc {
     bool wireframe = false;  // overlay the triangulation
     bool polygons = true;    // the shaded surface (--display polygons)
     bool points = false;     // the mesh's vertices as points (--display points)
+    std::string colourBy = "surface";  // polygons coloured by: surface, level (SBT) or error (split vertex, px)
     // Metric heights are coloured by absolute elevation (metres): vegetation up
     // to the tree line, rock above it, snow above the snow line. Unitless
     // heights use a ramp over their own range instead.
