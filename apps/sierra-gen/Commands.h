@@ -5,6 +5,8 @@
 
 namespace sierra::apps {
 
+// `map`: a 2D map PNG of a heightfield (height colours, hillshade or slope).
+void addMapCommand(CLI::App& app);
 // `zones`: a zone map (or auto-zoning of a heightfield) to vector borderlines (JSON, SVG).
 void addZonesCommand(CLI::App& app);
 // `tiles`: the procedural surface tiles as PNGs.

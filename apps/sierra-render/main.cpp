@@ -10,8 +10,10 @@
 #include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
 #include <sierra/gpu/EglContext.h>
+#include <sierra/gpu/Gl.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/DebugOverlay.h>
+#include <sierra/render/DebugSnapshot.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainRenderer.h>
@@ -24,6 +26,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 using namespace sierra;
 
@@ -82,6 +85,40 @@ int run(const scene::Scene& s) {
                       "): ", fixed(frameMs[size_t(written - first)], 1), " ms -> ", path);
         ++written;
     };
+    // Debug snapshots: the frame re-rendered narrower with the UI in a column
+    // beside it, or the UI alone on a plain background.
+    std::vector<render::DrawStats> history;
+    std::unique_ptr<render::DebugOverlay> overlay;
+    auto snapshot = [&](int k, const std::string& path, bool uiOnly = false) {
+        if (!overlay) overlay = std::make_unique<render::DebugOverlay>();
+        const int column = render::debugColumnWidth(width);
+        const int frameWidth = render::snapshotFrameWidth(width, column);
+        render::SnapshotFacts facts{.scene = &s, .field = &field, .glRenderer = context.renderer(),
+                                    .glVersion = context.version(), .eglPlatform = context.platform(),
+                                    .renderer = &terrain, .camera = cameras[size_t(k)], .frameWidth = frameWidth,
+                                    .height = height, .draw = draw, .frames = history, .frameMs = frameMs};
+        render::DebugPanel panel = render::buildDebugPanel(facts, s.output.snapshotDeterministic);
+        gpu::Image shot;
+        if (uiOnly) {
+            panel.columnWidth = column;
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glViewport(0, 0, column, height);
+            glClearColor(0.2f, 0.2f, 0.22f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            overlay->draw(panel, column, height);
+            shot = gpu::readFramebuffer(column, height);
+        } else {
+            panel.columnWidth = width - frameWidth;
+            target.begin(clear);
+            glViewport(0, 0, frameWidth, height);
+            terrain.draw(cameras[size_t(k)], frameWidth, height, draw);
+            target.resolve();
+            overlay->draw(panel, width, height);
+            shot = gpu::readFramebuffer(width, height);
+        }
+        render::writePng(path, shot);
+        log::info("wrote debug snapshot ", path);
+    };
     for (int k = first; k <= last; ++k) {
         const render::Camera& camera = cameras[size_t(k)];
         Stopwatch frame;
@@ -94,7 +131,10 @@ int run(const scene::Scene& s) {
         bool ready = reader.start(image);
         terrain.collectGpuTime(stats);
         frameMs.push_back(float(frame.ms()));
+        history.push_back(stats);
         if (ready) writeNext(image);
+        if (!s.output.debug.empty() && s.output.snapshotEvery > 0 && (k - first) % s.output.snapshotEvery == 0)
+            snapshot(k, framePath(s.output.debug, k));
         if (!s.output.depth.empty()) {
             render::DepthImage depth = terrain.renderDepth(camera, width, height, draw);
             writeFileAtomic(framePath(s.output.depth, k), encodeNpyFloat32(depth.height, depth.width, depth.depth));
@@ -108,41 +148,8 @@ int run(const scene::Scene& s) {
     log::info("wrote ", framePath(s.output.frame, first),
               last > first ? " .. " + framePath(s.output.frame, last) : std::string());
 
-    if (!s.output.debug.empty()) {
-        render::DebugOverlay overlay;
-        render::DebugPanel panel;
-        panel.title = "Sierra debug";
-        const render::Camera& cam = cameras[size_t(last)];
-        panel.rows = {
-            {"renderer", context.renderer()},
-            {"source", s.terrain.heightmap.empty() ? msg("generated ", s.terrain.generateSize, "^2, seed ",
-                                                         s.terrain.seed)
-                                                   : s.terrain.heightmap},
-            {"grid", msg(terrain.side(), "^2 samples")},
-            {"spacing", msg(fixed(field.spacingX(), 2), " x ", fixed(field.spacingZ(), 2), " world units")},
-            {"vertical scale", fixed(field.verticalScale(), 4)},
-            {"heights", msg(fixed(terrain.terrain().worldRange().x, 1), " .. ",
-                            fixed(terrain.terrain().worldRange().y, 1), " world units")},
-            {"sea level", terrain.terrain().hasWater() ? fixed(terrain.terrain().worldSeaLevel(), 1) : "no water"},
-            {"level of detail",
-             msg(render::lodName(draw.lod), draw.lod == render::Lod::Sbt ? msg(", tau ", draw.tau, " px") : "")},
-            {"triangles", msg(stats.triangles)},
-            {"indices / triangle", fixed(stats.indicesPerTriangle())},
-            {"error pass", msg(fixed(terrain.errorPassMs(), 1), " ms")},
-            {"refine + strip", msg(fixed(stats.refineMs), " ms")},
-            {"upload", msg(fixed(stats.uploadMs), " ms, ", stats.bytesUploaded, " bytes")},
-            {"draw (GL timer)", msg(fixed(stats.drawMs), " ms")},
-            {"frame", msg(fixed(frameMs.back(), 1), " ms")},
-            {"camera", describe(cam.position)},
-            {"target", describe(cam.target)},
-        };
-        panel.frameTimesMs = frameMs;
-        // The pbuffer still holds the last frame (its read-back was queued
-        // before): the panel is drawn over it, with no second render.
-        overlay.draw(panel, width, height);
-        render::writePng(s.output.debug, gpu::readFramebuffer(width, height));
-        log::info("wrote debug snapshot ", s.output.debug);
-    }
+    if (!s.output.debug.empty() && s.output.snapshotEvery == 0) snapshot(last, s.output.debug);
+    if (!s.output.snapshotOnly.empty()) snapshot(last, s.output.snapshotOnly, true);
     log::info("done in ", fixed(total.ms(), 1), " ms");
     return 0;
 }

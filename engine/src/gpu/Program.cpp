@@ -126,6 +126,7 @@ Program Program::create(const ProgramDesc& desc) {
             names += (names.empty() ? "" : " + ") + std::string(file);
         };
         add(GL_VERTEX_SHADER, desc.vertex);
+        add(GL_GEOMETRY_SHADER, desc.geometry);
         add(GL_FRAGMENT_SHADER, desc.fragment);
         add(GL_COMPUTE_SHADER, desc.compute);
     } catch (...) {

@@ -6,7 +6,10 @@
 #include <imgui.h>
 #include <imgui_impl_opengl3.h>
 
+#include <sierra/core/Progress.h>
+
 #include <algorithm>
+#include <cmath>
 
 namespace sierra::render {
 
@@ -35,6 +38,22 @@ DebugOverlay::~DebugOverlay() {
     ImGui::DestroyContext(state_->context);
 }
 
+std::pair<float, float> medianAndP95(std::vector<float> values) {
+    if (values.empty()) return {0.0f, 0.0f};
+    std::sort(values.begin(), values.end());
+    auto rank = [&](double q) {  // nearest rank: the smallest value with >= q of the values at or below it
+        size_t k = size_t(std::ceil(q * double(values.size())));
+        return values[std::clamp<size_t>(k, 1, values.size()) - 1];
+    };
+    return {rank(0.5), rank(0.95)};
+}
+
+int snapshotFrameWidth(int width, int columnWidth) {
+    if (columnWidth <= 0) return width;
+    if (columnWidth >= width) return 0;  // the UI alone
+    return std::max(width / 3, width - columnWidth);
+}
+
 void DebugOverlay::draw(const DebugPanel& panel, int width, int height) {
     ImGui::SetCurrentContext(state_->context);
     ImGuiIO& io = ImGui::GetIO();
@@ -45,35 +64,138 @@ void DebugOverlay::draw(const DebugPanel& panel, int width, int height) {
     for (int pass = 0; pass < 2; ++pass) {
         ImGui_ImplOpenGL3_NewFrame();
         ImGui::NewFrame();
-        layout(panel);
+        layout(panel, width, height);
         ImGui::Render();
     }
     // The backend backs up and restores the GL state it touches.
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
-void DebugOverlay::layout(const DebugPanel& panel) {
+namespace {
 
-    ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_Always);
-    ImGui::SetNextWindowBgAlpha(0.85f);
-    ImGui::Begin(panel.title.c_str(), nullptr,
-                 ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
-                     ImGuiWindowFlags_NoFocusOnAppearing);
-    if (ImGui::BeginTable("figures", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
-        for (const auto& [label, value] : panel.rows) {
+void rowsTable(const char* id, const std::vector<std::pair<std::string, std::string>>& rows) {
+    if (rows.empty()) return;
+    if (ImGui::BeginTable(id, 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+        // Labels are short: a fixed label column leaves the values room to
+        // stay on one line.
+        ImGui::TableSetupColumn("label", ImGuiTableColumnFlags_WidthFixed, 120.0f);
+        ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch);
+        for (const auto& [label, value] : rows) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
             ImGui::TextUnformatted(label.c_str());
             ImGui::TableSetColumnIndex(1);
-            ImGui::TextUnformatted(value.c_str());
+            ImGui::TextWrapped("%s", value.c_str());
         }
         ImGui::EndTable();
     }
+}
+
+void series(const StageSeries& s, bool deterministic, float width) {
+    if (deterministic) {
+        ImGui::Text("%s: -- %s", s.name.c_str(), s.unit.c_str());  // placeholder for median and p95
+        return;
+    }
+    auto [median, p95] = medianAndP95(s.values);
+    const std::string overlay = msg("median ", fixed(median, 2), " ", s.unit, ", p95 ", fixed(p95, 2), " ", s.unit);
+    ImGui::TextUnformatted(msg(s.name, " (", s.unit, ", ", s.values.size(), " frames)").c_str());
+    if (s.values.size() >= 2) {
+        const float top = *std::max_element(s.values.begin(), s.values.end());
+        ImGui::PlotLines(("##" + s.name).c_str(), s.values.data(), int(s.values.size()), 0, overlay.c_str(), 0.0f,
+                         std::max(top * 1.15f, 1e-3f), ImVec2(width, 26.0f));
+    } else {
+        ImGui::TextUnformatted(overlay.c_str());
+    }
+}
+
+void histogram(const Histogram& h, float width) {
+    std::vector<float> values(h.counts.begin(), h.counts.end());
+    double total = 0.0, top = 0.0;
+    int first = -1, last = -1;
+    for (size_t k = 0; k < h.counts.size(); ++k) {
+        total += h.counts[k];
+        top = std::max(top, h.counts[k]);
+        if (h.counts[k] > 0) last = int(k), first = first < 0 ? int(k) : first;
+    }
+    ImGui::Text("%s (%s %d..%d, left to right)", h.name.c_str(), h.binLabel.c_str(), h.firstBin,
+                h.firstBin + int(h.counts.size()) - 1);
+    const std::string overlay = first < 0 ? std::string("empty")
+                                          : msg(fixed(total, 0), " in ", h.binLabel, " ", h.firstBin + first, "..",
+                                                h.firstBin + last, ", peak ", fixed(top, 0));
+    ImGui::PlotHistogram(("##" + h.name).c_str(), values.data(), int(values.size()), 0, overlay.c_str(), 0.0f,
+                         float(std::max(top, 1.0) * 1.15), ImVec2(width, 44.0f));
+}
+
+void param(const StyleParam& p) {
+    ImGui::BeginDisabled();  // shown, not edited: the snapshot documents the frame
+    switch (p.kind) {
+        case StyleParam::Kind::Flag: {
+            bool v = p.flag;
+            ImGui::Checkbox(p.name.c_str(), &v);
+            break;
+        }
+        case StyleParam::Kind::Number: {
+            float v = p.value;
+            ImGui::SliderFloat(p.name.c_str(), &v, p.min, p.max, ("%.1f " + p.text).c_str());
+            break;
+        }
+        case StyleParam::Kind::Text:
+            ImGui::LabelText(p.name.c_str(), "%s", p.text.empty() ? "(none)" : p.text.c_str());
+            break;
+    }
+    ImGui::EndDisabled();
+}
+
+}  // namespace
+
+void DebugOverlay::layout(const DebugPanel& panel, int width, int height) {
+    ImGuiWindowFlags flags = ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
+    if (panel.columnWidth > 0) {
+        const float column = float(width - snapshotFrameWidth(width, panel.columnWidth));
+        ImGui::SetNextWindowPos(ImVec2(float(width) - column, 0.0f), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(column, float(height)), ImGuiCond_Always);
+        ImGui::SetNextWindowBgAlpha(1.0f);
+        flags |= ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse;
+    } else {
+        ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_Always);
+        ImGui::SetNextWindowBgAlpha(0.85f);
+        flags |= ImGuiWindowFlags_AlwaysAutoResize;
+    }
+    ImGui::Begin(panel.title.c_str(), nullptr, flags);
+    rowsTable("figures", panel.rows);
     if (panel.frameTimesMs.size() >= 2) {
         float top = *std::max_element(panel.frameTimesMs.begin(), panel.frameTimesMs.end());
-        ImGui::PlotLines("frame ms", panel.frameTimesMs.data(), int(panel.frameTimesMs.size()), 0,
-                         nullptr, 0.0f, top * 1.1f, ImVec2(260.0f, 60.0f));
+        ImGui::PlotLines("frame ms", panel.frameTimesMs.data(), int(panel.frameTimesMs.size()), 0, nullptr, 0.0f,
+                         top * 1.1f, ImVec2(260.0f, 60.0f));
     }
+    const bool halves = panel.columnWidth > 0 && !panel.sections.empty() &&
+                        ImGui::BeginTable("halves", 2, ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerV);
+    if (halves) ImGui::TableNextRow();
+    for (int half = 0; half < (halves ? 2 : 1); ++half) {
+        if (halves) ImGui::TableSetColumnIndex(half);
+        const float plotWidth = halves ? ImGui::GetContentRegionAvail().x : 260.0f;
+        for (const DebugSection& section : panel.sections) {
+            if (halves && std::min(section.column, 1) != half) continue;
+            ImGui::SetNextItemOpen(true, ImGuiCond_Always);
+            if (!ImGui::CollapsingHeader(section.title.c_str())) continue;
+            ImGui::PushID(section.title.c_str());
+            rowsTable("rows", section.rows);
+            for (const auto& s : section.series) series(s, panel.deterministic, plotWidth);
+            for (const auto& h : section.histograms) histogram(h, plotWidth);
+            if (!section.params.empty()) ImGui::PushItemWidth(plotWidth * 0.5f);
+            for (const auto& p : section.params) param(p);
+            if (!section.params.empty()) ImGui::PopItemWidth();
+            for (const auto& [rgb, label] : section.swatches) {
+                ImGui::ColorButton(("##" + label).c_str(), ImVec4(rgb[0], rgb[1], rgb[2], 1.0f),
+                                   ImGuiColorEditFlags_NoTooltip, ImVec2(28.0f, 12.0f));
+                ImGui::SameLine();
+                ImGui::TextUnformatted(label.c_str());
+            }
+            if (!section.note.empty()) ImGui::TextWrapped("%s", section.note.c_str());
+            ImGui::PopID();
+        }
+    }
+    if (halves) ImGui::EndTable();
     ImGui::End();
 }
 

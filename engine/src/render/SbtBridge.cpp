@@ -12,9 +12,11 @@ struct SbtBridge::State {
     std::vector<float> morphBase;
     std::unique_ptr<sbt::Refiner> refiner;
     sbt::StripMesh mesh;  // reused every frame
+    const terrain::Heightfield* field = nullptr;
 };
 
 SbtBridge::SbtBridge(const terrain::Heightfield& field, int threads) : state_(std::make_unique<State>()) {
+    state_->field = &field;
     state_->errors = sbt::computeVertexErrors(field, threads);
     state_->morphBase = sbt::buildMorphBase(field, threads);
     state_->refiner = std::make_unique<sbt::Refiner>(field, state_->errors, sbt::RefinerDesc{.threads = threads});
@@ -22,6 +24,7 @@ SbtBridge::SbtBridge(const terrain::Heightfield& field, int threads) : state_(st
 
 SbtBridge::~SbtBridge() = default;
 std::span<const float> SbtBridge::errors() const { return state_->errors.error; }
+const terrain::Heightfield& SbtBridge::field() const { return *state_->field; }
 std::span<const float> SbtBridge::radii() const { return state_->errors.radius; }
 std::span<const float> SbtBridge::morphBase() const { return state_->morphBase; }
 void SbtBridge::releaseMorphBase() { std::vector<float>().swap(state_->morphBase); }

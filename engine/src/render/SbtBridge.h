@@ -33,6 +33,7 @@ public:
 
     std::span<const float> errors() const;     // world units, per sample
     std::span<const float> radii() const;      // world units, per sample
+    const terrain::Heightfield& field() const;  // the refined surface (outlives the bridge)
     std::span<const float> morphBase() const;  // world heights, per sample
     // Frees the morph base once it is on the GPU (4 bytes per sample).
     void releaseMorphBase();

@@ -133,7 +133,8 @@ TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& 
             .threads = s.lod.threads,
             .metric = scene::metricHeights(s.terrain),
             .treeLine = s.style.treeLine,
-            .snowLine = s.style.snowLine};
+            .snowLine = s.style.snowLine,
+            .cpt = s.style.cpt};
 }
 
 DrawOptions sceneDrawOptions(const scene::Scene& s) {
@@ -142,6 +143,9 @@ DrawOptions sceneDrawOptions(const scene::Scene& s) {
             .geomorph = s.lod.geomorph,
             .cull = s.lod.cull,
             .wireframe = s.style.wireframe,
+            .polygons = s.style.polygons,
+            .points = s.style.points,
+            .colourBy = s.style.colourBy == "level" ? 1 : s.style.colourBy == "error" ? 2 : 0,
             .threads = s.lod.threads,
             .lighting = sceneLighting(s.lighting, s.output.alpha)};
 }

@@ -2,6 +2,7 @@
 
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/terrain/ColourRamp.h>
+#include <sierra/terrain/Cpt.h>
 
 namespace sierra::render {
 
@@ -43,7 +44,8 @@ std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSu
                               .seaLevel = sea,
                               .treeLine = desc.treeLine,
                               .snowLine = desc.snowLine});
-    std::vector<uint8_t> table = ramp.table(kRampEntries);
+    std::vector<uint8_t> table = desc.cpt.empty() ? ramp.table(kRampEntries)
+                                                  : terrain::readCpt(desc.cpt).ramp(range.x, range.y).table(kRampEntries);
     gpu::Texture texture = gpu::Texture::create({.target = GL_TEXTURE_1D, .format = GL_RGBA8, .width = kRampEntries});
     texture.upload(GL_RGBA, GL_UNSIGNED_BYTE, table.data());
     return std::make_unique<RampSurface>(std::move(texture));

@@ -3,6 +3,8 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/passes/TerrainPass.h>
+#include <sierra/render/passes/DebugColourPass.h>
+#include <sierra/render/passes/PointsPass.h>
 #include <sierra/render/passes/WireframePass.h>
 
 #include <algorithm>
@@ -16,6 +18,8 @@ struct TerrainRenderer::State {
     FrameUniforms uniforms;
     std::unique_ptr<TerrainPass> shaded;  // replaced by setSurface()
     std::unique_ptr<WireframePass> wireframe;  // built on first use
+    std::unique_ptr<PointsPass> points;        // built on first use
+    std::unique_ptr<DebugColourPass> debugColour;  // built on first use
     std::vector<std::unique_ptr<Pass>> extra;
     std::unique_ptr<DepthPass> depth;          // built on first use, per frame size
     gpu::Query timer;
@@ -24,8 +28,8 @@ struct TerrainRenderer::State {
 
 TerrainRenderer TerrainRenderer::create(const TerrainDesc& desc) {
     TerrainGpu terrain = TerrainGpu::create({.field = desc.field, .seaLevel = desc.seaLevel, .threads = desc.threads});
-    auto shaded = TerrainPass::create(
-        makeRampSurface(terrain, {.metric = desc.metric, .treeLine = desc.treeLine, .snowLine = desc.snowLine}));
+    auto shaded = TerrainPass::create(makeRampSurface(
+        terrain, {.metric = desc.metric, .treeLine = desc.treeLine, .snowLine = desc.snowLine, .cpt = desc.cpt}));
     auto state = std::unique_ptr<State>(new State{
         .terrain = std::move(terrain),
         .stream = SbtStream::create(),
@@ -86,7 +90,17 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
     s.uniforms.update(uniforms);
     FrameContext frame{s.terrain, mesh, uniforms, camera, width, height};
     glBeginQuery(GL_TIME_ELAPSED, s.timer.id());
-    s.shaded->draw(frame);
+    if (options.polygons && options.colourBy != 0) {
+        if (!s.debugColour) s.debugColour = DebugColourPass::create();
+        s.debugColour->setMode(options.colourBy == 2 ? ColourBy::Error : ColourBy::Level);
+        s.debugColour->draw(frame);
+    } else if (options.polygons) {
+        s.shaded->draw(frame);
+    }
+    if (options.points) {
+        if (!s.points) s.points = PointsPass::create();
+        s.points->draw(frame);
+    }
     if (options.wireframe) {
         if (!s.wireframe) s.wireframe = WireframePass::create();
         s.wireframe->draw(frame);

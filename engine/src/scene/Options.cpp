@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <sstream>
 
 namespace sierra::scene {
 namespace {
@@ -279,8 +280,17 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
         const std::string g = "Debug";
         auto* debugOut = add("--debug-out", "ImGui debug snapshot PNG", g, "FILE.png", d.output.debug, 1,
                              [](Scene& s, Words w) { s.output.debug = w[0]; });
+        auto* snapshot = add("--snapshot", "ImGui debug snapshot PNG: the UI beside the frame (same as --debug-out)",
+                             g, "FILE.png", "", 1, [](Scene& s, Words w) { s.output.debug = w[0]; });
         addFlag("--no-debug", "Do not write the debug snapshot", g, [](Scene& s, Words) { s.output.debug.clear(); })
-            ->excludes(debugOut);
+            ->excludes(debugOut)
+            ->excludes(snapshot);
+        add("--snapshot-only", "The debug UI alone on a plain background, as PNG", g, "FILE.png", "", 1,
+            [](Scene& s, Words w) { s.output.snapshotOnly = w[0]; });
+        add("--snapshot-every", "Sequences: a snapshot of every Nth frame (NAME_0000.png); 0 = the last only", g, "N",
+            "0", 1, [](Scene& s, Words w) { s.output.snapshotEvery = parseInt(w[0], "--snapshot-every"); });
+        addFlag("--snapshot-deterministic", "Snapshots show placeholders instead of measured times (golden images)",
+                g, [](Scene& s, Words) { s.output.snapshotDeterministic = true; });
     }
 
     if (groups & kZoneOptions) {
@@ -307,6 +317,21 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
 
     if (groups & kStyleOptions) {
         addFlag("--wireframe", "Overlay the triangulation", "Style", [](Scene& s, Words) { s.style.wireframe = true; });
+        add("--colour-by", "Colour the polygons by surface, level (SBT level) or error (screen-space error heat map)",
+            "Style", "MODE", "surface", 1, [](Scene& s, Words w) { s.style.colourBy = w[0]; });
+        add("--display", "What to draw: any of points, wireframe, polygons, comma-separated", "Style", "LIST",
+            "polygons", 1, [](Scene& s, Words w) {
+                s.style.points = s.style.wireframe = s.style.polygons = false;
+                std::stringstream in(w[0]);
+                for (std::string item; std::getline(in, item, ',');) {
+                    if (item == "points") s.style.points = true;
+                    else if (item == "wireframe") s.style.wireframe = true;
+                    else if (item == "polygons") s.style.polygons = true;
+                    else
+                        throw Error(msg("--display: unknown item '", item,
+                                        "'; expected points, wireframe or polygons, comma-separated"));
+                }
+            });
         add("--tree-line", "Metric heights: metres above which rock replaces vegetation", "Style", "M",
             show(d.style.treeLine), 1, [](Scene& s, Words w) { s.style.treeLine = parseFloat(w[0], "--tree-line"); });
         add("--snow-line", "Metric heights: metres above which snow lies", "Style", "M", show(d.style.snowLine), 1,
@@ -382,6 +407,8 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
         add("--hatch-direction", "Hatch strokes along or across the direction of greatest curvature", o, "DIR",
             analysis::hatchDirectionName(d.style.overlay.hatch.direction), 1,
             [](Scene& s, Words w) { s.style.overlay.hatch.direction = analysis::parseHatchDirection(w[0]); });
+        add("--cpt", "Colour the surface with a GMT .cpt table (absolute stored heights)", "Style", "FILE.cpt", "",
+            1, [](Scene& s, Words w) { s.style.cpt = w[0]; });
     }
 }
 

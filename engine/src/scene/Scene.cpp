@@ -112,6 +112,10 @@ void validateStyle(const StyleDesc& s) {
     if (!(s.snowLine >= s.treeLine) || !std::isfinite(s.snowLine))
         fail("style.snow_line", "--snow-line",
              msg("must be finite and at least the tree line (", s.treeLine, " m), got ", s.snowLine));
+    if (s.colourBy != "surface" && s.colourBy != "level" && s.colourBy != "error")
+        fail("style.colour_by", "--colour-by", msg("must be surface, level or error, got '", s.colourBy, "'"));
+    if (!s.polygons && !s.points && !s.wireframe)
+        fail("style.polygons", "--display", "draws nothing: name at least one of points, wireframe, polygons");
     // Overlay parameters: the analysis module's own checks and messages.
     analysis::validate(s.overlay.curvature);
     analysis::validate(analysis::lineOptions(s.overlay));
@@ -152,6 +156,9 @@ void validateLod(const LodDesc& l) {
 void validateOutput(const OutputDesc& o) {
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
         fail("output.width/height", "--size", msg("must each be 1..16384, got ", o.width, "x", o.height));
+    if (o.snapshotEvery < 0)
+        fail("output.snapshot_every", "--snapshot-every", msg("must be >= 0 (0 = the last frame only), got ",
+                                                              o.snapshotEvery));
     if (o.msaa != 0 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8)
         fail("output.msaa", "--msaa", msg("must be 0 (off), 2, 4 or 8, got ", o.msaa));
     if (o.frame.empty()) fail("output.frame", "--out", "must name a PNG file");

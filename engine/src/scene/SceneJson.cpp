@@ -263,6 +263,10 @@ void readOutput(ObjectReader& r, OutputDesc& o) {
     r.field("msaa", [&](const Json& v, const std::string& k) { o.msaa = r.toInt(v, k); });
     r.field("frame", [&](const Json& v, const std::string& k) { o.frame = r.toString(v, k); });
     r.field("debug", [&](const Json& v, const std::string& k) { o.debug = r.toString(v, k); });
+    r.field("snapshot_only", [&](const Json& v, const std::string& k) { o.snapshotOnly = r.toString(v, k); });
+    r.field("snapshot_every", [&](const Json& v, const std::string& k) { o.snapshotEvery = r.toInt(v, k); });
+    r.field("snapshot_deterministic",
+            [&](const Json& v, const std::string& k) { o.snapshotDeterministic = r.toBool(v, k); });
     r.field("depth", [&](const Json& v, const std::string& k) { o.depth = r.toString(v, k); });
     r.field("alpha", [&](const Json& v, const std::string& k) { o.alpha = r.toBool(v, k); });
 }
@@ -271,6 +275,10 @@ void readStyle(ObjectReader& r, StyleDesc& s) {
     r.field("wireframe", [&](const Json& v, const std::string& k) { s.wireframe = r.toBool(v, k); });
     r.field("tree_line", [&](const Json& v, const std::string& k) { s.treeLine = r.toFloat(v, k); });
     r.field("snow_line", [&](const Json& v, const std::string& k) { s.snowLine = r.toFloat(v, k); });
+    r.field("cpt", [&](const Json& v, const std::string& k) { s.cpt = r.toString(v, k); });
+    r.field("polygons", [&](const Json& v, const std::string& k) { s.polygons = r.toBool(v, k); });
+    r.field("points", [&](const Json& v, const std::string& k) { s.points = r.toBool(v, k); });
+    r.field("colour_by", [&](const Json& v, const std::string& k) { s.colourBy = r.toString(v, k); });
     // Overlays: a preset first, then the analysis module's style keys over it.
     bool preset = false;
     r.field("preset", [&](const Json& v, const std::string& k) {
@@ -396,10 +404,16 @@ Json sceneToJson(const Scene& s) {
     Json output = {
         {"width", o.width}, {"height", o.height}, {"msaa", o.msaa}, {"frame", o.frame},
         {"debug", o.debug}, {"depth", o.depth},   {"alpha", o.alpha},
+        {"snapshot_only", o.snapshotOnly}, {"snapshot_every", o.snapshotEvery},
+        {"snapshot_deterministic", o.snapshotDeterministic},
     };
     Json style = {{"wireframe", s.style.wireframe},
                   {"tree_line", number(s.style.treeLine)},
-                  {"snow_line", number(s.style.snowLine)}};
+                  {"snow_line", number(s.style.snowLine)},
+                  {"cpt", s.style.cpt},
+                  {"polygons", s.style.polygons},
+                  {"points", s.style.points},
+                  {"colour_by", s.style.colourBy}};
     const ZonesDesc& z = s.zones;
     Json zones = {{"map", z.map},
                   {"palette", z.palette},

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <utility>
 #include <cmath>
 
 namespace sierra::terrain {
@@ -124,6 +125,19 @@ ColourRamp::ColourRamp(const ColourRampDesc& desc) : desc_(desc) {
     }
 }
 
+ColourRamp::ColourRamp(std::vector<ColourStop> stops, float minHeight, float maxHeight,
+                       const OutOfRangeColours& outside)
+    : desc_{.minHeight = minHeight, .maxHeight = maxHeight}, outside_(outside), stops_(std::move(stops)) {
+    SIERRA_CHECK(std::isfinite(minHeight) && std::isfinite(maxHeight) && minHeight < maxHeight,
+                 "colour ramp range [", minHeight, ", ", maxHeight, "] is invalid; need minHeight < maxHeight");
+    SIERRA_CHECK(stops_.size() >= 2, "a colour table needs at least 2 stops, got ", stops_.size());
+    for (size_t k = 0; k < stops_.size(); ++k) {
+        SIERRA_CHECK(std::isfinite(stops_[k].height), "colour stop ", k, " has a non-finite height");
+        SIERRA_CHECK(k == 0 || stops_[k].height >= stops_[k - 1].height, "colour stops are not ascending: ",
+                     stops_[k - 1].height, " then ", stops_[k].height);
+    }
+}
+
 ColourRamp ColourRamp::forField(const Heightfield& field, RampScheme scheme, float seaLevel) {
     auto [lo, hi] = field.range();
     if (!(hi > lo)) hi = lo + 1.0f;
@@ -131,8 +145,13 @@ ColourRamp ColourRamp::forField(const Heightfield& field, RampScheme scheme, flo
 }
 
 Rgb ColourRamp::colourAt(float height) const {
-    if (std::isnan(height)) height = desc_.minHeight;
+    if (std::isnan(height)) {
+        if (outside_.noData) return *outside_.noData;
+        height = desc_.minHeight;
+    }
     height = std::clamp(height, desc_.minHeight, desc_.maxHeight);
+    if (outside_.below && height < stops_.front().height) return *outside_.below;
+    if (outside_.above && height > stops_.back().height) return *outside_.above;
     // First stop strictly above: at a hard edge (two stops at one height) the
     // upper colour wins, so sea level itself is land.
     auto above = std::upper_bound(stops_.begin(), stops_.end(), height,
@@ -174,7 +193,7 @@ void writeMapPng(const std::string& path, const Heightfield& field, const Colour
     for (int j = 0; j < height; ++j) {
         uint8_t* row = rgb.data() + size_t(j) * width * 3;
         for (int i = 0; i < fieldWidth; ++i) {
-            const Rgb c = field.valid(i, j) ? ramp.colourAt(field.at(i, j)) : Rgb{0, 0, 0};
+            const Rgb c = field.valid(i, j) ? ramp.colourAt(field.at(i, j)) : ramp.noDataColour();
             row[3 * i] = c.r, row[3 * i + 1] = c.g, row[3 * i + 2] = c.b;
         }
         if (colourBar) {

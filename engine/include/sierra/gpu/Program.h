@@ -25,6 +25,7 @@ struct ProgramDesc {
     std::string_view vertex;    // file names in shaders/; empty = no such stage
     std::string_view fragment;
     std::string_view compute;
+    std::string_view geometry;  // between vertex and fragment; empty = none
     std::string_view defines;   // extra lines inserted after #version, e.g. "#define X 1\n"
     std::span<const IncludeAlias> aliases;  // include names resolved to other files
 };

@@ -31,6 +31,9 @@ struct RampSurfaceDesc {
     bool metric = false;
     float treeLine = 2000.0f;  // metres
     float snowLine = 3000.0f;  // metres
+    // A GMT .cpt colour table (absolute stored heights) replacing the scheme;
+    // empty = none. It is sampled over the terrain's range.
+    std::string cpt;
 };
 
 // The hypsometric colour ramp (or the absolute elevation ramp for metric

@@ -33,6 +33,7 @@ struct TerrainDesc {
     bool metric = false;                  // heights in metres: absolute-elevation colours
     float treeLine = 2000.0f;             // metres (metric only)
     float snowLine = 3000.0f;             // metres (metric only)
+    std::string cpt;                      // .cpt colour table instead of the scheme; empty = none
 };
 
 struct Lighting {
@@ -50,6 +51,11 @@ struct DrawOptions {
     bool geomorph = true;    // SBT: blend newly active vertices in (no popping)
     bool cull = true;        // SBT: frustum culling by bounding spheres
     bool wireframe = false;  // the wireframe pass after the terrain
+    bool polygons = true;    // the shaded terrain pass (false: points and/or lines only)
+    bool points = false;     // the mesh's vertices as points after the terrain
+    // Polygons coloured by SBT level or split-vertex screen error instead of
+    // the surface function (0 surface, 1 level, 2 error; see DebugColourPass.h).
+    int colourBy = 0;
     int threads = 0;         // refinement threads, 0 = default
     Lighting lighting;
 };

@@ -115,7 +115,10 @@ struct OutputDesc {
     int height = 720;
     int msaa = 4;                          // samples per pixel: 0 (off), 2, 4 or 8
     std::string frame = "out/frame.png";   // frame PNG; sequences: NAME_0000.png, ...
-    std::string debug = "out/debug.png";   // ImGui debug snapshot PNG; empty = none
+    std::string debug = "out/debug.png";   // ImGui debug snapshot PNG (UI over the frame); empty = none
+    std::string snapshotOnly;              // the debug UI alone on a plain background; empty = none
+    int snapshotEvery = 0;                 // sequences: a snapshot of every Nth frame (NAME_0000.png); 0 = last only
+    bool snapshotDeterministic = false;    // snapshots show placeholders instead of measured times
     std::string depth;                     // linear eye-space depth .npy (float32, NaN = no terrain); empty = none
     bool alpha = false;                    // RGBA PNG with a transparent sky
     bool operator==(const OutputDesc&) const = default;
@@ -123,6 +126,9 @@ struct OutputDesc {
 
 struct StyleDesc {
     bool wireframe = false;  // overlay the triangulation
+    bool polygons = true;    // the shaded surface (--display polygons)
+    bool points = false;     // the mesh's vertices as points (--display points)
+    std::string colourBy = "surface";  // polygons coloured by: surface, level (SBT) or error (split vertex, px)
     // Metric heights are coloured by absolute elevation (metres): vegetation up
     // to the tree line, rock above it, snow above the snow line. Unitless
     // heights use a ramp over their own range instead.
@@ -134,6 +140,7 @@ struct StyleDesc {
     // beside it override it. Default: the shaded terrain, no overlay.
     std::string preset;  // "" or fig3a .. fig3n, fig4a .. fig4h
     analysis::StyleParams overlay;
+    std::string cpt;           // GMT .cpt colour table of the surface (absolute stored heights); empty = none
     bool operator==(const StyleDesc&) const = default;
 };
 

@@ -5,6 +5,7 @@
 #include <sierra/terrain/Heightfield.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,20 @@ enum class RampScheme {
     Elevation,
 };
 
+// One colour at one stored height, for ramps built from a table (a .cpt file).
+struct ColourStop {
+    float height;
+    Rgb colour;
+};
+
+// Colours for heights outside a table's stops and for no-data, as a .cpt file's
+// B, F and N lines give them; unset = clamp to the end colours (no-data black).
+struct OutOfRangeColours {
+    std::optional<Rgb> below;   // B
+    std::optional<Rgb> above;   // F
+    std::optional<Rgb> noData;  // N
+};
+
 struct ColourRampDesc {
     RampScheme scheme = RampScheme::Hypsometric;
     float minHeight = 0.0f;  // stored height of the first colour; lower heights clamp to it
@@ -47,6 +62,13 @@ class ColourRamp {
     // Throws sierra::Error unless minHeight < maxHeight, all finite.
     explicit ColourRamp(const ColourRampDesc& desc = {});
 
+    // A ramp from explicit stops, sorted by height (two stops at one height =
+    // a hard edge, as a discrete table has), for heights in [minHeight,
+    // maxHeight] (what table() spans). Throws unless there are >= 2 stops in
+    // ascending order and minHeight < maxHeight.
+    ColourRamp(std::vector<ColourStop> stops, float minHeight, float maxHeight,
+               const OutOfRangeColours& outside = {});
+
     // A ramp over field.range() (widened by 1 when the field is flat).
     static ColourRamp forField(const Heightfield& field, RampScheme scheme, float seaLevel);
 
@@ -55,6 +77,8 @@ class ColourRamp {
     // Colour of a stored height; heights outside [min, max] clamp, NaN gives the
     // colour of minHeight.
     Rgb colourAt(float height) const;
+    // Colour of no-data samples: the table's N colour, else black.
+    Rgb noDataColour() const { return outside_.noData.value_or(Rgb{0, 0, 0}); }
 
     // `entries` RGBA8 colours (4 bytes each, alpha 255), entry k at height
     // min + (max - min) * k / (entries - 1): ready for a GL_RGBA8 1D texture.
@@ -62,11 +86,9 @@ class ColourRamp {
     std::vector<uint8_t> table(int entries) const;
 
   private:
-    struct Stop {
-        float height;
-        Rgb colour;
-    };
+    using Stop = ColourStop;
     ColourRampDesc desc_;
+    OutOfRangeColours outside_;
     std::vector<Stop> stops_;  // sorted by height; two stops at one height = a hard edge
 };
 

@@ -1,0 +1,187 @@
+#include <sierra/render/DebugSnapshot.h>
+
+#include <sierra/core/Parallel.h>
+#include <sierra/core/Progress.h>
+#include <sierra/gpu/StreamRing.h>
+#include <sierra/render/MeshInspector.h>
+#include <sierra/render/TerrainGpu.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sierra::render {
+namespace {
+
+std::string vec(const glm::vec3& v, int decimals = 1) {
+    return msg("(", fixed(v.x, decimals), ", ", fixed(v.y, decimals), ", ", fixed(v.z, decimals), ")");
+}
+
+std::string bytes(double b) {
+    if (b >= 1024.0 * 1024.0) return msg(fixed(b / (1024.0 * 1024.0), 1), " MiB");
+    if (b >= 1024.0) return msg(fixed(b / 1024.0, 1), " KiB");
+    return msg(fixed(b, 0), " B");
+}
+
+}  // namespace
+
+int debugColumnWidth(int width) {
+    return std::min(std::clamp(int(std::lround(0.45 * width)), 480, 720), 2 * width / 3);
+}
+
+DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
+    SIERRA_CHECK(f.scene && f.field && f.renderer && !f.frames.empty(), "debug panel: missing facts");
+    const scene::Scene& s = *f.scene;
+    const terrain::Heightfield& field = *f.field;
+    TerrainGpu& gpu = f.renderer->terrain();
+    DebugPanel panel;
+    panel.title = "Sierra debug";
+    panel.deterministic = deterministic;
+
+    // Source: the real size is the valid samples' box (padding is added to the
+    // right and at the bottom); no-data = invalid samples inside it.
+    int realW = field.width(), realH = field.height();
+    int64_t noData = 0;
+    if (field.hasMask()) {
+        realW = realH = 0;
+        for (int j = 0; j < field.height(); ++j)
+            for (int i = 0; i < field.width(); ++i)
+                if (field.valid(i, j)) realW = std::max(realW, i + 1), realH = std::max(realH, j + 1);
+        for (int j = 0; j < realH; ++j)
+            for (int i = 0; i < realW; ++i) noData += field.valid(i, j) ? 0 : 1;
+    }
+    const glm::vec2 range = gpu.worldRange();
+    DebugSection source{.title = "Source"};
+    source.rows = {
+        {"file", s.terrain.heightmap.empty()
+                     ? msg("generated ", s.terrain.generateSize, "^2, seed ", s.terrain.seed, ", roughness ",
+                           s.terrain.roughness)
+                     : s.terrain.heightmap},
+        {"real size", msg(realW, " x ", realH, " samples")},
+        {"padded size", msg(field.width(), " x ", field.height(), " samples")},
+        {"spacing", msg(fixed(field.spacingX(), 2), " x ", fixed(field.spacingZ(), 2), " world units")},
+        {"vertical scale", msg(fixed(field.verticalScale(), 4), " world / stored")},
+        {"height range", msg(fixed(range.x, 1), " .. ", fixed(range.y, 1), " world units")},
+        {"sea level", gpu.hasWater() ? msg(fixed(gpu.worldSeaLevel(), 1), " world units") : "no water"},
+        {"no-data samples", msg(noData)},
+    };
+    panel.sections.push_back(std::move(source));
+
+    DebugSection renderer{.title = "Renderer"};
+    const int threads = f.draw.threads > 0 ? f.draw.threads : defaultThreadCount();
+    renderer.rows = {
+        {"GL renderer", f.glRenderer},
+        {"GL version", f.glVersion},
+        {"EGL", f.eglPlatform},
+        {"MSAA", s.output.msaa ? msg(s.output.msaa, " samples") : "off"},
+        {"threads", msg(threads, " (refinement)")},
+        {"frame", msg(f.frameWidth, " x ", f.height, " pixels")},
+    };
+    panel.sections.push_back(std::move(renderer));
+
+    DebugSection camera{.title = "Camera"};
+    camera.rows = {
+        {"position", vec(f.camera.position)},
+        {"target", vec(f.camera.target)},
+        {"fov", msg(fixed(f.camera.fovYDegrees, 1), " deg")},
+        {"level of detail", msg(lodName(f.draw.lod), f.draw.lod == Lod::Sbt
+                                                         ? msg(", geomorph ", f.draw.geomorph ? "on" : "off",
+                                                               ", culling ", f.draw.cull ? "on" : "off")
+                                                         : "")},
+    };
+    panel.sections.push_back(std::move(camera));
+
+    DebugSection times{.title = "Frame time", .column = 1};
+    StageSeries refine{.name = "refine + strip"}, upload{.name = "upload"}, draw{.name = "draw (GL timer)"},
+        frame{.name = "frame (wall clock)"};
+    for (const DrawStats& st : f.frames) {
+        refine.values.push_back(float(st.refineMs));
+        upload.values.push_back(float(st.uploadMs));
+        draw.values.push_back(float(st.drawMs));
+    }
+    frame.values = f.frameMs;
+    times.series = {refine, upload, draw, frame};
+    times.rows = {{"error pass", deterministic ? std::string("-- ms") : msg(fixed(gpu.errorPassMs(), 1), " ms")},
+                  {"read-back", "in the frame time"}};
+    panel.sections.push_back(std::move(times));
+
+    const DrawStats& last = f.frames.back();
+    DebugSection mesh{.title = "Mesh", .column = 1};
+    if (f.draw.lod == Lod::Sbt) {
+        MeshInspection m = inspectMesh(gpu, f.camera, f.frameWidth, f.height, f.draw.tau, f.draw.cull, f.draw.threads);
+        mesh.rows = {
+            {"triangles", msg(m.triangles)},
+            {"distinct vertices", msg(m.distinctVertices)},
+            {"indices / triangle", fixed(m.triangles ? double(m.indices) / double(m.triangles) : 0.0, 3)},
+            {"bytes uploaded", msg(m.indices * 4, " (", bytes(double(m.indices) * 4.0), ")")},
+            {"tau, lambda", msg(fixed(m.tau, 2), " px, ", fixed(m.lambda, 1), " px")},
+            {"max screen error", msg(fixed(m.maxProjectedErrorPx, 3), " px")},
+            {"culled subtrees", "n/a (not counted)"},
+        };
+        Histogram h{.name = "leaves per level", .binLabel = "level"};
+        h.counts.assign(m.levelCounts.begin(), m.levelCounts.end());
+        mesh.histograms.push_back(std::move(h));
+    } else {
+        mesh.rows = {{"triangles", msg(last.triangles)},
+                     {"indices / triangle", fixed(last.indicesPerTriangle(), 3)},
+                     {"level of detail", "full grid (no SBT)"}};
+    }
+    panel.sections.push_back(std::move(mesh));
+
+    // Memory from the structures' sizes (what each holds per sample).
+    const double samples = double(field.width()) * double(field.height());
+    DebugSection memory{.title = "Memory"};
+    memory.rows = {
+        {"CPU heightfield", bytes(samples * (4.0 + (field.hasMask() ? 1.0 : 0.0)))},
+        {"CPU drawn surface", bytes(samples * 4.0)},
+        {"CPU errors, radii", bytes(samples * 8.0)},
+        {"CPU strip", bytes(double(last.indices) * 4.0)},
+        {"GPU data RGBA32F", bytes(samples * 16.0)},
+        {"GPU heights R32F", bytes(samples * 4.0)},
+        {"GPU index ring", msg(gpu::StreamRing::kRegions, " x >= ", bytes(4.0 * 1024 * 1024), " regions")},
+        {"GPU colour ramp", bytes(1024.0 * 4.0)},
+    };
+    memory.note = "from the layouts; the ring grows to the largest frame";
+    panel.sections.push_back(std::move(memory));
+
+    DebugSection style{.title = "Style", .column = 1};
+    style.params = {
+        {.kind = StyleParam::Kind::Flag, .name = "wireframe", .flag = s.style.wireframe},
+        {.kind = StyleParam::Kind::Number, .name = "tree line", .value = s.style.treeLine, .min = 0.0f,
+         .max = 9000.0f, .text = "m"},
+        {.kind = StyleParam::Kind::Number, .name = "snow line", .value = s.style.snowLine, .min = 0.0f,
+         .max = 9000.0f, .text = "m"},
+        {.kind = StyleParam::Kind::Text, .name = "colour table", .text = s.style.cpt},
+        {.kind = StyleParam::Kind::Number, .name = "tau", .value = f.draw.tau, .min = 0.0f, .max = 16.0f,
+         .text = "px"},
+    };
+    if (s.style.colourBy == "error") {
+        // The heat map of shaders/debug_colour_geom.glsl.
+        const double tau = f.draw.tau;
+        style.swatches = {{{0.1f, 0.2f, 0.9f}, "0 px"},
+                          {{0.1f, 0.75f, 0.2f}, msg(fixed(tau / 2, 2), " px (tau / 2)")},
+                          {{0.95f, 0.9f, 0.1f}, msg(fixed(tau, 2), " px (tau)")},
+                          {{0.9f, 0.1f, 0.05f}, msg(">= ", fixed(2 * tau, 2), " px (2 tau)")}};
+        style.note = "colour: screen-space error of each triangle's split vertex";
+    } else if (s.style.colourBy == "level") {
+        int levels = 0;
+        while ((1 << (levels / 2)) < field.width() - 1 || levels % 2) ++levels;
+        for (int l = 0; l <= levels; l += std::max(1, levels / 5)) {
+            // hue(0.8 * l / levels) as in the shader
+            const float h = 0.8f * float(l) / float(std::max(levels, 1));
+            std::array<float, 3> rgb;
+            const float offsets[3] = {0.0f, 2.0f / 3.0f, 1.0f / 3.0f};
+            for (int c = 0; c < 3; ++c) {
+                float x = h + offsets[c];
+                x -= std::floor(x);
+                rgb[size_t(c)] = std::clamp(std::abs(x * 6.0f - 3.0f) - 1.0f, 0.0f, 1.0f);
+            }
+            style.swatches.push_back({rgb, msg("SBT level ", l)});
+        }
+        style.note = "colour: each triangle's SBT level";
+    }
+    style.params.push_back({.kind = StyleParam::Kind::Text, .name = "colour by", .text = s.style.colourBy});
+    panel.sections.push_back(std::move(style));
+    return panel;
+}
+
+}  // namespace sierra::render

@@ -1,0 +1,197 @@
+// The debug UI: a snapshot over the default scene keeps the terrain's centre
+// uncovered and puts the panels in a column beside the narrowed frame; the UI
+// alone with deterministic placeholders matches a golden image; the mesh
+// inspection agrees with the frame's statistics.
+
+#include "GlTest.h"
+
+#include <sierra/gpu/Gl.h>
+#include <sierra/gpu/ReadBack.h>
+#include <sierra/render/Capture.h>
+#include <sierra/render/DebugSnapshot.h>
+#include <sierra/render/FrameTarget.h>
+#include <sierra/render/MeshInspector.h>
+#include <sierra/render/Scene.h>
+#include <sierra/render/TerrainRenderer.h>
+#include <sierra/scene/Terrain.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+using namespace sierra;
+
+namespace {
+
+constexpr int kWidth = 1280;  // the default frame size
+constexpr int kHeight = 720;
+
+class DebugSnapshot : public test::GlTest {
+protected:
+    void SetUp() override {
+        createContext(kWidth, kHeight);
+        scene_.terrain.generateSize = 257;  // small: the snapshot, not the terrain, is tested
+        field_ = scene::loadTerrain(scene_.terrain);
+        terrain_.emplace(
+            render::TerrainRenderer::create({.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
+        target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
+        std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
+    }
+
+    // The frame drawn in the left `frameWidth` pixels (the rest sky).
+    gpu::Image frame(int frameWidth, render::DrawStats* stats = nullptr) {
+        camera_ = render::defaultCamera(terrain_->bounds(), float(frameWidth) / float(kHeight));
+        target_->begin(render::TerrainRenderer::clearColour({}));
+        glViewport(0, 0, frameWidth, kHeight);
+        render::DrawStats s = terrain_->draw(camera_, frameWidth, kHeight, draw_);
+        target_->resolve();
+        if (stats) *stats = s;
+        return gpu::readFramebuffer(kWidth, kHeight);
+    }
+
+    render::DebugPanel panel(int frameWidth, const render::DrawStats& stats, bool deterministic) {
+        render::SnapshotFacts facts{.scene = &scene_, .field = &field_, .glRenderer = "test renderer",
+                                    .glVersion = "4.5 test", .eglPlatform = "test platform",
+                                    .renderer = &*terrain_, .camera = camera_, .frameWidth = frameWidth,
+                                    .height = kHeight, .draw = draw_, .frames = {stats, stats},
+                                    .frameMs = {12.0f, 14.0f}};
+        return render::buildDebugPanel(facts, deterministic);
+    }
+
+    scene::Scene scene_;
+    terrain::Heightfield field_;
+    std::optional<render::TerrainRenderer> terrain_;
+    std::optional<render::FrameTarget> target_;
+    render::Camera camera_;
+    render::DrawOptions draw_{.threads = 2};
+};
+
+const uint8_t* px(const gpu::Image& image, int x, int y) { return &image.rgba[(size_t(y) * image.width + x) * 4]; }
+
+bool samePixel(const gpu::Image& a, const gpu::Image& b, int x, int y) {
+    const uint8_t *p = px(a, x, y), *q = px(b, x, y);
+    return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+}
+
+TEST_F(DebugSnapshot, PanelsBesideTheFrameLeaveTheTerrainUncovered) {
+    const int column = render::debugColumnWidth(kWidth);
+    const int frameWidth = render::snapshotFrameWidth(kWidth, column);
+    ASSERT_LT(frameWidth, kWidth);
+    ASSERT_GE(frameWidth, kWidth / 3);
+    render::DrawStats stats;
+    gpu::Image full = frame(kWidth);
+    gpu::Image narrowed = frame(frameWidth, &stats);
+    render::DebugPanel p = panel(frameWidth, stats, false);
+    p.columnWidth = kWidth - frameWidth;
+    render::DebugOverlay overlay;
+    target_->begin(render::TerrainRenderer::clearColour({}));
+    glViewport(0, 0, frameWidth, kHeight);
+    terrain_->draw(camera_, frameWidth, kHeight, draw_);
+    target_->resolve();
+    overlay.draw(p, kWidth, kHeight);
+    gpu::Image shot = gpu::readFramebuffer(kWidth, kHeight);
+    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/debug_column.png", shot);
+
+    // Not blank: many distinct colours.
+    std::set<uint32_t> colours;
+    for (size_t k = 0; k + 3 < shot.rgba.size(); k += 4 * 7)
+        colours.insert(uint32_t(shot.rgba[k]) << 16 | uint32_t(shot.rgba[k + 1]) << 8 | shot.rgba[k + 2]);
+    EXPECT_GT(colours.size(), 50u);
+
+    // The frame beside the column is untouched, its centre shows terrain.
+    int changedInFrame = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < frameWidth; ++x) changedInFrame += samePixel(shot, narrowed, x, y) ? 0 : 1;
+    EXPECT_EQ(changedInFrame, 0) << "the panel covers part of the frame";
+    glm::vec3 sky = render::Lighting{}.sky * 255.0f;
+    const uint8_t* centre = px(shot, frameWidth / 2, kHeight / 2);
+    EXPECT_GT(glm::length(glm::vec3(centre[0], centre[1], centre[2]) - sky), 30.0f) << "no terrain at the centre";
+
+    // The column differs from the frame that would be beneath it.
+    int differing = 0, total = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = frameWidth; x < kWidth; ++x, ++total) differing += samePixel(shot, full, x, y) ? 0 : 1;
+    EXPECT_GT(differing, total * 9 / 10);
+}
+
+TEST_F(DebugSnapshot, UiAloneMatchesGoldenWithPlaceholders) {
+    const int column = render::debugColumnWidth(kWidth);
+    render::DrawStats stats;
+    frame(render::snapshotFrameWidth(kWidth, column), &stats);
+    stats.refineMs = 3.25, stats.uploadMs = 0.5, stats.drawMs = 7.0;  // placeholders must hide these
+    render::DebugPanel p = panel(render::snapshotFrameWidth(kWidth, column), stats, true);
+    p.columnWidth = column;
+    render::DebugOverlay overlay;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, column, kHeight);
+    glClearColor(0.2f, 0.2f, 0.22f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    overlay.draw(p, column, kHeight);
+    gpu::Image ui = gpu::readFramebuffer(column, kHeight);
+    const std::string name = "debug_snapshot_only.png";
+    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name, ui);
+    const std::string golden = std::string(SIERRA_GOLDEN_DIR) + "/" + name;
+    const char* env = std::getenv("SIERRA_UPDATE_GOLDEN");
+    if (env && std::string(env) == "1") {
+        render::writePng(golden, ui);
+        GTEST_SKIP() << "golden image " << name << " rewritten";
+    }
+    render::ImageDifference d = render::compareImages(ui, render::readPng(golden), 24);
+    std::printf("%s against golden: PSNR %.2f dB, %.4f%% pixels differ\n", name.c_str(), d.psnr,
+                100.0 * d.differingShare);
+    EXPECT_LE(d.differingShare, 0.01);
+
+    // A second, deterministic snapshot with other measured times is identical.
+    stats.refineMs = 99.0;
+    render::DebugPanel q = panel(render::snapshotFrameWidth(kWidth, column), stats, true);
+    q.columnWidth = column;
+    glClear(GL_COLOR_BUFFER_BIT);
+    overlay.draw(q, column, kHeight);
+    gpu::Image again = gpu::readFramebuffer(column, kHeight);
+    EXPECT_EQ(again.rgba, ui.rgba);
+}
+
+TEST_F(DebugSnapshot, MeshInspectionMatchesTheFrame) {
+    render::DrawStats stats;
+    frame(kWidth, &stats);
+    render::MeshInspection m = render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, true, 2);
+    EXPECT_EQ(uint64_t(m.triangles), stats.triangles);
+    EXPECT_EQ(uint64_t(m.indices), stats.indices);
+    int64_t sum = 0;
+    for (int64_t c : m.levelCounts) sum += c;
+    EXPECT_EQ(sum, m.triangles) << "every drawn triangle has a level";
+    EXPECT_GT(m.distinctVertices, 0);
+    EXPECT_LT(m.distinctVertices, m.triangles * 3);
+    // Leaves are below tau except on the finest level, which has no split vertex.
+    EXPECT_GT(m.maxProjectedErrorPx, 0.0);
+    EXPECT_LE(m.maxProjectedErrorPx, 1.0 + 1e-3);
+    // A coarser tau leaves larger errors on screen.
+    render::MeshInspection coarse = render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 8.0f, true, 2);
+    EXPECT_LT(coarse.triangles, m.triangles);
+    EXPECT_GT(coarse.maxProjectedErrorPx, m.maxProjectedErrorPx);
+    EXPECT_LE(coarse.maxProjectedErrorPx, 8.0 + 1e-3);
+}
+
+TEST(MeshInspector, TriangleLevelFromEdges) {
+    // side 5 (n = 2, levels 0..4): the level-0 triangle (0,0)-(4,0)-(0,4).
+    EXPECT_EQ(render::triangleLevel(0, 4, 20, 5), 0);
+    // Level 2: legs of 2 samples; level 4: legs of 1 sample.
+    EXPECT_EQ(render::triangleLevel(0, 2, 10, 5), 2);
+    EXPECT_EQ(render::triangleLevel(0, 1, 5, 5), 4);
+    // Level 1: legs of length 2 sqrt 2 (centre (2,2) to corners).
+    EXPECT_EQ(render::triangleLevel(0, 12, 4, 5), 1);
+    EXPECT_EQ(render::triangleLevel(0, 3, 20, 5), -1);  // not an SBT triangle
+}
+
+TEST(DebugOverlayMaths, MedianAndP95) {
+    auto [m, p] = render::medianAndP95({5, 1, 4, 2, 3});
+    EXPECT_EQ(m, 3.0f);
+    EXPECT_EQ(p, 5.0f);
+    std::vector<float> many(100);
+    for (int k = 0; k < 100; ++k) many[size_t(k)] = float(k + 1);
+    auto [m2, p2] = render::medianAndP95(many);
+    EXPECT_EQ(m2, 50.0f);
+    EXPECT_EQ(p2, 95.0f);
+}
+
+}  // namespace
