@@ -84,7 +84,8 @@ TEST_F(TinyScene, WireframeShowsExactlyTheEmittedEdges) {
     std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/tiny_wireframe.png", image);
     render::MeshInspection mesh =
-        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull);
+        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0,
+                            options.geomorph);
     ASSERT_GT(mesh.triangles, 8);
     ASSERT_LT(mesh.triangles, 2 * 32 * 32) << "want a partly refined mesh";
 
@@ -135,7 +136,8 @@ TEST_F(TinyScene, PointsShowExactlyTheMeshVertices) {
     gpu::Image image = draw(options);
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/tiny_points.png", image);
     render::MeshInspection mesh =
-        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull);
+        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0,
+                            options.geomorph);
     std::set<uint32_t> used;
     for (const auto& t : mesh.triangleList) used.insert(t.begin(), t.end());
     int missing = 0, extra = 0;
@@ -158,7 +160,8 @@ TEST_F(TinyScene, ColourByLevelIsOneColourPerLevel) {
     gpu::Image image = draw(options);
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/tiny_level.png", image);
     render::MeshInspection mesh =
-        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull);
+        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0,
+                            options.geomorph);
     std::map<int, glm::ivec3> colourOfLevel;
     int mismatched = 0;
     for (const auto& t : mesh.triangleList) {

@@ -107,7 +107,8 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     const DrawStats& last = f.frames.back();
     DebugSection mesh{.title = "Mesh", .column = 1};
     if (f.draw.lod == Lod::Sbt) {
-        MeshInspection m = inspectMesh(gpu, f.camera, f.frameWidth, f.height, f.draw.tau, f.draw.cull, f.draw.threads);
+        MeshInspection m = inspectMesh(gpu, f.camera, f.frameWidth, f.height, f.draw.tau, f.draw.cull, f.draw.threads,
+                                       f.draw.geomorph);
         mesh.rows = {
             {"triangles", msg(m.triangles)},
             {"distinct vertices", msg(m.distinctVertices)},

@@ -26,7 +26,7 @@ int triangleLevel(uint32_t a, uint32_t b, uint32_t c, int side) {
 }
 
 MeshInspection inspectMesh(TerrainGpu& terrain, const Camera& camera, int width, int height, float tau, bool cull,
-                           int threads) {
+                           int threads, bool geomorph) {
     // The same view as SbtStream::prepare builds.
     const LodView lv = camera.lodView(height);
     SbtView view;
@@ -34,6 +34,7 @@ MeshInspection inspectMesh(TerrainGpu& terrain, const Camera& camera, int width,
     view.lambda = lv.lambda;
     view.tau = tau;
     view.cull = cull;
+    view.geomorph = geomorph;
     view.planes = camera.frustumPlanes(float(width) / float(height));
     std::vector<uint32_t> strip;
     SbtBridge& sbt = terrain.sbt();
