@@ -84,6 +84,9 @@ gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& tar
 
 void runFrames(const FramesOptions& o) {
     const scene::Scene& sc = o.scene;
+    // Outputs are checked before the run, so a bad path fails at once.
+    for (const std::string* path : {&o.json, &o.saveFrames})
+        if (!path->empty()) ensureWritableLocation(*path);
     const int width = sc.output.width, height = sc.output.height;
     std::string description;
     terrain::Heightfield field = scene::loadTerrain(sc.terrain, &description);

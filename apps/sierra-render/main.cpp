@@ -50,6 +50,11 @@ int run(const scene::Scene& s) {
     const bool sequence = frameCount > 1;
     auto framePath = [&](const std::string& base, int k) { return sequence ? render::sequencePath(base, k) : base; };
 
+    // Every output location is checked before any work, so a bad path fails
+    // at once rather than after the frames.
+    for (const std::string* path : {&s.output.frame, &s.output.debug, &s.output.depth})
+        if (!path->empty()) ensureWritableLocation(*path);
+
     Stopwatch total;
     std::string description;
     terrain::Heightfield field = scene::loadTerrain(s.terrain, &description);

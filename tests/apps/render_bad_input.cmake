@@ -28,3 +28,8 @@ run_app(bench_runtime EXPECT_FAIL EXIT 1 MESSAGE "sierra-bench: error: corrupt.p
 run_app(version EXPECT_OK MESSAGE "sierra-render 0." COMMAND ${RENDER} --version)
 run_app(bench_version EXPECT_OK MESSAGE "sierra-bench 0." COMMAND ${BENCH} --version)
 expect_no_file(${WORK_DIR}/h.png)
+# An output location that cannot be written fails before any work: no frame is rendered first.
+file(WRITE ${WORK_DIR}/blocker "a file where a directory is needed")
+run_app(bad_out_dir EXPECT_FAIL EXIT 1 MESSAGE "blocker" COMMAND ${RENDER} --generate 65 --out blocker/f.png --no-debug)
+run_app(bad_json_dir EXPECT_FAIL EXIT 1 MESSAGE "blocker"
+        COMMAND ${BENCH} frames --generate 65 --size 64x36 --frames 2 --json blocker/x.json)

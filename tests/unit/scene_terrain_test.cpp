@@ -7,6 +7,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
 
 #include <algorithm>
 
@@ -62,14 +63,20 @@ TEST(SceneTerrain, HurstReachesTheGenerator) {
     EXPECT_THROW(loadTerrain(bad), Error);
 }
 
-TEST(SceneTerrain, RefusesWhatTheTerrainModuleCannotDoYet) {
-    TerrainSource channel{.generateSize = 33, .channel = Channel::Red};
-    try {
-        loadTerrain(channel);
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_THAT(e.what(), HasSubstr("--channel r"));
-    }
+TEST(SceneTerrain, ChannelReachesTheLoader) {
+    // A colour PNG is refused as a heightmap unless a channel is chosen.
+    const std::string path = ::testing::TempDir() + "/scene_colour.png";
+    std::vector<uint8_t> rgb(4 * 4 * 3);
+    for (size_t k = 0; k < rgb.size(); k += 3) rgb[k] = uint8_t(k), rgb[k + 1] = 7, rgb[k + 2] = 200;
+    ASSERT_TRUE(stbi_write_png(path.c_str(), 4, 4, 3, rgb.data(), 12));
+    TerrainSource grey{.heightmap = path};
+    EXPECT_THROW(loadTerrain(grey), Error);
+    TerrainSource green{.heightmap = path, .verticalScale = 1.0f, .channel = Channel::Green};
+    terrain::Heightfield f = loadTerrain(green);
+    EXPECT_EQ(f.range().first, 7.0f);
+    EXPECT_EQ(f.range().second, 7.0f);
+    TerrainSource red{.heightmap = path, .verticalScale = 1.0f, .channel = Channel::Red};
+    EXPECT_GT(loadTerrain(red).range().second, 7.0f);
 }
 
 TEST(SceneTerrain, EnumNamesRoundTrip) {

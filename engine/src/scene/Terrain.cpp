@@ -84,12 +84,6 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
 }
 
 terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description) {
-    // Fields the scene describes before the terrain module can honour them:
-    // refusing is better than rendering something else than asked.
-    if (source.channel != Channel::Grey)
-        throw Error(msg("terrain.channel (--channel ", toString(source.channel),
-                        "): this build's loaders read grey images only; leave it out"));
-
     terrain::Heightfield field;
     std::string what;
     bool metric = false;
@@ -99,9 +93,15 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
         what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ", source.seed,
                    ", roughness ", source.roughness, source.hurst ? msg(", Hurst ", *source.hurst) : std::string());
     } else {
+        // The loaders take the channel's name ("" = grey images only).
         field = terrain::loadHeightfield(source.heightmap,
-                                         {.rawWidth = source.rawWidth, .rawHeight = source.rawHeight});
+                                         {.rawWidth = source.rawWidth,
+                                          .rawHeight = source.rawHeight,
+                                          .channel = source.channel == Channel::Grey ? std::string()
+                                                                                     : toString(source.channel)});
         what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
+        if (std::string warning = terrain::paddingWarning(field.width(), field.height()); !warning.empty())
+            what += msg(" [warning: ", warning, "]");
     }
     metric = metricHeights(source);
     int originalWidth = field.width(), originalHeight = field.height();
