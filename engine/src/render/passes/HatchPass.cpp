@@ -2,6 +2,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
+#include "render/passes/OverlayState.h"
 #include <sierra/render/TerrainGpu.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -73,12 +74,7 @@ void HatchPass::draw(const FrameContext& frame) {
                  "hatch pass: the curvature field is ", curvature_->width(), "x", curvature_->height(),
                  " but the terrain has ", frame.terrain.side(), " samples a side");
     gpu::GlStateScope scope;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    setOverlayState();
     glUseProgram(program_.id());
     glUniform1f(program_.uniform("uLength"), desc_.length);
     glUniform1f(program_.uniform("uWidth"), desc_.width);

@@ -2,6 +2,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
+#include "render/passes/OverlayState.h"
 #include <sierra/render/TerrainGpu.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -36,12 +37,7 @@ std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines, const
 void LinePass::draw(const FrameContext& frame) {
     if (segments_ == 0) return;
     gpu::GlStateScope scope;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    setOverlayState();
     glUseProgram(program_.id());
     glUniform1f(program_.uniform("uWidth"), desc_.width);
     glUniform4fv(program_.uniform("uColour"), 1, glm::value_ptr(desc_.colour));
