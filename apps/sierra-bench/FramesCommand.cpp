@@ -18,6 +18,7 @@
 #include <sierra/render/SceneView.h>
 #include <sierra/scene/Options.h>
 #include <sierra/scene/Terrain.h>
+#include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
 
 #include <nlohmann/json.hpp>
@@ -89,11 +90,13 @@ void runFrames(const FramesOptions& o) {
         if (!path->empty()) ensureWritableLocation(*path);
     const int width = sc.output.width, height = sc.output.height;
     std::string description;
-    terrain::Heightfield field = scene::loadTerrain(sc.terrain, &description);
-    float seaLevel = scene::resolveSeaLevel(sc.terrain, field);
-    std::fprintf(stderr, "terrain: %s\n", description.c_str());
+    // The context comes first: its texture limit bounds the grid the loader takes.
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(), context.platform().c_str());
+    terrain::Heightfield field =
+        scene::loadTerrain(sc.terrain, &description, render::TerrainGpu::maxGridSide());
+    float seaLevel = scene::resolveSeaLevel(sc.terrain, field);
+    std::fprintf(stderr, "terrain: %s\n", description.c_str());
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())

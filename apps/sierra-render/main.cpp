@@ -16,6 +16,7 @@
 #include <sierra/render/DebugSnapshot.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/SceneView.h>
+#include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Options.h>
 #include <sierra/scene/Terrain.h>
@@ -57,12 +58,13 @@ int run(const scene::Scene& s) {
 
     Stopwatch total;
     std::string description;
-    terrain::Heightfield field = scene::loadTerrain(s.terrain, &description);
-    float seaLevel = scene::resolveSeaLevel(s.terrain, field);
-    log::info("terrain: ", description);
-
+    // The context comes first: its texture limit bounds the grid the loader takes.
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(), ")");
+    terrain::Heightfield field =
+        scene::loadTerrain(s.terrain, &description, render::TerrainGpu::maxGridSide());
+    float seaLevel = scene::resolveSeaLevel(s.terrain, field);
+    log::info("terrain: ", description);
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())

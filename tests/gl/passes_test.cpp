@@ -7,7 +7,9 @@
 #include <sierra/render/Camera.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
+#include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
+#include <sierra/terrain/HeightfieldIO.h>
 #include <sierra/terrain/DiamondSquare.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -223,3 +225,15 @@ TEST_F(Views, OrthographicTauStillMeansPixels) {
 }
 
 }  // namespace
+
+// The largest grid is a 2^n+1 side whose textures this GL takes, and the next
+// one (2 side - 1) it does not, unless the loaders' own budget stops first.
+TEST_F(Passes, MaxGridSideFollowsTheTextureLimit) {
+    GLint maxTexture = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    const int side = render::TerrainGpu::maxGridSide();
+    EXPECT_EQ((side - 1) & (side - 2), 0) << side;
+    EXPECT_LE(side, maxTexture);
+    EXPECT_LE(side, terrain::kDefaultMaxPaddedSide);
+    EXPECT_TRUE(2 * side - 1 > maxTexture || side == terrain::kDefaultMaxPaddedSide) << side;
+}

@@ -4,6 +4,8 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/scene/Scene.h>
+#include <sierra/scene/Terrain.h>
+#include <sierra/terrain/DiamondSquare.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,6 +14,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <cstdio>
 
 namespace sierra::scene {
 namespace {
@@ -90,6 +93,49 @@ TEST(SceneTerrain, EnumNamesRoundTrip) {
     for (Projection p : {Projection::Perspective, Projection::Orthographic})
         EXPECT_EQ(parseProjection(toString(p), "x"), p);
     EXPECT_EQ(parseHeightUnits("metres", "x"), HeightUnits::Metres);
+}
+
+// A grid that pads past the caller's limit (a renderer's texture size) is
+// refused before its samples exist, for files and for the generator.
+TEST(SceneTerrain, MaxPaddedSideBoundsFilesAndTheGenerator) {
+    const std::string path = ::testing::TempDir() + "/scene_wide.pgm";
+    {
+        std::FILE* f = std::fopen(path.c_str(), "wb");
+        ASSERT_NE(f, nullptr);
+        std::fputs("P5 40 2 255\n", f);
+        for (int k = 0; k < 80; ++k) std::fputc(k, f);
+        std::fclose(f);
+    }
+    TerrainSource file{.heightmap = path};
+    EXPECT_EQ(loadTerrain(file, nullptr, 65).width(), 65);
+    try {
+        loadTerrain(file, nullptr, 33);
+        ADD_FAILURE() << "a 40x2 file was loaded under a 33x33 limit";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("pads to a 65x65 grid (4225 samples), over the limit of 33x33"),
+                  std::string::npos)
+            << e.what();
+    }
+    TerrainSource generated{.generateSize = 65};
+    EXPECT_EQ(loadTerrain(generated, nullptr, 65).width(), 65);
+    EXPECT_THROW(loadTerrain(generated, nullptr, 33), Error);
+}
+
+// Roughness only sets the generated heights' units; beyond kMaxRoughness the
+// scene is refused by name, not by a vertical scale overflowing later.
+TEST(SceneTerrain, RoughnessIsBounded) {
+    Scene scene;
+    scene.terrain.roughness = 1e38f;
+    try {
+        validateScene(scene);
+        ADD_FAILURE() << "roughness 1e38 was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("--roughness"), std::string::npos) << e.what();
+    }
+    scene.terrain.roughness = terrain::kMaxRoughness;
+    EXPECT_NO_THROW(validateScene(scene));
+    TerrainSource rough{.generateSize = 33, .roughness = terrain::kMaxRoughness};
+    for (float h : loadTerrain(rough).samples()) ASSERT_TRUE(std::isfinite(h));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <sierra/core/Log.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/FrameUniforms.h>
+#include <sierra/terrain/HeightfieldIO.h>
 #include "render/SbtBridge.h"
 
 #include <algorithm>
@@ -79,6 +80,14 @@ struct TerrainGpu::State {
     gpu::Buffer fullIndices;
     uint64_t fullIndexCount = 0;
 };
+
+int TerrainGpu::maxGridSide() {
+    GLint maxTexture = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    int side = 3;
+    while (side <= terrain::kDefaultMaxPaddedSide && 2 * side - 1 <= maxTexture) side = 2 * side - 1;
+    return std::min(side, terrain::kDefaultMaxPaddedSide);
+}
 
 TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
     SIERRA_CHECK(desc.field && !desc.field->empty(), "a terrain needs a heightfield");

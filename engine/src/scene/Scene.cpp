@@ -3,6 +3,7 @@
 #include <sierra/scene/Assets.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/terrain/DiamondSquare.h>
 
 #include "scene/Names.h"
 
@@ -27,8 +28,11 @@ std::string show(const Vec3& v) { return msg(v.x, " ", v.y, " ", v.z); }
 void validateTerrain(const TerrainSource& t) {
     if (t.heightmap.empty() && t.generateSize < 3)
         fail("terrain.generate", "--generate", msg("must be 2^n + 1 samples, at least 3, got ", t.generateSize));
-    if (!(t.roughness > 0.0f) || !std::isfinite(t.roughness))
-        fail("terrain.roughness", "--roughness", msg("must be a finite number > 0, got ", t.roughness));
+    if (!(t.roughness > 0.0f) || !(t.roughness <= terrain::kMaxRoughness))
+        fail("terrain.roughness", "--roughness",
+             msg("must be a number in (0, ", terrain::kMaxRoughness,
+                 "] (it sets the generated heights' units; the relief comes from the vertical scale), got ",
+                 t.roughness));
     if (t.hurst && !std::isfinite(*t.hurst))
         fail("terrain.hurst", "--hurst", msg("must be a finite number, got ", *t.hurst));
     if ((t.rawWidth == 0) != (t.rawHeight == 0) || t.rawWidth < 0 || t.rawHeight < 0 || t.rawWidth > 65537 ||

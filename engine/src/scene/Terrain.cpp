@@ -83,11 +83,14 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
     return parseSize(text, option, 65537, "4097x4097");
 }
 
-terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description) {
+terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description, int maxPaddedSide) {
     terrain::Heightfield field;
     std::string what;
     bool metric = false;
     if (source.heightmap.empty()) {
+        SIERRA_CHECK(source.generateSize <= maxPaddedSide, "--generate ", source.generateSize,
+                     " is larger than the largest grid this renderer takes, ", maxPaddedSide, "x", maxPaddedSide,
+                     " (its texture size limit)");
         field = terrain::generateDiamondSquare(
             {.size = source.generateSize, .seed = source.seed, .roughness = source.roughness, .hurst = source.hurst});
         what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ", source.seed,
@@ -98,7 +101,8 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
                                          {.rawWidth = source.rawWidth,
                                           .rawHeight = source.rawHeight,
                                           .channel = source.channel == Channel::Grey ? std::string()
-                                                                                     : toString(source.channel)});
+                                                                                     : toString(source.channel),
+                                          .maxPaddedSide = maxPaddedSide});
         what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
         if (std::string warning = terrain::paddingWarning(field.width(), field.height()); !warning.empty())
             what += msg(" [warning: ", warning, "]");

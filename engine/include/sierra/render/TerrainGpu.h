@@ -34,6 +34,11 @@ struct TerrainGpuDesc {
 class TerrainGpu {
 public:
     static TerrainGpu create(const TerrainGpuDesc& desc);
+    // The largest (2^n+1) grid side the current GL context's textures take
+    // (GL_MAX_TEXTURE_SIZE 16384 gives 8193), at most the loaders' default
+    // budget terrain::kDefaultMaxPaddedSide: pass it to scene::loadTerrain so a
+    // grid too large for this GL is refused before it is loaded.
+    static int maxGridSide();
     TerrainGpu(TerrainGpu&&) noexcept;
     TerrainGpu& operator=(TerrainGpu&&) noexcept;
     ~TerrainGpu();

@@ -4,6 +4,7 @@
 // every app so each program reads terrain the same way. No GL.
 
 #include <sierra/terrain/Heightfield.h>
+#include <sierra/terrain/HeightfieldIO.h>
 
 #include <cstdint>
 #include <optional>
@@ -80,8 +81,12 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
 // the relief 20% of the horizontal extent. `description`, when given, receives
 // one line saying what was loaded and the choices made. Throws sierra::Error
 // for bad input, and for a `hurst` or `channel` that this build's terrain
-// module cannot honour yet.
-terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description = nullptr);
+// module cannot honour yet. `maxPaddedSide` is the largest (2^n+1) grid side
+// the caller can take (a renderer: its GL's texture limit, see
+// render::TerrainGpu::maxGridSide); a file or a generator size that pads past it
+// is refused before its samples are allocated.
+terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description = nullptr,
+                                 int maxPaddedSide = terrain::kDefaultMaxPaddedSide);
 
 // True when the source's heights are metres: height units `m`, or automatic
 // with an SRTM (.hgt) or GeoTIFF file.

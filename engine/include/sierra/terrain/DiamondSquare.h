@@ -8,10 +8,16 @@
 
 namespace sierra::terrain {
 
+// The largest roughness: heights stay far inside float range at any size and
+// Hurst exponent (each of at most 16 levels adds at most twice roughness). Larger
+// values change nothing but the units: the picture's relief comes from the
+// vertical scale.
+constexpr float kMaxRoughness = 1e6f;
+
 struct DiamondSquareDesc {
     int size = 513;          // samples per side, must be 2^n + 1 (3..16385)
     uint64_t seed = 1;       // same seed, same grid (on every platform and thread count)
-    float roughness = 1.0f;  // amplitude factor of every random offset, > 0
+    float roughness = 1.0f;  // amplitude factor of every random offset, in (0, kMaxRoughness]
     int threads = 0;         // worker threads, 0 = sierra::defaultThreadCount()
     // Hurst exponent H in (0, 2]: the offset range of a node is
     // roughness * dist^H, dist its distance to its parents in the unit domain, so
