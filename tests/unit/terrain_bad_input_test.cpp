@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <chrono>
@@ -19,6 +20,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <thread>
@@ -385,6 +387,51 @@ TEST_F(TerrainBadInput, PaddedSideLimitIsAnOption) {
     const Outcome o = loadInChild(file, {.maxPaddedSide = 17});
     EXPECT_THAT(o.message, ::testing::HasSubstr("PGM size 30x2 pads to a 33x33 grid (1089 "
                                                 "samples), over the limit of 17x17 samples"));
+}
+
+// Bytes in memory go through the same decoders and limits as files.
+TEST_F(TerrainBadInput, DecodeFromMemoryMatchesTheFileLoader) {
+    const Bytes png = goodPng();
+    const Heightfield fromFile = loadHeightfield(write("g.png", png));
+    const Heightfield fromBytes = decodeHeightfield("g.png", png);
+    ASSERT_EQ(fromBytes.width(), fromFile.width());
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) EXPECT_EQ(fromBytes.at(i, j), fromFile.at(i, j));
+    const Bytes npy = npyOf("(2, 3)", {1, 2, 3, 4, 5, 6});
+    EXPECT_EQ(decodeHeightfield("h.npy", npy).at(2, 1), 6.0f);
+    const std::string pgm = "P5 30 2 255\n" + std::string(60, '\x09');
+    try {
+        decodeHeightfield("small.pgm", Bytes(pgm.begin(), pgm.end()), {.maxPaddedSide = 17});
+        ADD_FAILURE() << "a PGM over the padded-side limit was decoded";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), ::testing::HasSubstr("small.pgm: PGM size 30x2 pads to a 33x33 grid"));
+    }
+    EXPECT_THROW(decodeHeightfield("x.tif", png), Error);
+    EXPECT_THROW(decodeHeightfield("x.bmp", png), Error);
+}
+
+// Colour PNGs (zone maps) get the same CRC and size checks as heightmaps.
+TEST_F(TerrainBadInput, RgbPngDecodeChecksCrcAndSize) {
+    const uint8_t rgb[2 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 9, 9, 9};
+    ASSERT_TRUE(stbi_write_png(path("rgb.png").c_str(), 2, 2, 3, rgb, 2 * 3));
+    std::ifstream in(path("rgb.png"), std::ios::binary);
+    Bytes png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const RgbImage image = decodePngRgb8("map", png);
+    ASSERT_EQ(image.width, 2);
+    ASSERT_EQ(image.height, 2);
+    EXPECT_TRUE(std::equal(image.rgb.begin(), image.rgb.end(), std::begin(rgb)));
+    Bytes badCrc = png;
+    badCrc[8 + 8 + 13] ^= 0x01;  // the IHDR CRC
+    EXPECT_THROW(decodePngRgb8("map", badCrc), Error);
+    std::vector<Chunk> chunks = chunksOf(png);
+    chunks[0].data = {0, 1, 0, 1, 0, 1, 0, 1, 8, 2, 0, 0, 0};  // 65537x65537 RGB
+    try {
+        decodePngRgb8("map", pngOf(chunks));
+        ADD_FAILURE() << "a 65537x65537 header was decoded";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), ::testing::HasSubstr("over the limit of 16385x16385 samples"));
+    }
+    EXPECT_THROW(decodePngRgb8("map", Bytes{1, 2, 3}), Error);
 }
 
 }  // namespace

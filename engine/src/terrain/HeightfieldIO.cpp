@@ -113,31 +113,45 @@ Channel parseChannel(const std::string& path, const std::string& name) {
                     "'; expected luminance, r, g or b (or none for a grey heightmap)"));
 }
 
-Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes,
-                    const LoadOptions& options) {
+using SpngContext = std::unique_ptr<spng_ctx, SpngFree>;
+
+// A libspng decoder over `bytes` with every CRC checked (ancillary chunks
+// included: a damaged file is refused instead of drawn) and the image and chunk
+// limits set before anything is read; `ihdr` receives the header, whose size
+// is checked against the field limits. `expected` ends the message for a file
+// that is not a PNG at all.
+SpngContext openPng(const std::string& what, std::span<const uint8_t> bytes, int maxPaddedSide,
+                    const char* expected, spng_ihdr& ihdr) {
     static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature, 8) != 0)
-        throw Error(msg(path,
-                        ": not a PNG file (no PNG signature); expected an 8- or 16-bit "
-                        "greyscale PNG"));
-    const Channel channel = parseChannel(path, options.channel);
-    std::unique_ptr<spng_ctx, SpngFree> ctx(spng_ctx_new(0));
-    if (!ctx) throw Error(msg(path, ": cannot decode PNG: out of memory for the decoder"));
-    auto check = [&](int err, const char* what) {
+        throw Error(msg(what, ": not a PNG file (no PNG signature); expected ", expected));
+    SpngContext ctx(spng_ctx_new(0));
+    if (!ctx) throw Error(msg(what, ": cannot decode PNG: out of memory for the decoder"));
+    const auto check = [&](int err, const char* step) {
         if (err != 0)
-            throw Error(msg(path, ": ", what, " (libspng: ", spng_strerror(err),
+            throw Error(msg(what, ": ", step, " (libspng: ", spng_strerror(err),
                             "); the file is truncated or corrupt"));
     };
-    // Every CRC is checked, ancillary chunks included: a damaged file is
-    // refused instead of drawn. Limits are set before anything is read.
     check(spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR), "cannot set up PNG decoding");
     check(spng_set_image_limits(ctx.get(), kMaxSide, kMaxSide), "cannot set up PNG decoding");
     check(spng_set_chunk_limits(ctx.get(), std::min<size_t>(bytes.size(), INT32_MAX), kPngChunkCache),
           "cannot set up PNG decoding");
     check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()), "cannot set up PNG decoding");
-    spng_ihdr ihdr{};
     check(spng_get_ihdr(ctx.get(), &ihdr), "unreadable PNG header");
-    checkFieldSize(msg(path, ": PNG"), ihdr.width, ihdr.height, options.maxPaddedSide);
+    checkFieldSize(msg(what, ": PNG"), ihdr.width, ihdr.height, maxPaddedSide);
+    return ctx;
+}
+
+Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes,
+                    const LoadOptions& options) {
+    const Channel channel = parseChannel(path, options.channel);
+    spng_ihdr ihdr{};
+    SpngContext ctx = openPng(path, bytes, options.maxPaddedSide, "an 8- or 16-bit greyscale PNG", ihdr);
+    auto check = [&](int err, const char* what) {
+        if (err != 0)
+            throw Error(msg(path, ": ", what, " (libspng: ", spng_strerror(err),
+                            "); the file is truncated or corrupt"));
+    };
     const int width = int(ihdr.width), height = int(ihdr.height);
     const bool grey = ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE ||
                       ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA;
@@ -211,6 +225,30 @@ Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes,
         for (int j = 0; j < height; ++j) convertRow(pixels.data() + rowBytes * j, j);
     return field;
 }
+
+}  // namespace
+
+RgbImage decodePngRgb8(const std::string& what, std::span<const uint8_t> bytes, int maxPaddedSide) {
+    spng_ihdr ihdr{};
+    SpngContext ctx = openPng(what, bytes, maxPaddedSide, "a colour PNG", ihdr);
+    RgbImage image;
+    image.width = int(ihdr.width);
+    image.height = int(ihdr.height);
+    size_t size = 0;
+    int err = spng_decoded_image_size(ctx.get(), SPNG_FMT_RGB8, &size);
+    if (err == 0) {
+        image.rgb.resize(size);
+        err = spng_decode_image(ctx.get(), image.rgb.data(), size, SPNG_FMT_RGB8, 0);
+    }
+    // Read on to IEND so the CRCs of the chunks after the image are checked too.
+    if (err == 0) err = spng_decode_chunks(ctx.get());
+    if (err != 0)
+        throw Error(msg(what, ": cannot decode PNG (libspng: ", spng_strerror(err),
+                        "); the file is truncated or corrupt"));
+    return image;
+}
+
+namespace {
 
 // ---------------------------------------------------------------------------- PGM
 
@@ -684,9 +722,12 @@ void checkFieldSize(const std::string& what, int64_t width, int64_t height, int 
                         "usually allow)"));
 }
 
-Heightfield loadHeightfield(const std::string& path, const LoadOptions& options) {
+namespace {
+
+enum class Format { Png, Pgm, R16, R32, Hgt, Npy, Npz, Tiff };
+
+Format formatOf(const std::string& path) {
     const std::string ext = lowerExtension(path);
-    enum class Format { Png, Pgm, R16, R32, Hgt, Npy, Npz, Tiff };
     static const std::pair<const char*, Format> kFormats[] = {
         {".png", Format::Png},  {".pgm", Format::Pgm},  {".r16", Format::R16},
         {".r32", Format::R32},  {".hgt", Format::Hgt},  {".npy", Format::Npy},  {".npz", Format::Npz},
@@ -696,46 +737,40 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
     if (known == std::end(kFormats))
         throw Error(
             msg(path, ": unknown heightfield extension '", ext, "'; supported: ", kSupported));
-    const Format format = known->second;
-    if (format == Format::Tiff) {
-#ifdef SIERRA_WITH_GDAL
-        return loadGdal(path, options);
-#else
-        throw Error(msg(path,
-                        ": GeoTIFF needs a build with SIERRA_WITH_GDAL=ON "
-                        "(apt-get install libgdal-dev); supported here: ",
-                        kSupported));
-#endif
-    }
-    // No format holds more than its largest allowed grid plus some header: a
-    // larger file is refused before it is read.
+    return known->second;
+}
+
+// The most bytes a file of `format` can hold for the largest allowed grid,
+// plus some header: a larger file is refused before it is read. Sets `reason`
+// to the sentence that says so.
+uint64_t maxFileBytes(Format format, const std::string& path, const LoadOptions& options,
+                      std::string& reason) {
     const uint64_t samples = maxSamples(options);
-    uint64_t maxBytes = 0;
-    std::string reason = msg("a ", ext, " heightmap within the limit of ", options.maxPaddedSide, "x",
-                             options.maxPaddedSide, " samples (maxPaddedSide) is smaller");
+    reason = msg("a ", lowerExtension(path), " heightmap within the limit of ", options.maxPaddedSide, "x", options.maxPaddedSide,
+                 " samples (maxPaddedSide) is smaller");
     switch (format) {
         case Format::Png:  // RGBA16 stored uncompressed: 8 bytes a sample, plus framing
-            maxBytes = samples * 8 + samples / 8 + kHeaderSlack;
-            break;
+            return samples * 8 + samples / 8 + kHeaderSlack;
         case Format::Pgm:  // P5 16-bit: 2 bytes a sample; P2: "65535 " is 6
-            maxBytes = samples * 6 + kHeaderSlack;
-            break;
+            return samples * 6 + kHeaderSlack;
         case Format::R16:
+            return samples * 2;
         case Format::R32:
-            maxBytes = rawFileBytes(path, format == Format::R32, options);
-            break;
+            return samples * 4;
         case Format::Hgt:
-            maxBytes = uint64_t(kSrtm1Side) * kSrtm1Side * 2;
             reason = "the largest SRTM tile (3601x3601, SRTM1) is 25934402 bytes";
-            break;
+            return uint64_t(kSrtm1Side) * kSrtm1Side * 2;
         case Format::Npy:  // float64: 8 bytes a sample
         case Format::Npz:  // the same array, stored or deflated
-            maxBytes = samples * 8 + kHeaderSlack;
-            break;
+            return samples * 8 + kHeaderSlack;
         case Format::Tiff:
             break;
     }
-    const std::vector<uint8_t> bytes = readFileBytes(path, maxBytes, reason);
+    return 0;
+}
+
+Heightfield decode(Format format, const std::string& path, const std::vector<uint8_t>& bytes,
+                   const LoadOptions& options) {
     switch (format) {
         case Format::Png:
             return loadPng(path, bytes, options);
@@ -749,12 +784,47 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
             return loadHgt(path, bytes);
         case Format::Npy:
             return loadNpy(path, bytes, options);
-        case Format::Npz:
-            return loadNpy(path, npzMember(path, bytes, {}, maxBytes), options);
+        case Format::Npz: {
+            std::string reason;
+            return loadNpy(path, npzMember(path, bytes, {}, maxFileBytes(format, path, options, reason)), options);
+        }
         case Format::Tiff:
             break;
     }
     throw Error(msg(path, ": internal error: unhandled format"));
+}
+
+}  // namespace
+
+Heightfield loadHeightfield(const std::string& path, const LoadOptions& options) {
+    const Format format = formatOf(path);
+    if (format == Format::Tiff) {
+#ifdef SIERRA_WITH_GDAL
+        return loadGdal(path, options);
+#else
+        throw Error(msg(path,
+                        ": GeoTIFF needs a build with SIERRA_WITH_GDAL=ON "
+                        "(apt-get install libgdal-dev); supported here: ",
+                        kSupported));
+#endif
+    }
+    std::string reason;
+    uint64_t maxBytes = maxFileBytes(format, path, options, reason);
+    // A raw file whose size is given must be exactly that size: checked
+    // against the file system before reading.
+    if (format == Format::R16 || format == Format::R32)
+        maxBytes = rawFileBytes(path, format == Format::R32, options);
+    return decode(format, path, readFileBytes(path, maxBytes, reason), options);
+}
+
+Heightfield decodeHeightfield(const std::string& name, const std::vector<uint8_t>& bytes,
+                              const LoadOptions& options) {
+    const Format format = formatOf(name);
+    SIERRA_CHECK(format != Format::Tiff, name, ": GeoTIFF is read from files only (loadHeightfield)");
+    std::string reason;
+    const uint64_t maxBytes = maxFileBytes(format, name, options, reason);
+    SIERRA_CHECK(bytes.size() <= maxBytes, name, ": ", bytes.size(), " bytes is too large: ", reason);
+    return decode(format, name, bytes, options);
 }
 
 void saveHeightfield(const std::string& path, const Heightfield& field) {

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Fuzzes every Sierra loader with libFuzzer under ASan + UBSan and prints, per
+# target, the executions, the time and the findings (crash-*, leak-*, oom-*,
+# timeout-* files libFuzzer leaves in fuzz/findings/TARGET).
+#
+#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default 120 s, every target)
+#
+# Needs clang and libclang-rt-dev (apt-get install clang libclang-rt-14-dev on
+# Debian 12). Builds into build-fuzz/; seeds come from small valid files made
+# here, the corpus grows in build-fuzz/corpus/TARGET.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-120}
+shift || true
+targets=("$@")
+[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap)
+
+if ! command -v clang++ >/dev/null; then
+  echo "fuzz.sh: clang++ not found; install it with: apt-get install clang libclang-rt-14-dev" >&2
+  exit 1
+fi
+cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+      -DSIERRA_FUZZ=ON -DSIERRA_BUILD_TESTS=OFF -DSIERRA_WITH_GDAL=OFF >/dev/null
+cmake --build build-fuzz -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}") >/dev/null
+
+# Seeds: one or two small valid inputs per target.
+seeds=build-fuzz/seeds
+rm -rf "$seeds"
+python3 - "$seeds" <<'PY'
+import json, os, struct, sys, zlib, io, zipfile
+root = sys.argv[1]
+def put(target, name, data):
+    os.makedirs(os.path.join(root, target), exist_ok=True)
+    with open(os.path.join(root, target, name), "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+def chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+def png(w, h, depth, colour, rows, interlace=0):
+    ihdr = struct.pack(">IIBBBBB", w, h, depth, colour, 0, 0, interlace)
+    raw = b"".join(b"\0" + r for r in rows)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
+put("png", "grey8.png", png(4, 3, 8, 0, [bytes([10 * i + j for i in range(4)]) for j in range(3)]))
+put("png", "grey16.png", png(3, 3, 16, 0, [struct.pack(">3H", 1, 300, 65535)] * 3))
+put("png", "rgb8.png", png(2, 2, 8, 2, [bytes([1, 2, 3, 4, 5, 6])] * 2))
+put("zonemap", "rgb8.png", png(3, 2, 8, 2, [bytes([255, 0, 0, 0, 0, 0, 0, 255, 0])] * 2))
+put("zonemap", "palette.png", png(2, 2, 8, 2, [bytes([0, 0, 255, 9, 9, 9])] * 2))
+put("pgm", "p2.pgm", "P2\n# comment\n3 2\n255\n0 1 2\n3 4 255\n")
+put("pgm", "p5.pgm", b"P5 2 2 65535\n" + struct.pack(">4H", 0, 1, 2, 65535))
+def npy(descr, shape, payload):
+    header = "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d), }" % (descr, *shape)
+    header += " " * ((64 - (10 + len(header) + 1) % 64) % 64) + "\n"
+    return b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode() + payload
+f4 = npy("<f4", (2, 3), struct.pack("<6f", 0, 1, 2, 3, 4, 5))
+put("npy", "f4.npy", f4)
+put("npy", "u2.npy", npy("<u2", (2, 2), struct.pack("<4H", 0, 1, 2, 3)))
+for method, name in ((zipfile.ZIP_STORED, "stored.npz"), (zipfile.ZIP_DEFLATED, "deflated.npz")):
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", method) as z:
+        z.writestr("elevation.npy", f4)
+    put("npz", name, buf.getvalue())
+put("r16", "4x4.r16", struct.pack("<16H", *range(16)))
+put("r32", "3x3.r32", struct.pack("<9f", *range(9)))
+put("hgt", "srtm3.hgt", struct.pack(">h", -32768) + b"\0\x10" * (1201 * 1201 - 1))
+put("cpt", "ramp.cpt", "# elevation\n0 0/0/255 100 0/255/0\n100 0/255/0 1000 255 255 255\nB 0/0/0\nF 255/255/255\nN 128/128/128\n")
+put("palette", "palette.json", json.dumps({"borderline": "#000000", "surfaces": [
+    {"name": "water", "colour": "#0000ff", "tile": "water.png"},
+    {"name": "grass", "colour": "#00ff00", "tile": "grass.png", "band": 8}]}))
+put("scene", "scene.json", json.dumps({"terrain": {"generate": 257, "seed": 3, "sea_level": "auto"},
+    "camera": {"azimuth": 30.0, "elevation": 40.0, "fov": 45.0, "projection": "perspective"},
+    "path": {"type": "orbit", "frames": 3, "keyframes": []},
+    "lighting": {"sun_azimuth": 232.0, "fog": None, "sky": [0.6, 0.7, 0.8]},
+    "lod": {"mode": "sbt", "tau": 2.0, "geomorph": True}, "output": {"width": 64, "height": 48, "msaa": 4}}))
+PY
+
+printf '%-9s %14s %8s %9s  %s\n' target executions seconds exec/s findings
+for t in "${targets[@]}"; do
+  corpus=build-fuzz/corpus/$t findings=build-fuzz/findings/$t
+  mkdir -p "$corpus" "$findings"
+  log=build-fuzz/fuzz_$t.log
+  # -rss_limit_mb: the 2049^2 budget at 8 bytes a sample is 32 MiB; 2 GiB flags
+  # any input that costs far more memory than its grid.
+  build-fuzz/fuzz/fuzz_$t "$corpus" "$seeds/$t" -max_total_time="$seconds" -rss_limit_mb=2048 \
+      -max_len=65536 -timeout=10 -artifact_prefix="$findings/" -print_final_stats=1 >"$log" 2>&1 || true
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
+  took=$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | grep -o 'in [0-9]*' | grep -o '[0-9]*' || echo "$seconds")
+  found=$(find "$findings" -type f | wc -l)
+  printf '%-9s %14s %8s %9s  %s\n' "$t" "$runs" "$took" "$(( runs / (took > 0 ? took : 1) ))" "$found"
+done
+echo "logs: build-fuzz/fuzz_TARGET.log; findings: build-fuzz/findings/TARGET"
