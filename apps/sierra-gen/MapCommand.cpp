@@ -11,8 +11,10 @@
 #include "Commands.h"
 
 #include "AppMain.h"
+#include "GenTerrain.h"
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
 #include <sierra/core/Log.h>
 #include <sierra/scene/Options.h>
 #include <sierra/scene/Terrain.h>
@@ -21,6 +23,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace sierra::apps {
@@ -34,28 +37,6 @@ struct MapOptions {
     terrain::Sun sun;
     std::string out;
 };
-
-// The loaded field without the padding the scene loader adds on the right and
-// at the bottom: the bounding box of the valid samples from (0, 0).
-terrain::Heightfield unpadded(const terrain::Heightfield& padded) {
-    if (!padded.hasMask()) return padded;
-    int w = 0, h = 0;
-    for (int j = 0; j < padded.height(); ++j)
-        for (int i = 0; i < padded.width(); ++i)
-            if (padded.valid(i, j)) w = std::max(w, i + 1), h = std::max(h, j + 1);
-    if (w == 0) return padded;
-    terrain::Heightfield field(w, h);
-    std::vector<uint8_t> mask(size_t(w) * h);
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) {
-            field.at(i, j) = padded.at(i, j);
-            mask[size_t(j) * w + i] = padded.valid(i, j) ? 1 : 0;
-        }
-    field.setMask(std::move(mask));
-    field.setSpacing(padded.spacingX(), padded.spacingZ());
-    field.setVerticalScale(padded.verticalScale());
-    return field;
-}
 
 void runMap(const MapOptions& o) {
     const terrain::MapScheme scheme = [&] {
@@ -71,8 +52,12 @@ void runMap(const MapOptions& o) {
     if (o.colourBar && scheme == terrain::MapScheme::Hillshade)
         throw UsageError("map: --colour-bar has nothing to label on a hillshade (use it with a height scheme or slope)");
 
+    // The output location and the table are checked before the work.
+    ensureWritableLocation(o.out);
+    std::optional<terrain::CptTable> cpt;
+    if (!o.cpt.empty()) cpt = terrain::readCpt(o.cpt);
     std::string source;
-    terrain::Heightfield field = unpadded(scene::loadTerrain(o.scene.terrain, &source));
+    terrain::Heightfield field = loadRealTerrain(o.scene.terrain, &source);
     log::info("terrain: ", source, "; map ", field.width(), "x", field.height());
     auto [lo, hi] = field.range();
     if (!(hi > lo)) hi = lo + 1.0f;
@@ -80,7 +65,7 @@ void runMap(const MapOptions& o) {
     if (!std::isfinite(sea)) sea = lo - (hi - lo);  // no water: below every sample
 
     terrain::ColourRamp ramp = [&] {
-        if (!o.cpt.empty()) return terrain::readCpt(o.cpt).ramp(lo, hi);
+        if (cpt) return cpt->ramp(lo, hi);
         if (scheme == terrain::MapScheme::Slope)  // the bar of slope: white flat to black vertical
             return terrain::ColourRamp({{0.0f, {255, 255, 255}}, {90.0f, {0, 0, 0}}}, 0.0f, 90.0f);
         const terrain::RampScheme rs = scheme == terrain::MapScheme::Plasma ? terrain::RampScheme::Plasma

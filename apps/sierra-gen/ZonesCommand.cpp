@@ -1,6 +1,6 @@
-// sierra-gen zones --zones MAP.png|auto --palette P.json [--epsilon E] [--band W]
-//                  --json OUT.json [--svg OUT.svg] [--svg-href REF]
-//                  [--heightmap FILE | --generate N [--seed S]] [--borderlines] [--write-map OUT.png]
+// sierra-gen zones --zones MAP.png|auto [--palette P.json] [--zone-epsilon E] [--band W]
+//                  --json OUT.json [--svg OUT.svg] [--svg-href REF] [--borderlines] [--write-map OUT.png]
+//                  [terrain options] [--deep-water F --sand-top F --zone-snow-line F --rock-slope DEG]
 //
 // Reads a zone map through a palette (or derives one from a heightfield by
 // height and slope bands with --zones auto), vectorises its borderlines
@@ -8,16 +8,25 @@
 // optionally doubles them into transition bands of width W pixels, and writes
 // the result as JSON (vertices, edges with left/right zones, zones) and as an
 // SVG of the arcs over the map. Prints counts and timings.
+//
+// The zone and terrain options (and --config, --print-config) come from the
+// scene registrar, with sierra-render's names and defaults, and --zones auto
+// zones the terrain as sierra-render does: its real samples, with the loader's
+// vertical scale and the scene's sea level.
 #include "Commands.h"
+
+#include "AppMain.h"
+#include "GenTerrain.h"
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
-#include <sierra/terrain/DiamondSquare.h>
-#include <sierra/terrain/HeightfieldIO.h>
+#include <sierra/scene/Assets.h>
+#include <sierra/scene/Options.h>
 #include <sierra/zones/BorderField.h>
 #include <sierra/zones/Borderlines.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -25,17 +34,10 @@ namespace sierra::apps {
 namespace {
 
 struct ZonesOptions {
-    std::string zones;
-    std::string palette;
-    double epsilon = 0.0;
-    double band = -1.0;  // < 0: the palette's bandWidth
+    scene::Scene scene;  // its terrain and zones are used
     std::string json;
     std::string svg;
     std::string svgHref;
-    std::string heightmap;
-    int generate = 0;
-    uint64_t seed = 1;
-    zones::AutoZoneDesc autoDesc;
     bool borderlines = false;
     std::string writeMap;
 };
@@ -45,26 +47,31 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 }
 
 void runZones(const ZonesOptions& o) {
-    zones::Palette palette = zones::loadPalette(o.palette);
+    // Every output location is checked before the work, as every app does.
+    for (const std::string* path : {&o.json, &o.svg, &o.writeMap})
+        if (!path->empty()) ensureWritableLocation(*path);
+    const scene::ZonesDesc& z = o.scene.zones;
+    const std::string paletteFile = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+    zones::Palette palette = zones::loadPalette(paletteFile);
     zones::ZoneMap map;
     std::string source;
-    if (o.zones == "auto") {
-        if (o.heightmap.empty() == (o.generate == 0))
-            throw Error("zones: --zones auto needs exactly one of --heightmap FILE or --generate N");
-        terrain::Heightfield field = o.heightmap.empty()
-                                         ? terrain::generateDiamondSquare({.size = o.generate, .seed = o.seed})
-                                         : terrain::loadHeightfield(o.heightmap);
-        // Slopes as the renderer shows them: its automatic vertical scale makes
-        // the relief 20% of the horizontal extent.
-        auto [lo, hi] = field.range();
-        if (hi > lo) field.setVerticalScale(0.2f * float(field.width() - 1) * field.spacingX() / (hi - lo));
-        map = zones::autoZones(field, palette, o.autoDesc);
-        source = o.heightmap.empty() ? msg("auto-zoning of a ", o.generate, "^2 diamond-square terrain, seed ", o.seed)
-                                     : msg("auto-zoning of ", o.heightmap);
+    if (z.map == "auto") {
+        std::string description;
+        terrain::Heightfield field = loadRealTerrain(o.scene.terrain, &description);
+        // The thresholds as sierra-render applies them (render::applySceneSurface):
+        // without water every sample is land, the sea below the lowest height.
+        const float sea = scene::resolveSeaLevel(o.scene.terrain, field);
+        zones::AutoZoneDesc desc;
+        desc.seaLevel = std::isnan(sea) ? field.range().first - 1.0f : sea;
+        desc.deepWater = z.deepWater;
+        desc.sandTop = z.sandTop;
+        desc.snowLine = z.snowLine;
+        desc.rockSlope = z.rockSlope;
+        map = zones::autoZones(field, palette, desc);
+        source = msg("auto-zoning of ", description);
     } else {
-        if (!o.heightmap.empty() || o.generate) throw Error("zones: --heightmap and --generate only go with --zones auto");
-        map = zones::loadZoneMap(o.zones, palette);
-        source = o.zones;
+        map = zones::loadZoneMap(z.map, palette);
+        source = z.map;
     }
     if (o.borderlines) {
         if (map.layout == zones::ZoneLayout::Touching) map = zones::drawBorderlines(map);
@@ -73,9 +80,10 @@ void runZones(const ZonesOptions& o) {
     if (!o.writeMap.empty() || (!o.svg.empty() && o.svgHref.empty())) mapPng = zones::encodeZoneMapPng(map, palette);
     if (!o.writeMap.empty()) writeFileAtomic(o.writeMap, mapPng);
 
-    const double band = o.band >= 0 ? o.band : palette.bandWidth;
+    const double band = z.band >= 0.0f ? double(z.band) : palette.bandWidth;
+    const double epsilon = z.epsilon;
     auto t0 = std::chrono::steady_clock::now();
-    zones::Borderlines lines = zones::buildBorderlines(map, palette, {.epsilon = o.epsilon});
+    zones::Borderlines lines = zones::buildBorderlines(map, palette, {.epsilon = epsilon});
     double vectoriseMs = msSince(t0);
     t0 = std::chrono::steady_clock::now();
     zones::BorderField field = zones::buildBorderField(lines);
@@ -93,7 +101,7 @@ void runZones(const ZonesOptions& o) {
     std::printf("borderlines: %zu vertices, %zu edges (%zu between zones, the rest frame), %zu zones (%zu bands)\n",
                 lines.vertices.size(), lines.edges.size(), borderEdges, lines.zones.size(),
                 lines.zones.size() - palette.surfaces.size());
-    std::printf("epsilon %.3g px, band %.3g px; vectorise %.1f ms, distance field %dx%d %.1f ms (one core)\n", o.epsilon,
+    std::printf("epsilon %.3g px, band %.3g px; vectorise %.1f ms, distance field %dx%d %.1f ms (one core)\n", epsilon,
                 band, vectoriseMs, field.width, field.height, fieldMs);
     auto areas = zones::zoneAreas(lines);
     for (const auto& z : lines.zones)
@@ -104,34 +112,33 @@ void runZones(const ZonesOptions& o) {
 }  // namespace
 
 void addZonesCommand(CLI::App& app) {
-    auto opts = std::make_shared<ZonesOptions>();
+    // The options and the scene registrar live as long as the app: the callback
+    // runs inside app.parse().
+    struct State {
+        ZonesOptions options;
+        std::unique_ptr<scene::SceneOptions> sceneOptions;
+    };
+    auto state = std::make_shared<State>();
+    ZonesOptions& o = state->options;
     CLI::App* cmd = app.add_subcommand("zones", "Vectorise a zone map's borderlines (JSON, SVG)");
-    cmd->add_option("--zones", opts->zones, "Zone map image (PNG; colours from the palette), or 'auto'")->required();
-    cmd->add_option("--palette", opts->palette, "Palette JSON (zone colours, names, tiles)")->required();
-    cmd->add_option("--epsilon", opts->epsilon, "Rule 3 tolerance in zone-map pixels (default 0: rules 1-2 only)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--band", opts->band, "Transition band width in zone-map pixels (default: the palette's bandWidth)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--json", opts->json, "Write vertices, edges [from, to, left, right] and zones as JSON")->required();
-    cmd->add_option("--svg", opts->svg, "Write an SVG of the borderlines over the map");
-    cmd->add_option("--svg-href", opts->svgHref, "Reference this image in the SVG instead of embedding the map");
-    auto* hm = cmd->add_option("--heightmap", opts->heightmap, "With --zones auto: the heightfield file");
-    auto* gen = cmd->add_option("--generate", opts->generate, "With --zones auto: a diamond-square terrain of N x N (2^n + 1)");
-    hm->excludes(gen);
-    cmd->add_option("--seed", opts->seed, "Seed of --generate (default 1)");
-    cmd->add_option("--sea-level", opts->autoDesc.seaLevel, "Auto-zoning: sea level, stored height (default 0)");
-    cmd->add_option("--deep-water", opts->autoDesc.deepWater, "Auto-zoning: deep below this fraction of the depth range")
-        ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--sand-top", opts->autoDesc.sandTop, "Auto-zoning: sand up to this fraction of the land relief")
-        ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--snow-line", opts->autoDesc.snowLine, "Auto-zoning: snow above this fraction of the land relief")
-        ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--rock-slope", opts->autoDesc.rockSlope, "Auto-zoning: rock steeper than this (degrees)")
-        ->check(CLI::Range(0.001, 90.0));
-    cmd->add_flag("--borderlines", opts->borderlines,
+    state->sceneOptions =
+        std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions | scene::kZoneOptions);
+    cmd->add_option("--json", o.json, "Write vertices, edges [from, to, left, right] and zones as JSON")->required();
+    cmd->add_option("--svg", o.svg, "Write an SVG of the borderlines over the map");
+    cmd->add_option("--svg-href", o.svgHref, "Reference this image in the SVG instead of embedding the map");
+    cmd->add_flag("--borderlines", o.borderlines,
                   "Draw 1-pixel borderlines between the zones first (the Figure 1 layout)");
-    cmd->add_option("--write-map", opts->writeMap, "Write the zone map used (after --borderlines) as a PNG");
-    cmd->callback([opts] { runZones(*opts); });
+    cmd->add_option("--write-map", o.writeMap, "Write the zone map used (after --borderlines) as a PNG");
+    cmd->callback([state, cmd] {
+        asUsage([&] { state->sceneOptions->apply(); });
+        if (state->sceneOptions->printConfigRequested()) return;
+        const scene::Scene& s = state->options.scene;
+        if (s.zones.map.empty())
+            throw UsageError("zones: say which zones: --zones auto (from the terrain) or --zones MAP.png");
+        if (s.zones.map != "auto" && (cmd->count("--heightmap") || cmd->count("--generate")))
+            throw UsageError("zones: --heightmap and --generate only go with --zones auto");
+        runZones(state->options);
+    });
 }
 
 }  // namespace sierra::apps

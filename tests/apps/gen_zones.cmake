@@ -1,6 +1,7 @@
 # sierra-gen end to end: tiles, zone borderlines from the sample map and from
 # auto-zoning, options that change the output, and bad input (exit 1 for bad
-# files, 2 for usage errors, one "sierra-gen: error:" line).
+# files, 2 for usage errors, one "sierra-gen: error:" line). The zone and
+# terrain options are the scene registrar's (sierra-render's names and defaults).
 include(${CMAKE_CURRENT_LIST_DIR}/common.cmake.inc)
 
 # exit_code(NAME EXPECTED args...): the exact exit status.
@@ -36,19 +37,26 @@ endif()
 # The sample zone map (Figure 1 layout) with the default palette.
 set(MAP ${ASSETS_DIR}/zones/default_zones.png)
 set(PALETTE ${ASSETS_DIR}/palettes/default.json)
-run_app(zones EXPECT_OK MESSAGE "Figure 1 borderline layout" COMMAND ${GEN} zones --zones ${MAP} --palette ${PALETTE} --band 0 --json z0.json --svg z0.svg)
+run_app(zones EXPECT_OK MESSAGE "Figure 1 borderline layout" COMMAND ${GEN} zones --zones ${MAP} --palette ${PALETTE} --band 0 --zone-epsilon 0 --json z0.json --svg z0.svg)
 expect_file(${WORK_DIR}/z0.svg)
 json_length(v0 ${WORK_DIR}/z0.json vertices)
 json_length(zones0 ${WORK_DIR}/z0.json zones)
 if(NOT zones0 EQUAL 7)
   message(FATAL_ERROR "expected the palette's 7 zones without a band, got ${zones0}")
 endif()
-# --epsilon removes vertices.
-run_app(zones_epsilon EXPECT_OK COMMAND ${GEN} zones --zones ${MAP} --palette ${PALETTE} --band 0 --epsilon 1.5 --json z1.json)
+# --zone-epsilon removes vertices; its default is the renderer's 0.5.
+run_app(zones_epsilon EXPECT_OK COMMAND ${GEN} zones --zones ${MAP} --palette ${PALETTE} --band 0 --zone-epsilon 1.5 --json z1.json)
 json_length(v1 ${WORK_DIR}/z1.json vertices)
 if(NOT v1 LESS v0)
-  message(FATAL_ERROR "--epsilon 1.5 did not remove vertices (${v1} vs ${v0})")
+  message(FATAL_ERROR "--zone-epsilon 1.5 did not remove vertices (${v1} vs ${v0})")
 endif()
+run_app(zones_default_epsilon EXPECT_OK COMMAND ${GEN} zones --zones ${MAP} --band 0 --json zd.json)
+json_length(vd ${WORK_DIR}/zd.json vertices)
+if(NOT vd LESS v0 OR NOT vd GREATER v1)
+  message(FATAL_ERROR "the default epsilon (0.5) gave ${vd} vertices, not between ${v1} (1.5) and ${v0} (0)")
+endif()
+run_app(zones_print_config EXPECT_OK MESSAGE "\"epsilon\": 0.5" COMMAND ${GEN} zones --zones ${MAP} --json zp.json --print-config)
+expect_no_file(${WORK_DIR}/zp.json)
 # --band adds band zones "a|b".
 run_app(zones_band EXPECT_OK MESSAGE "|" COMMAND ${GEN} zones --zones ${MAP} --palette ${PALETTE} --band 2 --json z2.json)
 json_length(zones2 ${WORK_DIR}/z2.json zones)
@@ -62,6 +70,8 @@ if(NOT svg MATCHES "href=\"map.png\"" OR svg MATCHES "data:image/png")
   message(FATAL_ERROR "--svg-href not honoured")
 endif()
 # Auto-zoning of a small terrain, written back as a Figure 1 map and read again.
+# The terrain options and thresholds are every app's: --sea-level and
+# --rock-slope change the map.
 run_app(zones_auto EXPECT_OK MESSAGE "auto-zoning" COMMAND ${GEN} zones --zones auto --generate 129 --palette ${PALETTE} --borderlines --write-map auto.png --json za.json)
 expect_file(${WORK_DIR}/auto.png)
 run_app(zones_auto_map EXPECT_OK MESSAGE "Figure 1" COMMAND ${GEN} zones --zones auto.png --palette ${PALETTE} --json zb.json)
@@ -70,6 +80,11 @@ file(READ ${WORK_DIR}/zb.json zb)
 if(NOT za STREQUAL zb)
   message(FATAL_ERROR "the written zone map does not vectorise to the same borderlines")
 endif()
+run_app(zones_auto_dry EXPECT_OK COMMAND ${GEN} zones --zones auto --generate 129 --sea-level none --write-map dry.png --json zdry.json)
+run_app(zones_auto_plain EXPECT_OK COMMAND ${GEN} zones --zones auto --generate 129 --write-map plain.png --json zplain.json)
+run_app(zones_auto_rock EXPECT_OK COMMAND ${GEN} zones --zones auto --generate 129 --rock-slope 5 --write-map rock.png --json zrock.json)
+expect_different(${WORK_DIR}/plain.png ${WORK_DIR}/dry.png "--sea-level none")
+expect_different(${WORK_DIR}/plain.png ${WORK_DIR}/rock.png "--rock-slope 5")
 
 # Bad input: exit 1 with one clear message.
 file(WRITE ${WORK_DIR}/bad.json "{\"zones\": [oops")
@@ -87,13 +102,18 @@ endif()
 file(WRITE ${WORK_DIR}/notimage.png "hello")
 run_app(not_an_image EXPECT_FAIL MESSAGE "not a PNG file" COMMAND ${GEN} zones --zones notimage.png --palette ${PALETTE} --json x.json)
 run_app(missing_map EXPECT_FAIL MESSAGE "cannot open" COMMAND ${GEN} zones --zones none.png --palette ${PALETTE} --json x.json)
-run_app(auto_without_terrain EXPECT_FAIL MESSAGE "--generate" COMMAND ${GEN} zones --zones auto --palette ${PALETTE} --json x.json)
+run_app(terrain_with_a_map EXPECT_FAIL EXIT 2 MESSAGE "only go with --zones auto" COMMAND ${GEN} zones --zones ${MAP} --generate 129 --json x.json)
+run_app(no_zones EXPECT_FAIL EXIT 2 MESSAGE "--zones auto" COMMAND ${GEN} zones --json x.json)
+run_app(bad_threshold EXPECT_FAIL EXIT 2 MESSAGE "--deep-water" COMMAND ${GEN} zones --zones auto --generate 129 --deep-water 2 --json x.json)
+run_app(json_under_a_file EXPECT_FAIL EXIT 1 MESSAGE "notimage.png/z.json" COMMAND ${GEN} zones --zones auto --generate 129 --write-map w.png --json notimage.png/z.json)
+expect_no_file(${WORK_DIR}/w.png)
+run_app(missing_heightmap EXPECT_FAIL EXIT 2 MESSAGE "none.png" COMMAND ${GEN} zones --zones auto --heightmap none.png --json x.json)
 run_app(unknown_tile EXPECT_FAIL MESSAGE "unknown tile" COMMAND ${GEN} tiles --out t3 --only lava)
 expect_no_file(${WORK_DIR}/x.json)
 
 # Usage errors: exit 2.
 expect_exit(no_command 2 ${GEN})
 expect_exit(no_json 2 ${GEN} zones --zones ${MAP} --palette ${PALETTE})
-expect_exit(negative_epsilon 2 ${GEN} zones --zones ${MAP} --palette ${PALETTE} --epsilon -1 --json x.json)
+expect_exit(negative_epsilon 2 ${GEN} zones --zones ${MAP} --palette ${PALETTE} --zone-epsilon -1 --json x.json)
 expect_exit(bad_size 2 ${GEN} tiles --out t4 --size 8)
 expect_exit(help 0 ${GEN} zones --help)

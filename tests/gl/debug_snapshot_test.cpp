@@ -172,6 +172,35 @@ TEST_F(DebugSnapshot, MeshInspectionMatchesTheFrame) {
     EXPECT_LE(coarse.maxProjectedErrorPx, 8.0 + 1e-3);
 }
 
+TEST_F(DebugSnapshot, MeshPanelCountsCulledSubtrees) {
+    // Low over one corner, looking across it: much of the terrain is outside the frustum.
+    const render::SceneBounds b = terrain_->bounds();
+    const glm::vec3 size = b.max - b.min;
+    camera_ = render::defaultCamera(b, float(kWidth) / float(kHeight));
+    camera_.position = b.min + glm::vec3(0.15f * size.x, size.y + 0.05f * size.x, 0.15f * size.z);
+    camera_.target = b.min + glm::vec3(0.8f * size.x, 0.0f, 0.5f * size.z);
+    render::fitClipPlanes(camera_, b);
+    render::MeshInspection culled = render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, true, 2);
+    render::MeshInspection all = render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, false, 2);
+    EXPECT_GT(culled.culledSubtrees, 0);
+    EXPECT_LT(culled.triangles, all.triangles);
+    EXPECT_EQ(all.culledSubtrees, 0);
+
+    // The Mesh panel shows the count (no longer "n/a").
+    auto meshRow = [&](const render::DebugPanel& p) {
+        for (const render::DebugSection& s : p.sections)
+            if (s.title == "Mesh")
+                for (const auto& row : s.rows)
+                    if (row.first == "culled subtrees") return row.second;
+        return std::string("(no row)");
+    };
+    render::DrawStats stats;
+    stats.triangles = uint64_t(culled.triangles);
+    EXPECT_EQ(meshRow(panel(kWidth, stats, true)), std::to_string(culled.culledSubtrees) + " (frustum)");
+    draw_.cull = false;
+    EXPECT_EQ(meshRow(panel(kWidth, stats, true)), "0 (culling off)");
+}
+
 TEST(MeshInspector, TriangleLevelFromEdges) {
     // side 5 (n = 2, levels 0..4): the level-0 triangle (0,0)-(4,0)-(0,4).
     EXPECT_EQ(render::triangleLevel(0, 4, 20, 5), 0);

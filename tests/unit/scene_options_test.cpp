@@ -259,5 +259,22 @@ TEST_F(SceneOptionsTest, HelpShowsTheAppDefaults) {
     EXPECT_THAT(help, HasSubstr("--print-config"));
 }
 
+TEST_F(SceneOptionsTest, AutoZoneThresholdsLandInTheirFieldsAndAreChecked) {
+    const Scene base;
+    Scene s = parse({"--zones", "auto", "--deep-water", "0.5", "--sand-top", "0.1", "--zone-snow-line", "0.6",
+                     "--rock-slope", "30"},
+                    base);
+    EXPECT_EQ(s.zones.deepWater, 0.5f);
+    EXPECT_EQ(s.zones.sandTop, 0.1f);
+    EXPECT_EQ(s.zones.snowLine, 0.6f);
+    EXPECT_EQ(s.zones.rockSlope, 30.0f);
+    EXPECT_EQ(s.style.snowLine, base.style.snowLine) << "--zone-snow-line is not the style's --snow-line";
+    const Scene& defaults = base;
+    EXPECT_THAT(parseError({"--deep-water", "1.5"}, defaults), AllOf(HasSubstr("--deep-water"), HasSubstr("0..1")));
+    EXPECT_THAT(parseError({"--sand-top", "-0.1"}, defaults), HasSubstr("--sand-top"));
+    EXPECT_THAT(parseError({"--zone-snow-line", "2"}, defaults), HasSubstr("--zone-snow-line"));
+    EXPECT_THAT(parseError({"--rock-slope", "90"}, defaults), AllOf(HasSubstr("--rock-slope"), HasSubstr("degrees")));
+}
+
 }  // namespace
 }  // namespace sierra::scene

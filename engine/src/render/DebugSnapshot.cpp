@@ -116,7 +116,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
             {"bytes uploaded", msg(m.indices * 4, " (", bytes(double(m.indices) * 4.0), ")")},
             {"tau, lambda", msg(fixed(m.tau, 2), " px, ", fixed(m.lambda, 1), " px")},
             {"max screen error", msg(fixed(m.maxProjectedErrorPx, 3), " px")},
-            {"culled subtrees", "n/a (not counted)"},
+            {"culled subtrees", f.draw.cull ? msg(m.culledSubtrees, " (frustum)") : std::string("0 (culling off)")},
         };
         Histogram h{.name = "leaves per level", .binLabel = "level"};
         h.counts.assign(m.levelCounts.begin(), m.levelCounts.end());

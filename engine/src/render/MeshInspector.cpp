@@ -44,6 +44,7 @@ MeshInspection inspectMesh(TerrainGpu& terrain, const Camera& camera, int width,
     out.tau = tau;
     out.lambda = lv.lambda;
     out.indices = int64_t(strip.size());
+    out.culledSubtrees = sbt.lastCulledSubtrees();
     const int side = terrain.side();
     out.distinctVertices = sbt::countDistinctVertices(strip, side);
     auto triangles = sbt::decodeStrip(strip);

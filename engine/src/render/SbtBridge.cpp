@@ -46,6 +46,8 @@ uint64_t SbtBridge::refineView(const SbtView& view, std::vector<uint32_t>& out, 
     return uint64_t(state_->mesh.triangleCount);
 }
 
+int64_t SbtBridge::lastCulledSubtrees() const { return state_->mesh.culledSubtrees; }
+
 std::vector<uint32_t> SbtBridge::fullGridTriangles() const {
     sbt::StripMesh full;
     state_->refiner->refineFixed(-1.0f, full);

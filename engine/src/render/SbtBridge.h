@@ -41,6 +41,8 @@ public:
     // Refines for the view and writes the strip (restart 0xFFFFFFFF) into out;
     // returns the triangle count.
     uint64_t refineView(const SbtView& view, std::vector<uint32_t>& out, int threads);
+    // Subtrees the last refineView dropped whole at the frustum (0 without culling).
+    int64_t lastCulledSubtrees() const;
 
     // Every cell of the grid as indexed triangles (3 indices each), with the
     // diagonals of the SBT's finest level.

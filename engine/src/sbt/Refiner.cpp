@@ -27,6 +27,7 @@ struct Refiner::Chunk {
     std::vector<uint32_t> starts;    // offset of every strip in buffer
     int64_t used = 0;
     int64_t leaves = 0;
+    int64_t culled = 0;  // subtrees culled in this chunk (view mode)
 };
 
 namespace {
@@ -84,6 +85,7 @@ struct Walker {
     int parity = -1;
     bool needStart = true;
     int64_t leaves = 0;
+    int64_t culled = 0;  // culled subtrees, summed over the chunks at the end
 
     void bind(Refiner::Chunk& c) {
         chunk = &c;
@@ -95,6 +97,7 @@ struct Walker {
     void finish() {
         chunk->used = out - base;
         chunk->leaves = leaves;
+        chunk->culled = culled;
     }
     void grow(size_t need) {
         size_t used = size_t(out - base);
@@ -167,6 +170,7 @@ struct Walker {
                 if (mask) {
                     mask = cull(x, y, z, r, mask);
                     if (mask == kCulled) {
+                        ++culled;
                         needStart = true;
                         return;
                     }
@@ -277,6 +281,7 @@ struct Walker {
         if (mask) {
             mask = cullFast(i, j, x, y, z, r, mask);
             if (mask == kCulled) {
+                ++culled;
                 needStart = true;
                 return;
             }
@@ -378,7 +383,10 @@ struct Walker {
                     ensure(4);
                     append(uint32_t(op->a), op->level);
                     break;
-                case Refiner::Op::kBreak: needStart = true; break;
+                case Refiner::Op::kBreak:  // a subtree culled above the chunk level
+                    needStart = true;
+                    ++culled;
+                    break;
             }
         }
     }
@@ -686,12 +694,13 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     copies_.clear();
     int64_t pos = 0, stripStart = 0;
     uint32_t tail[3] = {kRestartIndex, kRestartIndex, kRestartIndex};  // last, second-last, third-last
-    int64_t leaves = 0;
+    int64_t leaves = 0, culled = 0;
     int strips = 0;
     const uint32_t side = uint32_t(side_);
     for (int c = 0; c < chunkCount; ++c) {
         Chunk& ch = chunks_[c];
         leaves += ch.leaves;
+        culled += ch.culled;
         const uint32_t* src = ch.buffer.data();
         for (size_t s = 0; s < ch.starts.size(); ++s) {
             const int64_t begin = ch.starts[s];
@@ -745,6 +754,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         threads);
     out.triangleCount = leaves;
     out.stripCount = strips;
+    out.culledSubtrees = culled;
     lastTriangles = leaves;
 }
 

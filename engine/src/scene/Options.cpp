@@ -313,6 +313,16 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
                 [](Scene& s, Words) { s.zones.variation = false; });
         add("--debug-view", "Flat zone colours (zones) or the band blend weight (bands)", g, "none|zones|bands",
             d.zones.debugView, 1, [](Scene& s, Words w) { s.zones.debugView = w[0]; });
+        // Auto-zoning thresholds (--zones auto).
+        add("--deep-water", "Auto-zones: deep water below this fraction of the depth range, 0..1", g, "F",
+            show(d.zones.deepWater), 1, [](Scene& s, Words w) { s.zones.deepWater = parseFloat(w[0], "--deep-water"); });
+        add("--sand-top", "Auto-zones: sand up to this fraction of the land relief, 0..1", g, "F", show(d.zones.sandTop),
+            1, [](Scene& s, Words w) { s.zones.sandTop = parseFloat(w[0], "--sand-top"); });
+        add("--zone-snow-line", "Auto-zones: snow above this fraction of the land relief, 0..1", g, "F",
+            show(d.zones.snowLine), 1,
+            [](Scene& s, Words w) { s.zones.snowLine = parseFloat(w[0], "--zone-snow-line"); });
+        add("--rock-slope", "Auto-zones: rock steeper than this, degrees (0, 90)", g, "DEG", show(d.zones.rockSlope), 1,
+            [](Scene& s, Words w) { s.zones.rockSlope = parseFloat(w[0], "--rock-slope"); });
     }
 
     if (groups & kStyleOptions) {

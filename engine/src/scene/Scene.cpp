@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <tuple>
 
 namespace sierra::scene {
 namespace {
@@ -141,11 +142,12 @@ void validateZones(const ZonesDesc& z) {
         fail("zones.band", "--band", msg("must be a width in zone-map pixels (< 0 = the palette's), got ", z.band));
     if (!(z.epsilon >= 0.0f) || !std::isfinite(z.epsilon))
         fail("zones.epsilon", "--zone-epsilon", msg("must be >= 0 zone-map pixels, got ", z.epsilon));
-    for (auto [value, key] : {std::pair{z.deepWater, "zones.deep_water"}, std::pair{z.sandTop, "zones.sand_top"},
-                              std::pair{z.snowLine, "zones.snow_line"}})
-        if (!(value >= 0.0f && value <= 1.0f)) fail(key, "--config", msg("must be a fraction 0..1, got ", value));
+    for (auto [value, key, option] : {std::tuple{z.deepWater, "zones.deep_water", "--deep-water"},
+                                      std::tuple{z.sandTop, "zones.sand_top", "--sand-top"},
+                                      std::tuple{z.snowLine, "zones.snow_line", "--zone-snow-line"}})
+        if (!(value >= 0.0f && value <= 1.0f)) fail(key, option, msg("must be a fraction 0..1, got ", value));
     if (!(z.rockSlope > 0.0f && z.rockSlope < 90.0f))
-        fail("zones.rock_slope", "--config", msg("must be 0..90 degrees, got ", z.rockSlope));
+        fail("zones.rock_slope", "--rock-slope", msg("must be 0..90 degrees, got ", z.rockSlope));
     if (z.map.empty() && z.debugView != "none")
         fail("zones.debug_view", "--debug-view", "needs zones (--zones auto or a zone map)");
 }

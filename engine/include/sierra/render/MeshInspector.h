@@ -17,6 +17,9 @@ struct MeshInspection {
     int64_t triangles = 0;         // decoded, non-degenerate
     int64_t distinctVertices = 0;  // grid samples the strip references
     int64_t indices = 0;           // strip indices, restarts included
+    // Subtrees of the SBT dropped whole by the frustum test (their root
+    // triangle's bounding sphere outside a plane); 0 without culling.
+    int64_t culledSubtrees = 0;
     // levelCounts[l] = leaf triangles of SBT level l (0..2n). A leaf's level is
     // read from its edges: legs of level l are (side - 1) / 2^(l/2) samples
     // long, so 2^l = (side - 1)^2 / leg^2.

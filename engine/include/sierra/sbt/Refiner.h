@@ -44,6 +44,10 @@ struct StripMesh {
     std::vector<uint32_t> indices;
     int64_t triangleCount = 0;  // leaf triangles emitted (non-degenerate)
     int stripCount = 0;
+    // View mode with culling: subtrees dropped whole because the split-vertex
+    // sphere of their root triangle lies outside a frustum plane (0 without
+    // culling and in fixed mode). The same for any thread count.
+    int64_t culledSubtrees = 0;
     double indicesPerTriangle() const {
         return triangleCount ? double(indices.size()) / double(triangleCount) : 0.0;
     }

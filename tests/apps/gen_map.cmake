@@ -1,0 +1,103 @@
+# sierra-gen map end to end: every scheme writes a PNG of one pixel per real
+# sample (a colour bar widens it, never heightens it); bad input gives one
+# "sierra-gen: error:" line, a non-zero exit and no file.
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake.inc)
+
+# png_size(W H FILE): width and height from the PNG's IHDR chunk (bytes 16..23, big-endian).
+function(png_size w h file)
+  file(READ ${file} signature HEX LIMIT 8)
+  if(NOT signature STREQUAL "89504e470d0a1a0a")
+    message(FATAL_ERROR "${file} is not a PNG (starts with ${signature})")
+  endif()
+  file(READ ${file} wide HEX OFFSET 16 LIMIT 4)
+  file(READ ${file} high HEX OFFSET 20 LIMIT 4)
+  math(EXPR wide "0x${wide}")
+  math(EXPR high "0x${high}")
+  set(${w} ${wide} PARENT_SCOPE)
+  set(${h} ${high} PARENT_SCOPE)
+endfunction()
+
+function(expect_png_size file width height)
+  expect_file(${file})
+  png_size(w h ${file})
+  if(NOT w EQUAL width OR NOT h EQUAL height)
+    message(FATAL_ERROR "${file} is ${w}x${h}, expected ${width}x${height}")
+  endif()
+endfunction()
+
+# Each scheme on a generated 129^2 terrain: 129x129 pixels.
+foreach(scheme plasma atlas hypsometric hillshade slope)
+  run_app(map_${scheme} EXPECT_OK MESSAGE "(129x129)" COMMAND ${GEN} map --generate 129 --scheme ${scheme} --out ${scheme}.png)
+  expect_png_size(${WORK_DIR}/${scheme}.png 129 129)
+endforeach()
+run_app(map_cpt EXPECT_OK COMMAND ${GEN} map --generate 129 --cpt ${ASSETS_DIR}/cpt/bands.cpt --out cpt.png)
+expect_png_size(${WORK_DIR}/cpt.png 129 129)
+expect_different(${WORK_DIR}/plasma.png ${WORK_DIR}/atlas.png "--scheme atlas")
+expect_different(${WORK_DIR}/hypsometric.png ${WORK_DIR}/cpt.png "--cpt")
+run_app(map_sun EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme hillshade --sun-azimuth 135 --out sun.png)
+expect_different(${WORK_DIR}/hillshade.png ${WORK_DIR}/sun.png "--sun-azimuth")
+
+# A colour bar is appended on the right: same height, wider.
+foreach(scheme atlas slope)
+  run_app(map_${scheme}_bar EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme ${scheme} --colour-bar --out ${scheme}_bar.png)
+  png_size(w h ${WORK_DIR}/${scheme}_bar.png)
+  if(NOT h EQUAL 129 OR NOT w GREATER 129)
+    message(FATAL_ERROR "${scheme} with --colour-bar is ${w}x${h}: expected 129 rows and more than 129 columns")
+  endif()
+endforeach()
+
+# A non-square DEM (403 x 344 samples, 344 rows of 403, padded to 513^2 on load): the map has its real size.
+set(dem /usr/share/matplotlib/mpl-data/sample_data/jacksboro_fault_dem.npz)
+if(NOT EXISTS ${dem})
+  message(FATAL_ERROR "the sample DEM is missing: apt-get install python-matplotlib-data")
+endif()
+run_app(map_dem EXPECT_OK COMMAND ${GEN} map --heightmap ${dem} --scheme hillshade --out dem.png)
+expect_png_size(${WORK_DIR}/dem.png 403 344)
+
+# Bad input: exactly one error message (a command-line error adds CLI11's
+# "Run sierra-gen --help" hint), a non-zero exit (2 for the command line, an
+# input file that is missing included; 1 for a file that cannot be read or
+# written), no output file.
+function(expect_map_error name exit message out)
+  execute_process(COMMAND ${GEN} map ${ARGN} --out ${out} WORKING_DIRECTORY ${WORK_DIR}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE err TIMEOUT 300)
+  if(NOT rc EQUAL exit)
+    message(FATAL_ERROR "${name}: exit ${rc}, expected ${exit}\n${stdout}\n${err}")
+  endif()
+  string(REGEX MATCHALL "sierra-gen: error: " errors "${err}")
+  list(LENGTH errors count)
+  string(REGEX REPLACE "\nRun sierra-gen --help for the options.\n?$" "" message_part "${err}")
+  string(REGEX REPLACE "sierra info: [^\n]*\n" "" message_part "${message_part}")
+  if(NOT count EQUAL 1 OR NOT message_part MATCHES "^sierra-gen: error: [^\n]*\n?$")
+    message(FATAL_ERROR "${name}: expected one 'sierra-gen: error:' line, got:\n${err}")
+  endif()
+  string(FIND "${err}" "${message}" found)
+  if(found EQUAL -1)
+    message(FATAL_ERROR "${name}: the message lacks '${message}':\n${err}")
+  endif()
+  if(IS_DIRECTORY ${WORK_DIR}/${out})  # an output named like an existing folder: nothing written into it
+    file(GLOB inside ${WORK_DIR}/${out}/*)
+    if(inside)
+      message(FATAL_ERROR "${name}: files were written into ${out}: ${inside}")
+    endif()
+  else()
+    expect_no_file(${WORK_DIR}/${out})
+  endif()
+  message(STATUS "${name}: ok (exit ${rc}) ${err}")
+endfunction()
+
+expect_map_error(missing_file 2 "none.png" missing.png --heightmap none.png --scheme atlas)
+file(WRITE ${WORK_DIR}/notimage.png "hello")
+expect_map_error(not_an_image 1 "notimage.png" notimage_map.png --heightmap notimage.png)
+expect_map_error(unknown_scheme 2 "lava" scheme.png --generate 129 --scheme lava)
+# A missing folder is created (as for every app's outputs); one under a file cannot be.
+run_app(new_output_dir EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme atlas --out new/dir/map.png)
+expect_png_size(${WORK_DIR}/new/dir/map.png 129 129)
+expect_map_error(output_under_a_file 1 "notimage.png/map.png" notimage.png/map.png --generate 129 --scheme atlas)
+file(MAKE_DIRECTORY ${WORK_DIR}/adir)
+expect_map_error(output_is_a_dir 1 "adir" adir --generate 129 --scheme atlas)
+expect_map_error(cpt_with_hillshade 2 "--cpt" cpt_shade.png --generate 129 --scheme hillshade --cpt ${ASSETS_DIR}/cpt/bands.cpt)
+expect_map_error(missing_cpt 1 "none.cpt" cpt_missing.png --generate 129 --cpt none.cpt)
+expect_map_error(bar_on_hillshade 2 "--colour-bar" bar_shade.png --generate 129 --scheme hillshade --colour-bar)
+expect_map_error(sun_below_horizon 2 "--sun-altitude" sun_low.png --generate 129 --scheme hillshade --sun-altitude -5)
+expect_map_error(bad_generate_size 1 "2^n + 1" size.png --generate 100)
