@@ -81,6 +81,36 @@ vec4 zoneTile(int zone, vec2 mapXY, vec4 mapGrad, vec3 world, mat2x3 worldGrad, 
            planarTile(zone, p.xy, vec4(pg[0].xy, pg[1].xy)) * w.z;
 }
 
+// Signed distance (zone-map pixels) to the borderline of `pair`, bilinear over
+// the four field texels around m, for a fragment of `zone` that the filtered
+// field puts inside a band. Each texel holds the distance to its own nearest
+// borderline, signed by that line's pair; where two texels' nearest lines are
+// of different pairs (a ridge between two borderlines) the hardware-filtered
+// value can pass through 0 far from any border when the zone lies on the
+// negative side of one pair and the positive side of the other: a line of
+// band-blended pixels appeared along such ridges (dotted at the frame's
+// resolution). A texel of another pair is taken at its own distance (a lower
+// bound of its distance to this pair's line) with the sign of its zone's side
+// of this pair, or of this fragment's side when its zone is in neither.
+float pairDistance(vec2 m, uvec2 pair, uint zone) {
+    vec2 p = m * uZoneMap.z - 0.5;
+    ivec2 i0 = ivec2(floor(p));
+    vec2 f = p - vec2(i0);
+    ivec2 last = textureSize(uZoneDistance, 0) - 1;
+    float ownSign = zone == pair.x ? -1.0 : 1.0;
+    vec4 d;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 t = clamp(i0 + ivec2(k & 1, k >> 1), ivec2(0), last);
+        float dk = texelFetch(uZoneDistance, t, 0).r;
+        if (texelFetch(uZonePair, t, 0).rg != pair) {
+            uint zk = texelFetch(uZoneId, t, 0).r;
+            dk = abs(dk) * (zk == pair.x ? -1.0 : zk == pair.y ? 1.0 : ownSign);
+        }
+        d[k] = dk;
+    }
+    return mix(mix(d.x, d.y, f.x), mix(d.z, d.w, f.x), f.y) / uZoneMap.z;
+}
+
 vec3 surfaceAlbedo(vec3 world, Ground g) {
     vec2 m = zoneMapPosition(world);
     // Derivatives here, where control flow is still uniform.
@@ -93,6 +123,12 @@ vec3 surfaceAlbedo(vec3 world, Ground g) {
     float halfBand = 0.5 * uZoneMap.w;
     float d = texture(uZoneDistance, m / uZoneMap.xy).r / uZoneMap.z;  // zone-map pixels
     bool inBand = halfBand > 0.0 && pair.x != pair.y && abs(d) < halfBand;
+    // Only where the filtered field says "band" (a few per cent of the
+    // pixels): the exact value, free of the ridge artefact (pairDistance).
+    if (inBand) {
+        d = pairDistance(m, pair, uint(zone));
+        inBand = abs(d) < halfBand;
+    }
     float weight = inBand ? smoothstep(-halfBand, halfBand, d) : 0.0;  // of the pair's second zone
 
     if (uZoneFlags.w > 1.5) {  // bands: the blend weight, black outside every band
