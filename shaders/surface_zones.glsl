@@ -144,8 +144,10 @@ float pairDistance(vec2 m, uvec2 pair, uint zone, int texels) {
     for (int k = 0; k < texels; ++k) {
         ivec2 t = clamp(i0 + ivec2(k & 1, k >> 1), ivec2(0), last);
         float dk = texelFetch(uZoneDistance, t, 0).r;
-        if (texelFetch(uZonePair, t, 0).rg != pair) {
-            uint zk = texelFetch(uZoneId, t, 0).r;
+        uvec2 pk = texelFetch(uZonePair, t, 0).rg;
+        if (pk != pair) {
+            // The texel's zone from its own pair and sign (no third fetch).
+            uint zk = dk < 0.0 ? pk.x : pk.y;
             dk = abs(dk) * (zk == pair.x ? -1.0 : zk == pair.y ? 1.0 : ownSign);
         }
         d[k] = dk;
