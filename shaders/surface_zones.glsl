@@ -57,7 +57,7 @@ vec4 tileSample(int zone, vec2 uv, vec4 grad) {
 // or 2 with the variation), each job one tileSample whose weighted colour adds
 // to its zone's sum. Why one loop: llvmpipe (Mesa 22.3) runs every branch of a
 // shader with the lanes that skip it masked off, so written with ifs every
-// fragment paid for all 12 tile samples of the worst case and the zone frame
+// fragment paid for all 18 tile samples of the three call sites and the zone frame
 // cost about 10x the hypsometric one at 1920x1080; a loop runs only as many
 // times as the block's busiest pixel needs (2 away from bands with the
 // variation, 4 in a band).
@@ -132,8 +132,9 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec3 worl
 // resolution). A texel of another pair is taken at its own distance (a lower
 // bound of its distance to this pair's line) with the sign of its zone's side
 // of this pair, or of this fragment's side when its zone is in neither.
-// `texels`: 4 (0 leaves d at 0: a loop, so blocks with no band pixel run one
-// masked iteration instead of all four, see zoneTiles).
+// `texels`: 4 in a band, 0 elsewhere (the result is then unused). A loop and
+// not an if, so a block with no band pixel pays one masked iteration instead
+// of all four (see zoneTiles).
 float pairDistance(vec2 m, uvec2 pair, uint zone, int texels) {
     vec2 p = m * uZoneMap.z - 0.5;
     ivec2 i0 = ivec2(floor(p));
