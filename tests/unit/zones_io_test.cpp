@@ -117,6 +117,20 @@ TEST_F(ZonesIo, Figure1ZonesMustNotTouch) {
     EXPECT_NE(e.find("(4, 7)"), std::string::npos) << e;
 }
 
+// A Figure 1 map's frame runs through its outer pixel centres: a single row or
+// column of pixels has no frame, and the map's own name says so (a 2x2 map is fine).
+TEST_F(ZonesIo, Figure1MapNeedsTwoByTwo) {
+    Palette p = loadPalette(write("p.json", kGood));
+    for (auto [w, h] : {std::pair{1, 1}, {5, 1}, {1, 4}}) {
+        std::vector<uint8_t> rgb(size_t(w) * h * 3, 0);  // all borderline (#000000)
+        std::string e = errorOf([&] { classifyZoneMap(w, h, rgb, p, "tiny.png"); });
+        EXPECT_NE(e.find("tiny.png"), std::string::npos) << e;
+        EXPECT_NE(e.find("at least 2x2"), std::string::npos) << e;
+    }
+    ZoneMap two = drawBorderlines(test::makeMap(2, 2, [](int x, int) { return x; }));
+    EXPECT_NO_THROW(classifyZoneMap(2, 2, zoneMapRgb(two, p), p, "two.png"));
+}
+
 TEST_F(ZonesIo, NotAnImageIsReported) {
     Palette p = loadPalette(write("p.json", kGood));
     std::string e = errorOf([&] { loadZoneMap(write("map.png", "this is not a PNG"), p); });

@@ -125,6 +125,9 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
                      image.height, "; every tile of ", desc.palette, " must be ", tileSize, "x", tileSize);
         images.push_back(std::move(image));
     }
+    // The shader's own tile filter (llvmpipe) wraps texel indices by a mask.
+    SIERRA_CHECK(tileSize > 0 && (tileSize & (tileSize - 1)) == 0, "tiles of ", desc.palette, " are ", tileSize, "x",
+                 tileSize, "; tile sides must be a power of two (256 as sierra-gen tiles makes them)");
     int levels = 1;
     while ((tileSize >> levels) > 0) ++levels;
     surface->tiles_ = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY, .format = GL_RGBA8, .width = tileSize,

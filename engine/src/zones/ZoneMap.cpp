@@ -49,6 +49,10 @@ ZoneMap classifyZoneMap(int width, int height, std::span<const uint8_t> rgb, con
     }
     if (anyBorderline) {
         map.layout = ZoneLayout::Borderlines;
+        // Its frame runs through the outer pixel centres: one row or column has none.
+        SIERRA_CHECK(width >= 2 && height >= 2, "zone map ", source, ": ", width, "x", height,
+                     " pixels with borderline pixels (", colourHex(palette.borderline),
+                     "); a Figure 1 zone map needs at least 2x2");
         // Figure 1 needs a borderline between every two zones: 4-neighbours of
         // different zones would have no vertex between them.
         for (int y = 0; y < height; ++y)
