@@ -1,6 +1,8 @@
 #version 450 core
-// Hatch strokes pulled from the GPU hatch field: one instance per grid
-// vertex, four corners each, nothing built on the CPU per frame. The field
+// Hatch strokes pulled from the GPU hatch field: one quad per grid vertex
+// of the frame's lattice (gl_VertexID >> 2; its corner gl_VertexID & 3, drawn
+// in indexed batches, render/passes/QuadBatch.h), nothing built on the CPU per
+// frame. The field
 // (hatch_strokes.comp, computed once from the GPU curvature field) gives the
 // stroke's direction on the vertex's tangent plane, along or across the
 // curvature-weighted axis of greatest curvature (as
@@ -21,8 +23,8 @@
 layout(binding = 3) uniform sampler2D uStrokes;  // RGBA32F: stroke direction, opacity (hatch_strokes.comp)
 uniform float uLength;   // grid units
 uniform float uWidth;    // pixels
-uniform int uBaseStride;   // instances sit on every uBaseStride-th vertex (HatchPass::baseStride)
-uniform int uLatticeSide;  // instances per lattice row
+uniform int uBaseStride;   // strokes sit on every uBaseStride-th vertex (HatchPass::baseStride)
+uniform int uLatticeSide;  // strokes per lattice row
 
 const float kMinCellPixels = 6.0;  // HatchPass::kMinCellPixels
 
@@ -38,7 +40,8 @@ void main() {
     vAcross = 0.0;
     vAlpha = 0.0;
     vWorld = vec3(0.0);
-    ivec2 ij = ivec2(gl_InstanceID % uLatticeSide, gl_InstanceID / uLatticeSide) * uBaseStride;
+    int strokeId = gl_VertexID >> 2;
+    ivec2 ij = ivec2(strokeId % uLatticeSide, strokeId / uLatticeSide) * uBaseStride;
     vec4 stroke = texelFetch(uStrokes, ij, 0);
     float opacity = stroke.w;
     if (opacity < 1.0 / 255.0) {
@@ -65,7 +68,7 @@ void main() {
     vec3 t = stroke.xyz;
     float halfLength = 0.5 * uLength * float(stride) * 0.5 * (uSpacingValid.x + uSpacingValid.y);
     vec3 a = centre - t * halfLength, b = centre + t * halfLength;
-    int corner = gl_VertexID;
+    int corner = gl_VertexID & 3;
     gl_Position = segmentCorner(a, b, corner, 0.5 * uWidth, vAcross);
     vWorld = (corner & 1) != 0 ? b : a;
     vAlpha = opacity * fade;

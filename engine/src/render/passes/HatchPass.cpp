@@ -3,6 +3,7 @@
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 #include "render/passes/OverlayState.h"
+#include "render/passes/QuadBatch.h"
 #include <sierra/render/TerrainGpu.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -22,6 +23,7 @@ std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu>
     auto pass = std::make_unique<HatchPass>();
     pass->program_ = gpu::Program::create({.vertex = "hatch.vert", .fragment = "line.frag"});
     pass->vao_ = gpu::VertexArray::create();
+    pass->quadIndices_ = createQuadIndices(pass->vao_);
     pass->curvature_ = std::move(curvature);
     pass->desc_ = desc;
     // The view-independent stroke field, once: direction and opacity per sample.
@@ -90,7 +92,7 @@ void HatchPass::draw(const FrameContext& frame) {
     glUniform1i(program_.uniform("uBaseStride"), base);
     glUniform1i(program_.uniform("uLatticeSide"), perSide);
     glBindVertexArray(vao_.id());
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(perSide) * GLsizei(perSide));
+    drawQuads(int64_t(perSide) * perSide);
 }
 
 }  // namespace sierra::render
