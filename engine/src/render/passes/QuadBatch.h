@@ -9,7 +9,7 @@
 // Why not instancing: llvmpipe (Mesa 22.3) runs its vertex pipeline once per
 // instance, and with one 4-vertex instance per hatch stroke that set-up was
 // most of the hatch pass: on a 257^2 terrain at 1920x1080 the pass added
-// 61-64% to the frame as instances and 26-37% as indexed batches
+// 42-49% to the frame as instances and 19-38% as indexed batches
 // (sierra-bench frames --overlay-costs, docs/presets.md), the same pixels.
 
 #include <sierra/gpu/Gl.h>
