@@ -3,7 +3,6 @@
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 #include "render/passes/OverlayState.h"
-#include "render/passes/QuadBatch.h"
 #include <sierra/render/TerrainGpu.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -21,9 +20,9 @@ std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu>
     SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f, "hatch pass: width must be > 0 pixels, got ",
                  desc.width);
     auto pass = std::make_unique<HatchPass>();
-    pass->program_ = gpu::Program::create({.vertex = "hatch.vert", .fragment = "line.frag"});
+    pass->program_ =
+        gpu::Program::create({.vertex = "hatch.vert", .fragment = "line.frag", .geometry = "hatch_geom.glsl"});
     pass->vao_ = gpu::VertexArray::create();
-    pass->quadIndices_ = createQuadIndices(pass->vao_);
     pass->curvature_ = std::move(curvature);
     pass->desc_ = desc;
     // The view-independent stroke field, once: direction and opacity per sample.
@@ -92,7 +91,9 @@ void HatchPass::draw(const FrameContext& frame) {
     glUniform1i(program_.uniform("uBaseStride"), base);
     glUniform1i(program_.uniform("uLatticeSide"), perSide);
     glBindVertexArray(vao_.id());
-    drawQuads(int64_t(perSide) * perSide);
+    // One point per stroke; hatch_geom.glsl makes the quads. (llvmpipe sets up
+    // its vertex pipeline once per instance, so instanced quads cost more.)
+    glDrawArrays(GL_POINTS, 0, GLsizei(perSide) * GLsizei(perSide));
 }
 
 }  // namespace sierra::render

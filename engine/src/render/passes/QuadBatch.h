@@ -1,16 +1,17 @@
 #pragma once
-// Screen-space quads (line segments, hatch strokes) drawn as indexed
-// triangles instead of instances: quad q is the vertices 4q..4q+3 (the
+// Screen-space quads (curvature line segments) drawn as indexed triangles
+// instead of instances: quad q is the vertices 4q..4q+3 (the
 // shader reads quad = gl_VertexID >> 2, corner = gl_VertexID & 3, corners in
 // triangle-strip order), two triangles (0, 1, 2) and (2, 1, 3). One shared
 // index buffer of kQuadsPerBatch quads is drawn again with a base vertex for
 // every further batch, so its size does not grow with the grid.
 //
 // Why not instancing: llvmpipe (Mesa 22.3) runs its vertex pipeline once per
-// instance, and with one 4-vertex instance per hatch stroke that set-up was
-// most of the hatch pass: on a 257^2 terrain at 1920x1080 the pass added
-// 42-49% to the frame as instances and 19-38% as indexed batches
-// (sierra-bench frames --overlay-costs, docs/presets.md), the same pixels.
+// instance, and with one 4-vertex instance per quad that set-up was most of
+// the cost of a pass with many quads: hatch strokes drawn so added 42-49% to
+// a 1080p frame on a 257^2 terrain, 19-38% as indexed batches (sierra-bench
+// frames --overlay-costs, docs/presets.md), with the same pixels. (Hatches
+// have since gone further: one point per stroke, hatch_geom.glsl.)
 
 #include <sierra/gpu/Gl.h>
 #include <sierra/gpu/Objects.h>

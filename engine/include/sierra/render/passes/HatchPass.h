@@ -2,7 +2,8 @@
 // Hatch shading over the terrain: one stroke per grid vertex, generated on
 // the GPU from the curvature field (shaders/hatch_strokes.comp once, the
 // view-independent direction and opacity; shaders/hatch.vert every frame:
-// one quad per stroke pulled from the field, nothing rebuilt on the CPU), on the vertex's
+// one point per stroke pulled from the field and expanded to its quad by a
+// geometry stage, nothing rebuilt on the CPU), on the vertex's
 // tangent plane, along or across the curvature-weighted axis
 // (analysis::hatchStrokeDirection), with opacity = the largest curvature.
 // Far away the strokes thin out by powers of two and fade with the screen
@@ -48,7 +49,6 @@ private:
 
     gpu::Program program_;
     gpu::VertexArray vao_;
-    gpu::Buffer quadIndices_;  // one batch of quads (render/passes/QuadBatch.h)
     std::shared_ptr<const CurvatureGpu> curvature_;
     gpu::Texture strokes_;  // RGBA32F: stroke direction and opacity per sample (hatch_strokes.comp)
     HatchPassDesc desc_;
