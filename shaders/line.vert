@@ -1,7 +1,8 @@
 #version 450 core
-// Curvature lines: one instance per polyline segment, pulled from a buffer of
-// segments (grid x, z and alpha of both ends) and expanded to an antialiased
-// quad of uWidth pixels (overlay_common.glsl).
+// Curvature lines: one quad per polyline segment (gl_VertexID >> 2; its
+// corner gl_VertexID & 3, drawn in indexed batches, render/passes/QuadBatch.h),
+// pulled from a buffer of segments (grid x, z and alpha of both ends) and
+// expanded to an antialiased quad of uWidth pixels (overlay_common.glsl).
 #include "frame.glsl"
 #include "terrain_common.glsl"
 #include "overlay_common.glsl"
@@ -18,9 +19,9 @@ out float vAcross;
 out float vAlpha;
 
 void main() {
-    Segment s = uSegments[gl_InstanceID];
+    Segment s = uSegments[gl_VertexID >> 2];
     vec3 a = overlayPoint(s.a.xy), b = overlayPoint(s.b.xy);
-    int corner = gl_VertexID;
+    int corner = gl_VertexID & 3;
     gl_Position = segmentCorner(a, b, corner, 0.5 * uWidth, vAcross);
     bool atB = (corner & 1) != 0;
     vWorld = atB ? b : a;

@@ -28,6 +28,8 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace sierra::apps {
 namespace {
@@ -36,6 +38,7 @@ struct FramesOptions {
     scene::Scene scene;
     std::unique_ptr<scene::SceneOptions> registrar;
     bool compareFull = false;
+    bool overlayCosts = false;  // also time each frame without overlays and with each alone
     std::string json;
     std::string saveFrames;  // prefix for PNGs of every frame, empty = none
 };
@@ -46,6 +49,8 @@ struct FrameRecord {
     uint64_t triangles = 0, indices = 0, bytes = 0;
     double psnr = 0, differing = 0;  // against the full grid (compare mode)
     double fullTotal = 0;            // full-grid frame time (compare mode)
+    double bare = 0;                 // frame time without overlay passes (--overlay-costs)
+    std::vector<double> alone;       // frame time with only added pass k (--overlay-costs)
 };
 
 struct Stats {
@@ -102,6 +107,9 @@ void runFrames(const FramesOptions& o) {
     if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
         std::fprintf(stderr, "%s\n", zones.c_str());
     render::addOverlayPasses(terrain, sc, field);
+    const std::vector<std::string> passNames = terrain.addedPassNames();
+    if (o.overlayCosts && passNames.empty())
+        throw UsageError("--overlay-costs needs overlays to time: --style with lines, hatch or contours, or --preset");
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
     std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());
@@ -147,6 +155,20 @@ void runFrames(const FramesOptions& o) {
             r.fullTotal = full.total;
             detail += msg(", full grid ", fixed(full.total, 1), " ms, PSNR ",
                           std::isfinite(d.psnr) ? fixed(d.psnr, 2) + " dB" : std::string("identical"));
+        }
+        if (o.overlayCosts) {
+            // Interleaved with the frame above, so the machine's load weighs on all alike.
+            render::DrawOptions bareDraw = draw;
+            bareDraw.addedPasses = 0;
+            FrameRecord other;
+            timedFrame(terrain, target, cameras[k], bareDraw, other);
+            r.bare = other.total;
+            for (size_t p = 0; p < passNames.size() && p < 64; ++p) {
+                bareDraw.addedPasses = uint64_t(1) << p;
+                timedFrame(terrain, target, cameras[k], bareDraw, other);
+                r.alone.push_back(other.total);
+            }
+            detail += msg(", no overlays ", fixed(r.bare, 1), " ms");
         }
         records.push_back(r);
         progress.update(int64_t(k + 1), detail);
@@ -234,6 +256,25 @@ void runFrames(const FramesOptions& o) {
                      {"note", "dB against the full grid; null = identical frames"}};
         j["differing_share_median"] = differing.median;
     }
+    if (o.overlayCosts) {
+        // Ratios of medians of frames drawn in turn from the same cameras.
+        Stats bare = stats(records, &FrameRecord::bare);
+        std::printf("overlay costs (frame medians, each camera drawn in turn with and without): no overlays %.3f ms, "
+                    "all overlays %.3f ms: x%.3f (%+.1f%%)\n",
+                    bare.median, total.median, total.median / bare.median, 100.0 * (total.median / bare.median - 1.0));
+        nlohmann::json alone = nlohmann::json::object();
+        for (size_t p = 0; p < passNames.size() && p < 64; ++p) {
+            std::vector<double> v;
+            for (const FrameRecord& r : records) v.push_back(r.alone[p]);
+            const double m = median(v);
+            std::printf("  %-10s alone %.3f ms: x%.3f (%+.1f%%)\n", passNames[p].c_str(), m, m / bare.median,
+                        100.0 * (m / bare.median - 1.0));
+            alone[passNames[p]] = {{"frame_median", m}, {"ratio", m / bare.median}};
+        }
+        j["overlay_costs"] = {{"bare_frame_median", bare.median},
+                              {"all_ratio", total.median / bare.median},
+                              {"alone", alone}};
+    }
     nlohmann::json perFrame = nlohmann::json::array();
     for (const FrameRecord& r : records)
         perFrame.push_back({{"refine", r.refine}, {"upload", r.upload}, {"draw", r.draw}, {"gpu", r.gpu},
@@ -267,6 +308,8 @@ void addFramesCommand(CLI::App& app) {
             scene::kLodOptions | scene::kStyleOptions | scene::kFrameOptions | scene::kZoneOptions);
     cmd->add_flag("--compare-full", o->compareFull,
                   "Also render the full grid from each camera: frame-time ratio, PSNR, differing pixels");
+    cmd->add_flag("--overlay-costs", o->overlayCosts,
+                  "Also draw each frame without the overlay passes and with each alone: their cost as ratios");
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");
     cmd->add_option("--save-frames", o->saveFrames, "Write every frame as PNG (NAME_0000.png, ...)");
     cmd->callback([o] {

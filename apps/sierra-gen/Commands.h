@@ -1,6 +1,8 @@
 #pragma once
 // The subcommands of sierra-gen, each registering itself on the app.
 
+#include <sierra/terrain/Heightfield.h>
+
 #include <CLI/CLI.hpp>
 
 namespace sierra::apps {
@@ -11,5 +13,11 @@ void addMapCommand(CLI::App& app);
 void addZonesCommand(CLI::App& app);
 // `tiles`: the procedural surface tiles as PNGs.
 void addTilesCommand(CLI::App& app);
+// `curvature`: the 4-direction curvature field as .npy, and its Figure 2 intensity image.
+void addCurvatureCommand(CLI::App& app);
+
+// The loaded field without the padding the scene loader adds on the right and
+// at the bottom: the bounding box of the valid samples from (0, 0). (MapCommand.cpp)
+terrain::Heightfield unpadded(const terrain::Heightfield& padded);
 
 }  // namespace sierra::apps

@@ -2,6 +2,7 @@
 //   sierra-gen map ...     a 2D map PNG: height colours, hillshade or slope, with a colour bar
 //   sierra-gen zones ...   zone map -> vectorised borderlines (JSON, SVG), optionally the map itself
 //   sierra-gen tiles ...   procedural seamless surface tiles (PNG)
+//   sierra-gen curvature ... the 4-direction curvature field (.npy) and its Figure 2 image (PNG)
 
 #include "Commands.h"
 
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
     sierra::apps::addMapCommand(app);
     sierra::apps::addZonesCommand(app);
     sierra::apps::addTilesCommand(app);
+    sierra::apps::addCurvatureCommand(app);
     // The subcommands do their work in their callbacks, during parsing.
     return sierra::apps::runMain(app, argc, argv, nullptr, nullptr);
 }

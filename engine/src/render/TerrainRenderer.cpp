@@ -105,7 +105,8 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
         if (!s.wireframe) s.wireframe = WireframePass::create();
         s.wireframe->draw(frame);
     }
-    for (auto& pass : s.extra) pass->draw(frame);
+    for (size_t k = 0; k < s.extra.size(); ++k)
+        if (k >= 64 || (options.addedPasses >> k & 1u) != 0) s.extra[k]->draw(frame);
     glEndQuery(GL_TIME_ELAPSED);
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameUniformBinding, GLuint(previousBlock));
     s.timerPending = true;
@@ -148,6 +149,12 @@ void TerrainRenderer::setSurface(std::unique_ptr<Surface> surface) {
 void TerrainRenderer::addPass(std::unique_ptr<Pass> pass) {
     SIERRA_CHECK(pass != nullptr, "addPass needs a pass");
     state_->extra.push_back(std::move(pass));
+}
+
+std::vector<std::string> TerrainRenderer::addedPassNames() const {
+    std::vector<std::string> names;
+    for (const auto& pass : state_->extra) names.emplace_back(pass->name());
+    return names;
 }
 
 TerrainGpu& TerrainRenderer::terrain() { return state_->terrain; }

@@ -228,4 +228,14 @@ void writeRgbPng(const std::string& path, const RgbImage& image) {
     writeFileAtomic(path, png);
 }
 
+void writeGreyPng(const std::string& path, int width, int height, std::span<const uint8_t> grey) {
+    SIERRA_CHECK(width > 0 && height > 0 && grey.size() == size_t(width) * size_t(height), "cannot write ", path,
+                 ": a ", width, "x", height, " grey image needs ", int64_t(width) * height, " bytes, got ",
+                 grey.size());
+    std::vector<uint8_t> png;
+    if (!stbi_write_png_to_func(appendBytes, &png, width, height, 1, grey.data(), width))
+        throw Error(msg("cannot write ", path, ": PNG encoding failed for a ", width, "x", height, " image"));
+    writeFileAtomic(path, png);
+}
+
 }  // namespace sierra::terrain

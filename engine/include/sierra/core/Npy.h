@@ -1,6 +1,6 @@
 #pragma once
-// NumPy .npy encoding (format version 1.0) of 2-D float32 arrays: the one
-// writer behind heightfield exports and depth images.
+// NumPy .npy encoding (format version 1.0) of float32 arrays: the one
+// writer behind heightfield exports, depth images and curvature fields.
 
 #include <cstdint>
 #include <span>
@@ -11,5 +11,10 @@ namespace sierra {
 // The bytes of a .npy file holding `values` as a little-endian float32 array
 // of shape (rows, cols) in C order. Any float is stored as is, NaN included.
 std::vector<uint8_t> encodeNpyFloat32(int rows, int cols, std::span<const float> values);
+
+// The same for any shape (C order: the last index varies fastest), e.g.
+// {rows, cols, 4} for a curvature field. Every extent > 0; values.size() is
+// their product.
+std::vector<uint8_t> encodeNpyFloat32(std::span<const int> shape, std::span<const float> values);
 
 }  // namespace sierra

@@ -58,6 +58,9 @@ struct DrawOptions {
     int colourBy = 0;
     int threads = 0;         // refinement threads, 0 = default
     Lighting lighting;
+    // Which passes added with addPass() draw: bit k for the k-th added (all by
+    // default; sierra-bench frames --overlay-costs times them apart).
+    uint64_t addedPasses = ~uint64_t(0);
 };
 
 // What one frame cost and produced. drawMs is GPU time from a timer query,
@@ -84,6 +87,8 @@ public:
     void setSurface(std::unique_ptr<Surface> surface);
     // Runs after the terrain and wireframe passes, in the order added.
     void addPass(std::unique_ptr<Pass> pass);
+    // The names of the passes added with addPass(), in order.
+    std::vector<std::string> addedPassNames() const;
     // The linear eye-space depth of the terrain from `camera` (NaN where none).
     DepthImage renderDepth(const Camera& camera, int width, int height, const DrawOptions& options);
 

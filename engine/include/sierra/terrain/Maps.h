@@ -7,6 +7,7 @@
 #include <sierra/terrain/Heightfield.h>
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -78,5 +79,8 @@ int drawText(RgbImage& image, int x, int y, const std::string& text, Rgb colour,
 
 // Encodes `image` as PNG and writes it atomically.
 void writeRgbPng(const std::string& path, const RgbImage& image);
+// The same for an 8-bit grey image, row-major, width * height bytes (a third
+// of the data of the RGB form, for intensity images).
+void writeGreyPng(const std::string& path, int width, int height, std::span<const uint8_t> grey);
 
 }  // namespace sierra::terrain

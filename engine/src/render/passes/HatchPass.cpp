@@ -20,7 +20,8 @@ std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu>
     SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f, "hatch pass: width must be > 0 pixels, got ",
                  desc.width);
     auto pass = std::make_unique<HatchPass>();
-    pass->program_ = gpu::Program::create({.vertex = "hatch.vert", .fragment = "line.frag"});
+    pass->program_ =
+        gpu::Program::create({.vertex = "hatch.vert", .fragment = "line.frag", .geometry = "hatch_geom.glsl"});
     pass->vao_ = gpu::VertexArray::create();
     pass->curvature_ = std::move(curvature);
     pass->desc_ = desc;
@@ -90,7 +91,9 @@ void HatchPass::draw(const FrameContext& frame) {
     glUniform1i(program_.uniform("uBaseStride"), base);
     glUniform1i(program_.uniform("uLatticeSide"), perSide);
     glBindVertexArray(vao_.id());
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(perSide) * GLsizei(perSide));
+    // One point per stroke; hatch_geom.glsl makes the quads. (llvmpipe sets up
+    // its vertex pipeline once per instance, so instanced quads cost more.)
+    glDrawArrays(GL_POINTS, 0, GLsizei(perSide) * GLsizei(perSide));
 }
 
 }  // namespace sierra::render

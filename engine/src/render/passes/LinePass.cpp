@@ -3,6 +3,7 @@
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 #include "render/passes/OverlayState.h"
+#include "render/passes/QuadBatch.h"
 #include <sierra/render/TerrainGpu.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -31,6 +32,7 @@ std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines, const
     pass->segments_ = data.size() / 8;
     if (!data.empty()) pass->buffer_ = gpu::Buffer::create({.size = data.size() * sizeof(float), .data = data.data()});
     pass->vao_ = gpu::VertexArray::create();
+    pass->quadIndices_ = createQuadIndices(pass->vao_);
     return pass;
 }
 
@@ -44,7 +46,7 @@ void LinePass::draw(const FrameContext& frame) {
     frame.terrain.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_.id());
     glBindVertexArray(vao_.id());
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(segments_));
+    drawQuads(int64_t(segments_));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
 }
 

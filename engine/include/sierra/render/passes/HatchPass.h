@@ -2,7 +2,8 @@
 // Hatch shading over the terrain: one stroke per grid vertex, generated on
 // the GPU from the curvature field (shaders/hatch_strokes.comp once, the
 // view-independent direction and opacity; shaders/hatch.vert every frame:
-// instancing with vertex pulling, nothing rebuilt on the CPU), on the vertex's
+// one point per stroke pulled from the field and expanded to its quad by a
+// geometry stage, nothing rebuilt on the CPU), on the vertex's
 // tangent plane, along or across the curvature-weighted axis
 // (analysis::hatchStrokeDirection), with opacity = the largest curvature.
 // Far away the strokes thin out by powers of two and fade with the screen

@@ -36,6 +36,7 @@ private:
     gpu::Program program_;
     gpu::Buffer buffer_;
     gpu::VertexArray vao_;
+    gpu::Buffer quadIndices_;  // one batch of quads (render/passes/QuadBatch.h)
     size_t segments_ = 0;
     LinePassDesc desc_;
 };
