@@ -29,6 +29,14 @@ public:
 int runMain(CLI::App& app, int argc, char** argv, const std::function<void()>& configure,
             const std::function<int()>& run);
 
+// Replaces this process with `program` from this program's own directory,
+// given this process's arguments unchanged (those runMain was called with, or
+// argc/argv). The GL-free programs hand their GL work to such a program beside
+// them (sierra-bench frames, sierra-gen curvature --device gpu). Returns only
+// by throwing sierra::Error when the program cannot be started.
+[[noreturn]] void execBeside(const char* program);
+[[noreturn]] void execBeside(const char* program, int argc, char** argv);
+
 // Runs f, rethrowing any sierra::Error as UsageError (for option checks inside
 // subcommand callbacks).
 void asUsage(const std::function<void()>& f);

@@ -10,40 +10,8 @@
 
 #include "AppMain.h"
 
-#ifndef SIERRA_BENCH_FRAMES
-#include <sierra/core/Error.h>
-
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <string>
-#include <unistd.h>
-#include <vector>
-#endif
-
-namespace {
-
-#ifndef SIERRA_BENCH_FRAMES
-constexpr const char* kFramesProgram = "sierra-bench-frames";
-
-// Replaces this process with the GL program beside it, passing the arguments
-// on unchanged; returns only when that program cannot be started.
-int execFrames(int argc, char** argv) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    const fs::path program = (ec ? fs::path(argv[0]).parent_path() : self.parent_path()) / kFramesProgram;
-    std::vector<char*> args(argv, argv + argc);
-    args.push_back(nullptr);
-    ::execv(program.c_str(), args.data());
-    const int code = errno;
-    std::fprintf(stderr, "sierra-bench: error: frames runs %s, which cannot be started (%s)\n",
-                 program.c_str(), std::strerror(code));
-    return sierra::apps::kExitRuntime;
-}
-#endif
-
-}  // namespace
+#include <cstdio>
+#include <string_view>
 
 int main(int argc, char** argv) {
     CLI::App app{"Benchmarks of Sierra's SBT extraction and frame pipeline", "sierra-bench"};
@@ -51,7 +19,14 @@ int main(int argc, char** argv) {
 #ifdef SIERRA_BENCH_FRAMES
     sierra::apps::addFramesCommand(app);
 #else
-    if (argc > 1 && std::string(argv[1]) == "frames") return execFrames(argc, argv);
+    if (argc > 1 && std::string_view(argv[1]) == "frames") {
+        try {
+            sierra::apps::execBeside("sierra-bench-frames", argc, argv);
+        } catch (const sierra::Error& e) {
+            std::fprintf(stderr, "sierra-bench: error: frames: %s\n", e.what());
+            return sierra::apps::kExitRuntime;
+        }
+    }
     sierra::apps::addStaticCommand(app);
     // Listed for --help; its options are the frames program's own.
     app.add_subcommand("frames", "Time view-dependent frames along a camera path (EGL; `frames --help`)")

@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands of sierra-gen, each registering itself on the app.
 
+#include <sierra/analysis/Curvature.h>
 #include <sierra/terrain/Heightfield.h>
 
 #include <CLI/CLI.hpp>
@@ -16,8 +17,9 @@ void addTilesCommand(CLI::App& app);
 // `curvature`: the 4-direction curvature field as .npy, and its Figure 2 intensity image.
 void addCurvatureCommand(CLI::App& app);
 
-// The loaded field without the padding the scene loader adds on the right and
-// at the bottom: the bounding box of the valid samples from (0, 0). (MapCommand.cpp)
-terrain::Heightfield unpadded(const terrain::Heightfield& padded);
+// `curvature --device gpu` in sierra-gen-gpu, the GL program built beside
+// sierra-gen (sierra-gen itself links no GL and runs it for that option).
+analysis::CurvatureField computeCurvatureOnGpu(const terrain::Heightfield& field,
+                                               const analysis::CurvatureOptions& options);
 
 }  // namespace sierra::apps

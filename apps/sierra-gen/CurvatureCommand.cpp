@@ -10,10 +10,12 @@
 // --png: the Figure 2 image of the seed document, one pixel per sample: the
 // largest of the 4 magnitudes as grey intensity (0 black, 1 and above white);
 // no-data samples black. --device gpu computes the same field with the
-// compute shader (render/CurvatureGpu.h) in a headless EGL context.
+// compute shader (render/CurvatureGpu.h) in a headless EGL context: sierra-gen
+// runs sierra-gen-gpu for it (CurvatureGpu.cpp), so sierra-gen links no GL.
 #include "Commands.h"
 
 #include "AppMain.h"
+#include "GenTerrain.h"
 
 #include <sierra/analysis/Curvature.h>
 #include <sierra/core/Error.h>
@@ -22,8 +24,6 @@
 #include <sierra/core/Npy.h>
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
-#include <sierra/gpu/EglContext.h>
-#include <sierra/render/CurvatureGpu.h>
 #include <sierra/scene/Options.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/terrain/Maps.h>
@@ -80,19 +80,6 @@ analysis::CurvatureOptions curvatureOptions(const CurvatureCommandOptions& o) {
     return options;
 }
 
-analysis::CurvatureField computeOnGpu(const terrain::Heightfield& field, const analysis::CurvatureOptions& options) {
-    gpu::EglContext context = gpu::EglContext::create({.width = 16, .height = 16});
-    log::info("gpu: ", context.renderer(), " (", context.platform(), ")");
-    render::CurvatureGpu curvature = render::CurvatureGpu::create(field);
-    Stopwatch clock;
-    curvature.compute(options, /*tangentPlanes=*/false);
-    analysis::CurvatureField result = curvature.read();  // waits for the dispatches
-    log::info("curvature on the gpu: ", clock.ms(), " ms with the read-back");
-    result.spacingX = field.spacingX();
-    result.spacingZ = field.spacingZ();
-    return result;
-}
-
 // Figure 2: the largest magnitude per sample as grey intensity, clamped at 1.
 std::vector<uint8_t> intensityImage(const analysis::CurvatureField& field) {
     std::vector<uint8_t> grey(size_t(field.width) * size_t(field.height));
@@ -107,16 +94,22 @@ std::vector<uint8_t> intensityImage(const analysis::CurvatureField& field) {
 
 void runCurvature(const CurvatureCommandOptions& o) {
     const analysis::CurvatureOptions options = curvatureOptions(o);
+#ifndef SIERRA_GEN_GPU
+    // sierra-gen links no GL: the GPU path is sierra-gen-gpu's, run with these arguments.
+    if (o.device == "gpu") execBeside("sierra-gen-gpu");
+#endif
     // Every output location is checked before the work, so a bad path fails at once.
     ensureWritableLocation(o.out);
     if (!o.png.empty()) ensureWritableLocation(o.png);
 
     std::string source;
-    const terrain::Heightfield field = unpadded(scene::loadTerrain(o.scene.terrain, &source));
+    const terrain::Heightfield field = loadRealTerrain(o.scene.terrain, &source);
     log::info("terrain: ", source, "; curvature of ", field.width(), "x", field.height(), " samples");
     analysis::CurvatureField curvature;
     if (o.device == "gpu") {
-        curvature = computeOnGpu(field, options);
+#ifdef SIERRA_GEN_GPU
+        curvature = computeCurvatureOnGpu(field, options);
+#endif
     } else {
         Stopwatch clock;
         curvature = analysis::computeCurvature(field, options);

@@ -6,6 +6,7 @@
 
 #include <sierra/terrain/FileIO.h>
 #include <sierra/terrain/HeightfieldIO.h>
+#include <sierra/terrain/Maps.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -3,6 +3,7 @@
 #include "terrain/Npz.h"
 
 #include <sierra/terrain/FileIO.h>
+#include <sierra/terrain/Maps.h>
 #include <sierra/terrain/Padding.h>
 
 #include <spng.h>

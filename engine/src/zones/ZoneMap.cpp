@@ -5,6 +5,7 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/terrain/HeightfieldIO.h>
+#include <sierra/terrain/Maps.h>
 
 #include <algorithm>
 #include <array>

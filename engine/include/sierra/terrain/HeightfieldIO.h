@@ -82,18 +82,6 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options 
 Heightfield decodeHeightfield(const std::string& name, const std::vector<uint8_t>& bytes,
                               const LoadOptions& options = {});
 
-// An 8-bit RGB image (zone maps, tile images) decoded from PNG bytes with the
-// heightmap PNG decoder's checks: every CRC, the chunk limits, and the field
-// size limits (checkFieldSize with maxPaddedSide) before the pixels are
-// allocated. `what` names the data in messages.
-struct RgbImage {
-    int width = 0;
-    int height = 0;
-    std::vector<uint8_t> rgb;  // width * height * 3 bytes, row 0 first
-};
-RgbImage decodePngRgb8(const std::string& what, std::span<const uint8_t> bytes,
-                       int maxPaddedSide = kDefaultMaxPaddedSide);
-
 // Writes .png (16-bit grey, heights mapped linearly from range() to 0..65535;
 // a flat field writes 0 everywhere; nothing else is recorded: spacing,
 // vertical scale and mask are lost) or .npy (float32, exact; masked samples

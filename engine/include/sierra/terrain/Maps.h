@@ -5,6 +5,7 @@
 
 #include <sierra/terrain/ColourRamp.h>
 #include <sierra/terrain/Heightfield.h>
+#include <sierra/terrain/HeightfieldIO.h>
 
 #include <cstdint>
 #include <span>
@@ -21,12 +22,20 @@ struct RgbImage {
     Rgb at(int x, int y) const {
         const uint8_t* p = rgb.data() + (size_t(y) * width + x) * 3;
         return {p[0], p[1], p[2]};
+
     }
     void set(int x, int y, Rgb c) {
         uint8_t* p = rgb.data() + (size_t(y) * width + x) * 3;
         p[0] = c.r, p[1] = c.g, p[2] = c.b;
     }
 };
+
+// An RGB image (zone maps, tile images) decoded from PNG bytes with the
+// heightmap PNG decoder's checks (HeightfieldIO.cpp): every CRC, the chunk
+// limits, and the field size limits (checkFieldSize with maxPaddedSide) before
+// the pixels are allocated. `what` names the data in messages.
+RgbImage decodePngRgb8(const std::string& what, std::span<const uint8_t> bytes,
+                       int maxPaddedSide = kDefaultMaxPaddedSide);
 
 // The sun for hillshade: compass azimuth in degrees clockwise from north (the
 // top of the map), altitude in degrees above the horizon. Defaults 315 / 45:
