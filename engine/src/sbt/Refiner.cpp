@@ -693,17 +693,18 @@ void Refiner::buildViewKeys() {
     const float base = float(double(lo) * vs);
     const float step = float((double(hi) - double(lo)) * vs / 65535.0);
     if (!std::isfinite(base) || !std::isfinite(step)) return;
-    auto quantise = [&](float height) -> uint16_t {
-        if (step == 0.0f) return 0;
-        const double q = std::round((double(height) * vs - double(base)) / double(step));
-        return uint16_t(std::clamp(q, 0.0, 65535.0));
-    };
-    // The largest distance between a decoded height (in float, as the walker
-    // decodes it) and the exact world height (in double, as the baseline).
+    // Every sample's key, and the largest distance between a decoded height
+    // (in float, as the walker decodes it) and the exact world height (in
+    // double, as the baseline computes it).
+    std::vector<uint16_t> quantised(count, 0);
+    const double inverse = step != 0.0f ? 1.0 / double(step) : 0.0;
     double worst = 0.0;
     for (size_t k = 0; k < count; ++k) {
-        const float decoded = base + float(quantise(h[k])) * step;
-        worst = std::max(worst, std::fabs(double(decoded) - double(h[k]) * vs));
+        const double exact = double(h[k]) * vs;
+        const double q = std::clamp((exact - double(base)) * inverse + 0.5, 0.0, 65535.0);
+        quantised[k] = uint16_t(q);  // rounded to the nearest (q >= 0)
+        const float decoded = base + float(int32_t(quantised[k])) * step;
+        worst = std::max(worst, std::fabs(double(decoded) - exact));
     }
     keyYBase_ = base, keyYStep_ = step;
     keyYError_ = std::nextafter(float(worst * (1.0 + 0x1.0p-20)), std::numeric_limits<float>::infinity());
@@ -711,7 +712,7 @@ void Refiner::buildViewKeys() {
     viewKeys_.resize(3 * nodes);
     uint16_t* keys = viewKeys_.data();
     forEachNode([&](uint64_t node, uint32_t m) {
-        keys[3 * node] = quantise(h[m]);
+        keys[3 * node] = quantised[m];
         keys[3 * node + 1] = uint16_t(floatKey(err[m]));
         keys[3 * node + 2] = uint16_t(floatKey(rad[m]));
     });
