@@ -163,7 +163,7 @@ private:
     // height range (keyYBase_ + key * keyYStep_, within keyYError_ of the
     // exact one), and the top 16 bits of its error and of its radius (each
     // between the float of its key and that of the next key). They decide all
-    // but the vertices near the threshold (about 1.5% on a rough fractal at
+    // but the vertices near the threshold (0.6% on a rough 2049^2 fractal at
     // tau = 1), which read the exact arrays, and a subtree's keys sit together
     // level by level instead of scattered over three row-major arrays.
     // Memory: 6 * (2^(2n+1) - 2) bytes, about 12 bytes per grid sample. Built
