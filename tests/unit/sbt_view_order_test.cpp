@@ -12,6 +12,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -189,6 +190,43 @@ TEST(SbtViewOrder, SuccessiveViewsMatchTheReference) {
         sbt::StripMesh mesh;
         refiner.refineView(vp, mesh);
         ASSERT_EQ(decodedInOrder(mesh), referenceLeaves(f, ve, vp));
+    }
+}
+
+// Terrains the view keys describe trivially, not at all, or near float
+// precision: a flat one (every height key 0), one with NaN samples (no keys:
+// the exact path), and a small relief 10^5 units up (the key step close to the
+// float spacing of the heights).
+TEST(SbtViewOrder, FlatNanAndHighTerrainsMatchTheReference) {
+    for (int kind = 0; kind < 3; ++kind) {
+        SCOPED_TRACE("kind " + std::to_string(kind));
+        Heightfield f = kind == 0 ? Heightfield(129, 129, 3.0f)
+                                  : sierra::terrain::generateDiamondSquare({.size = 129, .seed = 4, .hurst = 0.5f});
+        auto [lo, hi] = f.range();
+        if (kind > 0) f.setVerticalScale((kind == 2 ? 2.0f : 25.0f) / (hi - lo));
+        if (kind == 1) {
+            f.at(40, 77) = std::numeric_limits<float>::quiet_NaN();
+            f.at(100, 3) = std::numeric_limits<float>::quiet_NaN();
+        }
+        if (kind == 2)
+            for (float& h : f.samples()) h += 1.0e5f / f.verticalScale();
+        const auto ve = sbt::computeVertexErrors(f);
+        sbt::Refiner refiner(f, ve, {.threads = 1});
+        const float base = kind == 2 ? 1.0e5f : 0.0f;
+        const std::array<float, 3> eye = {-20.0f, base + 40.0f, 30.0f};
+        const auto m = viewProjection(eye, {64.0f, base, 64.0f}, 0.9f, 1.5f, 0.1f, 1000.0f);
+        sbt::ViewParams vp;
+        vp.eye = eye;
+        vp.lambda = sbt::projectionLambda(1080.0f, 0.9f);
+        vp.tau = 0.5f;
+        vp.planes = sbt::frustumPlanes(m.data());
+        for (bool cull : {true, false}) {
+            vp.cull = cull;
+            sbt::StripMesh mesh;
+            refiner.refineView(vp, mesh);
+            EXPECT_GT(mesh.triangleCount, 0);
+            ASSERT_EQ(decodedInOrder(mesh), referenceLeaves(f, ve, vp)) << "cull " << cull;
+        }
     }
 }
 
