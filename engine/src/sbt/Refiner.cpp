@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 namespace sierra::sbt {
@@ -76,6 +77,14 @@ struct Walker {
     float fex, fey, fez, fsx, fsz, fkE, fvs;
     float distanceSlack;     // absolute slack on squared distances (world units^2)
     float planeSlack[6];     // absolute slack on plane distances (world units)
+    // view keys (Refiner::viewKeys_), null when there are none: 3 per tree node
+    const uint16_t* viewKeys;
+    float keyYBase, keyYStep, keyYError;  // world y = keyYBase + key * keyYStep, +- keyYError
+    const float* dxx;  // (i * spacingX - eye x)^2 for every column i, rounded to float
+    const float* dzz;  // (j * spacingZ - eye z)^2 for every row j
+    float keyDy0;      // keyYBase - eye y
+    float keySlack;    // absolute slack of the keyed test's squared distances (world units^2)
+    float keyGrow;     // relative slack: (1 + 2^-15) / (1 - 2^-15), rounded up
 
     // output
     Refiner::Chunk* chunk;
@@ -272,7 +281,7 @@ struct Walker {
     // children are decided here too (node() is inlined into split()), so a
     // call is made only for a child that splits: half of the visited
     // triangles are leaves.
-    inline void node(V a, V q, V b, int l, unsigned mask) {
+    inline void node(V a, V q, V b, int l, unsigned mask, uint64_t k) {
         ensure(4);
         const V m = (a + b) >> 1;
         const uint32_t i = uint32_t(m), j = uint32_t(m >> 32);
@@ -292,18 +301,19 @@ struct Walker {
             ++leaves;
             return;
         }
-        split(a, q, b, l, mask, m);
+        if (mask == 0 && viewKeys) splitKeyed(a, q, b, l, m, k);
+        else split(a, q, b, l, mask, m, k);
     }
 
-    void split(V a, V q, V b, int l, unsigned mask, V m) {
+    void split(V a, V q, V b, int l, unsigned mask, V m, uint64_t k) {
         if (l + 1 < finest) {
             // the children's data, needed right after this call's frame set-up
             prefetch((a + q) >> 1);
             prefetch((q + b) >> 1);
-            node(a, m, q, l + 1, mask);
+            node(a, m, q, l + 1, mask, 2 * k + 2);
             ensure(4);
             append(index(q), l & 1);
-            node(q, m, b, l + 1, mask);
+            node(q, m, b, l + 1, mask, 2 * k + 3);
         } else {
             leafFast(a, m, l + 1);
             ensure(4);
@@ -312,7 +322,87 @@ struct Walker {
         }
     }
 
-    void refineFast(V a, V q, V b, int l, unsigned mask) { node(a, q, b, l, mask); }
+    void refineFast(V a, V q, V b, int l, unsigned mask, uint64_t k) { node(a, q, b, l, mask, k); }
+
+    // --- keyed view path: below a sphere fully inside the frustum -----------
+    // Tree node k's split vertex from its view keys (Refiner::viewKeys_): the
+    // world y to within keyYError, the error and the radius each between the
+    // float of its key and that of the next key. The vertex is active for sure
+    // when the smallest reach exceeds the distance computed with the decoded y
+    // by more than keyYError (the true distance differs by at most that) plus
+    // the float slack of activeFast; inactive for sure when the largest reach
+    // falls short by as much; else activeFast decides from the exact arrays.
+    // The keys of a subtree lie level by level in contiguous runs, so a
+    // triangle's descendants a few levels down share one or two cache lines.
+    inline bool activeKeyed(V m, uint64_t k) const {
+        const uint32_t i = uint32_t(m), j = uint32_t(m >> 32);
+        const uint16_t* key = viewKeys + 3 * k;
+        const float dy = float(int32_t(key[0])) * keyYStep + keyDy0;
+        const float d2 = dxx[i] + dzz[j] + dy * dy;
+        const uint32_t ek = uint32_t(key[1]) << 16, rk = uint32_t(key[2]) << 16;
+        const float lo = fkE * std::bit_cast<float>(ek) + std::bit_cast<float>(rk) - keyYError;
+        // lo >= -keyYError, and keyYError^2 is far below keySlack: a negative
+        // lo never passes.
+        if (lo * lo > d2 * keyGrow + keySlack) [[likely]]
+            return true;
+        const float hi = fkE * std::bit_cast<float>(ek + 0x10000u) + std::bit_cast<float>(rk + 0x10000u) +
+                         keyYError;
+        const float hi2 = hi * hi;
+        if (hi2 < d2 - (0x1.0p-15f * (hi2 + d2) + keySlack)) [[likely]]
+            return false;
+        const uint32_t mi = j * side + i;
+        return activeFast(i, j, float(i) * fsx, height[mi] * fvs, float(j) * fsz, err[mi], rad[mi]);
+    }
+
+    // append() once the strip has started, as it always has on the keyed path
+    // (nothing is culled below a sphere fully inside the frustum).
+    inline void appendStarted(uint32_t v, int p) {
+        if (v == out[-1] || v == out[-2]) return;
+        if (p == parity) {
+            out[0] = out[-2];
+            ++out;
+        } else {
+            parity = p;
+        }
+        *out++ = v;
+    }
+    inline void leafKeyed(V q, int l) {
+        appendStarted(index(q), l & 1);
+        ++leaves;
+    }
+
+    // Triangle (a, q, b), tree node k, at level l < finest, whose split vertex
+    // m is active and whose sphere lies inside every plane: both children are
+    // decided here, and only a child that splits costs a call.
+    void splitKeyed(V a, V q, V b, int l, V m, uint64_t k) {
+        ensure(6);
+        if (l + 1 < finest) {
+            // the keys kPrefetchDepth levels below, contiguous in tree order
+            const uint64_t first = ((k + 2) << kPrefetchDepth) - 2;
+            if (first < keyNodes) {
+                const char* p = reinterpret_cast<const char*>(viewKeys + 3 * first);
+                __builtin_prefetch(p);
+                __builtin_prefetch(p + 6 * (uint64_t(1) << kPrefetchDepth) - 1);
+            }
+            const V left = (a + q) >> 1;
+            if (activeKeyed(left, 2 * k + 2)) {
+                splitKeyed(a, m, q, l + 1, left, 2 * k + 2);
+                ensure(4);
+            } else {
+                leafKeyed(m, l + 1);
+            }
+            appendStarted(index(q), l & 1);
+            const V right = (q + b) >> 1;
+            if (activeKeyed(right, 2 * k + 3)) splitKeyed(q, m, b, l + 1, right, 2 * k + 3);
+            else leafKeyed(m, l + 1);
+        } else {
+            leafKeyed(m, l + 1);
+            appendStarted(index(q), l & 1);
+            leafKeyed(m, l + 1);
+        }
+    }
+    static constexpr int kPrefetchDepth = 3;
+    uint64_t keyNodes;  // tree nodes with view keys
 
     // Fixed mode on the split keys: does triangle `node` (tree index, see
     // Refiner::splitKeys_) with hypotenuse (a, b) split? The exact float is read
@@ -364,7 +454,8 @@ struct Walker {
                 case Refiner::Op::kSubtree:
                     if (!kView && needStart) start(index(V(op->a)));
                     if constexpr (kFast) {
-                        if (op->level < finest) refineFast(V(op->a), V(op->q), V(op->b), op->level, op->mask);
+                        if (op->level < finest)
+                            refineFast(V(op->a), V(op->q), V(op->b), op->level, op->mask, op->node);
                         else leafFast(V(op->a), V(op->q), op->level);
                     } else if (!kView && keys) {
                         refineKeyed(uint32_t(op->a), uint32_t(op->q), uint32_t(op->b), op->level,
@@ -503,19 +594,16 @@ Refiner::Refiner(const terrain::Heightfield& field, const VertexErrors& errors, 
                                        : std::clamp(2 * n - 10, 0, 6);
 }
 
-// Keys of every triangle of levels 0..2n-1 in tree order: a top-down pass over
-// the whole tree, subtrees at a fixed level spread over the threads.
-void Refiner::buildSplitKeys() {
-    const float* err = errors_->error.data();
-    for (float e : errors_->error)
-        if (std::isnan(e) || std::signbit(e)) return;  // keys would not be monotone: exact path
+// Calls visit(node, m) for every triangle of levels 0..2n-1 (tree index, linear
+// index of its split vertex): a top-down pass over the whole tree, subtrees at
+// a fixed level spread over the threads.
+template <typename Visit>
+void Refiner::forEachNode(Visit&& visit) {
     const uint64_t nodes = (uint64_t(2) << (2 * n_)) - 2;
-    splitKeys_.resize(nodes);
-    uint16_t* keys = splitKeys_.data();
     auto fill = [&](auto&& self, uint32_t a, uint32_t q, uint32_t b, uint64_t node) -> void {
         if (node >= nodes) return;
         const uint32_t m = (a + b) >> 1;
-        keys[node] = uint16_t(floatKey(err[m]));
+        visit(node, m);
         self(self, a, m, q, 2 * node + 2);
         self(self, q, m, b, 2 * node + 3);
     };
@@ -529,7 +617,7 @@ void Refiner::buildSplitKeys() {
             return;
         }
         const uint32_t m = (a + b) >> 1;
-        keys[node] = uint16_t(floatKey(err[m]));
+        visit(node, m);
         self(self, a, m, q, l + 1, 2 * node + 2);
         self(self, q, m, b, l + 1, 2 * node + 3);
     };
@@ -543,6 +631,18 @@ void Refiner::buildSplitKeys() {
         },
         threads_ > 0 ? threads_ : defaultThreadCount());
 }
+
+// Keys of every triangle of levels 0..2n-1 in tree order.
+void Refiner::buildSplitKeys() {
+    const float* err = errors_->error.data();
+    for (float e : errors_->error)
+        if (std::isnan(e) || std::signbit(e)) return;  // keys would not be monotone: exact path
+    const uint64_t nodes = (uint64_t(2) << (2 * n_)) - 2;
+    splitKeys_.resize(nodes);
+    uint16_t* keys = splitKeys_.data();
+    forEachNode([&](uint64_t node, uint32_t m) { keys[node] = uint16_t(floatKey(err[m])); });
+}
+
 
 Refiner::~Refiner() = default;
 
@@ -582,9 +682,56 @@ void Refiner::measureMagnitude() {
                            double(side_ - 1) * field_->spacingZ()});
 }
 
+// View keys of every triangle of levels 0..2n-1 in tree order (see
+// viewKeys_): the split vertex's world height quantised to 16 bits over the
+// grid's height range, and the top 16 bits of its error and of its radius.
+void Refiner::buildViewKeys() {
+    const size_t count = size_t(side_) * side_;
+    const float* h = field_->samples().data();
+    const float* err = errors_->error.data();
+    const float* rad = errors_->radius.data();
+    float lo = h[0], hi = h[0];
+    for (size_t k = 0; k < count; ++k) {
+        if (!std::isfinite(h[k]) || !(err[k] >= 0.0f) || !(rad[k] >= 0.0f) || std::signbit(err[k]) ||
+            std::signbit(rad[k]) || !std::isfinite(rad[k]))
+            return;  // keys would not bound the exact values: exact path only
+        lo = std::min(lo, h[k]), hi = std::max(hi, h[k]);
+    }
+    const double vs = field_->verticalScale();
+    const float base = float(double(lo) * vs);
+    const float step = float((double(hi) - double(lo)) * vs / 65535.0);
+    if (!std::isfinite(base) || !std::isfinite(step)) return;
+    // Every sample's key, and the largest distance between a decoded height
+    // (in float, as the walker decodes it) and the exact world height (in
+    // double, as the baseline computes it).
+    std::vector<uint16_t> quantised(count, 0);
+    const double inverse = step != 0.0f ? 1.0 / double(step) : 0.0;
+    double worst = 0.0;
+    for (size_t k = 0; k < count; ++k) {
+        const double exact = double(h[k]) * vs;
+        const double q = std::clamp((exact - double(base)) * inverse + 0.5, 0.0, 65535.0);
+        quantised[k] = uint16_t(q);  // rounded to the nearest (q >= 0)
+        const float decoded = base + float(int32_t(quantised[k])) * step;
+        worst = std::max(worst, std::fabs(double(decoded) - exact));
+    }
+    keyYBase_ = base, keyYStep_ = step;
+    keyYError_ = std::nextafter(float(worst * (1.0 + 0x1.0p-20)), std::numeric_limits<float>::infinity());
+    const uint64_t nodes = (uint64_t(2) << (2 * n_)) - 2;
+    viewKeys_.resize(3 * nodes);
+    uint16_t* keys = viewKeys_.data();
+    forEachNode([&](uint64_t node, uint32_t m) {
+        keys[3 * node] = quantised[m];
+        keys[3 * node + 1] = uint16_t(floatKey(err[m]));
+        keys[3 * node + 2] = uint16_t(floatKey(rad[m]));
+    });
+}
+
 void Refiner::refineView(const ViewParams& view, StripMesh& out) {
     checkView(view);
-    if (magnitude_ < 0.0) measureMagnitude();
+    if (magnitude_ < 0.0) {
+        measureMagnitude();
+        buildViewKeys();
+    }
     run<true, true>(&view, 0.0f, out);
 }
 
@@ -630,6 +777,30 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             proto.distanceSlack = float(0x1.0p-22 * M * M);
             for (int k = 0; k < 6; ++k)
                 proto.planeSlack[k] = float(0x1.0p-19 * (3.0 * M + std::fabs(double(view->planes[k].d))));
+            // Keyed path (Walker::activeKeyed): the key bounds are rounded in
+            // float like the exact operands, to within 2^-21 of the reach plus
+            // keyYError; keyYError is at most M / 65535, so its square is far
+            // below distanceSlack and the same slack covers both.
+            if (!viewKeys_.empty()) {
+                proto.viewKeys = viewKeys_.data();
+                proto.keyNodes = viewKeys_.size() / 3;
+                proto.keyYBase = keyYBase_, proto.keyYStep = keyYStep_, proto.keyYError = keyYError_;
+                proto.keyDy0 = float(double(keyYBase_) - proto.ey);
+                // The column and row terms are rounded once from double; dy is
+                // within 2^-21 M of the decoded height's distance (three
+                // roundings of values below 3 M), so every squared distance is
+                // within 2^-21 (d^2 + M^2): the slack is 4 times that and more.
+                proto.keySlack = float(0x1.0p-16 * M * M);
+                proto.keyGrow = float(1.0 + 0x1.0p-13);
+                eyeTerms_.resize(2 * size_t(side_));
+                for (int k = 0; k < side_; ++k) {
+                    const double dx = k * proto.sx - proto.ex, dz = k * proto.sz - proto.ez;
+                    eyeTerms_[size_t(k)] = float(dx * dx);
+                    eyeTerms_[size_t(side_ + k)] = float(dz * dz);
+                }
+                proto.dxx = eyeTerms_.data();
+                proto.dzz = eyeTerms_.data() + side_;
+            }
         }
     }
 

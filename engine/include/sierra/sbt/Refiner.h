@@ -136,6 +136,9 @@ private:
     template <bool kView, bool kFast = false>
     void run(const ViewParams* view, float epsilon, StripMesh& out);
     void buildSplitKeys();
+    void buildViewKeys();
+    template <typename Visit>
+    void forEachNode(Visit&& visit);
     void measureMagnitude();
 
     const terrain::Heightfield* field_;
@@ -158,6 +161,21 @@ private:
     // the 8 of VertexErrors. Empty (exact path only) when an error is NaN or negative.
     std::vector<uint16_t> splitKeys_;
     bool keysBuilt_ = false;  // built by the first refineFixed() with epsilon >= 0
+    // View keys for refineView below spheres fully inside the frustum: per
+    // triangle of levels 0..2n-1, in the tree order of splitKeys_, three 16-bit
+    // keys of its split vertex: the world height quantised over the grid's
+    // height range (keyYBase_ + key * keyYStep_, within keyYError_ of the
+    // exact one), and the top 16 bits of its error and of its radius (each
+    // between the float of its key and that of the next key). They decide all
+    // but the vertices near the threshold (0.6% on a rough 2049^2 fractal at
+    // tau = 1), which read the exact arrays, and a subtree's keys sit together
+    // level by level instead of scattered over three row-major arrays.
+    // Memory: 6 * (2^(2n+1) - 2) bytes, about 12 bytes per grid sample. Built
+    // by the first refineView(); empty (exact path only) when a height is not
+    // finite or an error or radius is NaN or negative.
+    std::vector<uint16_t> viewKeys_;
+    float keyYBase_ = 0, keyYStep_ = 0, keyYError_ = 0;  // world units
+    std::vector<float> eyeTerms_;  // per refinement: squared eye distances along x, then z
     // Largest |world coordinate| or radius of the grid (world units), measured
     // by the first refineView(); -1 until then.
     double magnitude_ = -1.0;
