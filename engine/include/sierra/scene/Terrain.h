@@ -73,7 +73,13 @@ std::pair<int, int> parseFrameSize(const std::string& text, const std::string& o
 // throws sierra::Error naming `option`.
 std::pair<int, int> parseRawSize(const std::string& text, const std::string& option = "--raw-size");
 
-// The terrain ready for the SBT. Automatic spacing is the loader's (1 for image
+// How loadTerrain shapes the grid.
+enum class Padding {
+    PowerOfTwoPlusOne,  // the SBT's (2^n+1)^2 grid: edge-clamped, the padding masked (the default)
+    None,               // the samples as read, any width x height (the TIN meshes exactly these)
+};
+
+// The terrain ready for the SBT (or, with Padding::None, as read). Automatic spacing is the loader's (1 for image
 // and array formats; SRTM: 90 m for 1201 wide tiles, 30 m for 3601; GeoTIFF: the
 // pixel size of a projected system). Automatic vertical scale is 1 for metric
 // heights (height units metres, or auto with SRTM/GeoTIFF) and otherwise makes
@@ -81,7 +87,9 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
 // one line saying what was loaded and the choices made. Throws sierra::Error
 // for bad input, and for a `hurst` or `channel` that this build's terrain
 // module cannot honour yet.
-terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description = nullptr);
+// Spacing, vertical scale and description do not depend on `padding`.
+terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description = nullptr,
+                                 Padding padding = Padding::PowerOfTwoPlusOne);
 
 // True when the source's heights are metres: height units `m`, or automatic
 // with an SRTM (.hgt) or GeoTIFF file.
