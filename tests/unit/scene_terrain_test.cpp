@@ -82,7 +82,7 @@ TEST(SceneTerrain, ChannelReachesTheLoader) {
 TEST(SceneTerrain, PaddingNoneKeepsTheSamplesAsRead) {
     // A 6x3 grey image: padded to 9x9 for the SBT, kept 6x3 for the TIN, with
     // the same samples, spacing and vertical scale.
-    const std::string path = ::testing::TempDir() + "/scene_unpadded.png";
+    const std::string path = ::testing::TempDir() + "/scene_as_read.png";
     std::vector<uint8_t> grey(6 * 3);
     for (size_t k = 0; k < grey.size(); ++k) grey[k] = uint8_t(10 * k);
     ASSERT_TRUE(stbi_write_png(path.c_str(), 6, 3, 1, grey.data(), 6));

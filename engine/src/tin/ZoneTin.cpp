@@ -68,35 +68,39 @@ ZoneAgreement zoneAgreement(const TinMesh& mesh, const zones::ZoneMap& map) {
     SIERRA_CHECK(map.width >= 2 && map.height >= 2 && mesh.gridWidth >= 2 && mesh.gridHeight >= 2,
                  "zone agreement needs a map and a grid of at least 2x2, got ", map.width, "x", map.height, " and ",
                  mesh.gridWidth, "x", mesh.gridHeight);
-    // Pixel-centre index space: pixel (i, j)'s centre is (i, j); a grid sample
-    // (x, y) lies at (x sx, y sy).
-    const double sx = double(map.width - 1) / double(mesh.gridWidth - 1);
-    const double sy = double(map.height - 1) / double(mesh.gridHeight - 1);
+    // Grid units per pixel; pixel (i, j)'s centre lies at (i sx, j sy), moved
+    // by the tie-breaking offset (see the header) and back inside at the far edges.
+    constexpr double kNudgeX = 1.3e-4, kNudgeY = 0.7e-4;
+    const double sx = double(mesh.gridWidth - 1) / double(map.width - 1);
+    const double sy = double(mesh.gridHeight - 1) / double(map.height - 1);
+    auto centreX = [&](int i) { return i == map.width - 1 ? double(mesh.gridWidth - 1) - kNudgeX : i * sx + kNudgeX; };
+    auto centreY = [&](int j) { return j == map.height - 1 ? double(mesh.gridHeight - 1) - kNudgeY : j * sy + kNudgeY; };
     std::vector<uint8_t> counted(size_t(map.width) * size_t(map.height), 0);
     ZoneAgreement result;
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         double px[3], py[3];
         for (int k = 0; k < 3; ++k) {
             const GridPoint& g = mesh.vertices[size_t(mesh.triangles[t][size_t(k)])];
-            px[k] = double(g.x) * sx;
-            py[k] = double(g.y) * sy;
+            px[k] = double(g.x);
+            py[k] = double(g.y);
         }
         const double area = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
         if (area == 0.0) continue;
-        // Edge functions scaled by the area's sign: inside (edges included) when all are >= -tolerance.
-        const double tolerance = 1e-9 * std::abs(area);
-        const int i0 = std::max(0, int(std::ceil(std::min({px[0], px[1], px[2]}) - 1e-9)));
-        const int i1 = std::min(map.width - 1, int(std::floor(std::max({px[0], px[1], px[2]}) + 1e-9)));
-        const int j0 = std::max(0, int(std::ceil(std::min({py[0], py[1], py[2]}) - 1e-9)));
-        const int j1 = std::min(map.height - 1, int(std::floor(std::max({py[0], py[1], py[2]}) + 1e-9)));
+        // The pixels whose centres the bounding box can hold (one pixel of margin for the offset).
+        const int i0 = std::max(0, int(std::floor(std::min({px[0], px[1], px[2]}) / sx)) - 1);
+        const int i1 = std::min(map.width - 1, int(std::ceil(std::max({px[0], px[1], px[2]}) / sx)) + 1);
+        const int j0 = std::max(0, int(std::floor(std::min({py[0], py[1], py[2]}) / sy)) - 1);
+        const int j1 = std::min(map.height - 1, int(std::ceil(std::max({py[0], py[1], py[2]}) / sy)) + 1);
         const int32_t s0 = mesh.surfaces[t][0], s1 = mesh.surfaces[t][1];
-        for (int j = j0; j <= j1; ++j)
+        for (int j = j0; j <= j1; ++j) {
+            const double y = centreY(j);
             for (int i = i0; i <= i1; ++i) {
+                const double x = centreX(i);
                 bool inside = true;
                 for (int k = 0; k < 3 && inside; ++k) {
                     const int n = (k + 1) % 3;
-                    const double e = ((px[n] - px[k]) * (double(j) - py[k]) - (py[n] - py[k]) * (double(i) - px[k]));
-                    inside = (area > 0 ? e : -e) >= -tolerance;
+                    const double e = (px[n] - px[k]) * (y - py[k]) - (py[n] - py[k]) * (x - px[k]);
+                    inside = (area > 0 ? e : -e) > 0.0;
                 }
                 if (!inside) continue;
                 const size_t p = size_t(j) * size_t(map.width) + size_t(i);
@@ -107,6 +111,7 @@ ZoneAgreement zoneAgreement(const TinMesh& mesh, const zones::ZoneMap& map) {
                 ++result.pixels;
                 result.agree += (zone == s0 || zone == s1) ? 1 : 0;
             }
+        }
     }
     return result;
 }

@@ -44,11 +44,13 @@ zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palet
 // Throws sierra::Error for a map or grid smaller than 2 x 2.
 Constraints constraintsFromBorderlines(const zones::Borderlines& lines, int gridWidth, int gridHeight);
 
-// How far the triangles' zones agree with a zone map: each map pixel whose
-// centre lies in the mesh (every pixel, for a mesh that covers the grid) is
-// counted once, in the first triangle that contains it (edges included); it
-// agrees when its zone is one of that triangle's two surface types. Borderline
-// pixels of Figure 1 maps belong to no zone and are not counted.
+// How far the triangles' zones agree with a zone map: each map pixel is
+// counted once, in the triangle that contains its centre; it agrees when its
+// zone is one of that triangle's two surface types. A centre on an edge (a
+// Touching map's borderlines run through the samples after snapping, so whole
+// rows of centres do) goes to the triangle on its +x side, then +y: the centre
+// is moved by (1.3e-4, 0.7e-4) samples (inwards at the grid's far edges).
+// Borderline pixels of Figure 1 maps belong to no zone and are not counted.
 struct ZoneAgreement {
     int64_t pixels = 0;  // pixels counted
     int64_t agree = 0;   // of those, pixels whose zone the triangle carries
