@@ -224,15 +224,19 @@ int main(int argc, char** argv) {
     auto* zonesOpt = app.add_option("--zones", zoneMap,
                                     "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
                                     "its borderlines become constrained edges")
+                         ->type_name("MAP.png|auto")
                          ->group(zg);
     app.add_option("--palette", palette, "Palette JSON (default: assets/palettes/default.json)")
+        ->type_name("P.json")
         ->group(zg)
         ->needs(zonesOpt);
     app.add_option("--band", band, "Transition band width in zone-map pixels (default: the palette's bandWidth)")
+        ->type_name("W")
         ->group(zg)
         ->needs(zonesOpt)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--epsilon", epsilon, "Borderline simplification (rule 3) in zone-map pixels")
+        ->type_name("PX")
         ->group(zg)
         ->needs(zonesOpt)
         ->check(CLI::NonNegativeNumber)
@@ -240,31 +244,38 @@ int main(int argc, char** argv) {
     const std::string sg = "Mesh";
     app.add_option("--max-error", o.maxError,
                    "Stop when the largest vertical error is at most E (world height units)")
+        ->type_name("E")
         ->group(sg)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--max-error-rel", o.maxErrorRel,
                    "Stop when the largest vertical error is at most F x the height range")
+        ->type_name("F")
         ->group(sg)
         ->check(CLI::Range(0.0, 1.0));
     app.add_option("--max-triangles", o.maxTriangles,
                    "Stop before exceeding N triangles (0 = no limit)")
+        ->type_name("N")
         ->group(sg)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--max-points", o.maxPoints, "Stop before exceeding N vertices (0 = no limit)")
+        ->type_name("N")
         ->group(sg)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--delaunay", o.delaunay, "plain: Delaunay flips; data: data-dependent flips")
+        ->type_name("plain|data")
         ->group(sg)
         ->check(CLI::IsMember({"plain", "data"}))
         ->capture_default_str();
     app.add_option("--uv-period", o.uvPeriod, "OBJ planar UVs: grid samples per texture repeat")
+        ->type_name("P")
         ->group(sg)
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl")
+        ->type_name("MESH")
         ->group(sg)
         ->required();
-    app.add_option("--json", o.json, "Write the statistics to this JSON file")->group(sg);
+    app.add_option("--json", o.json, "Write the statistics to this JSON file")->type_name("STATS.json")->group(sg);
     return apps::runMain(
         app, argc, argv,
         [&] {
