@@ -98,6 +98,8 @@ void runFrames(const FramesOptions& o) {
         render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
         std::fprintf(stderr, "%s\n", zones.c_str());
+    if (std::string mesh = render::applySceneMesh(terrain, sc, field); !mesh.empty())
+        std::fprintf(stderr, "%s\n", mesh.c_str());
     render::addOverlayPasses(terrain, sc, field);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});

@@ -67,6 +67,7 @@ int run(const scene::Scene& s) {
         render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
         log::info(zones);
+    if (std::string mesh = render::applySceneMesh(terrain, s, field); !mesh.empty()) log::info(mesh);
     log::info("terrain on the GPU: ", terrain.summary());
     render::addOverlayPasses(terrain, s, field);
     render::FrameTarget target =
