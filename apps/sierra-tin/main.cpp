@@ -1,7 +1,8 @@
 // sierra-tin: a triangulated irregular network of a heightfield by greedy
 // insertion, written as OBJ (+MTL), PLY or STL. No GL.
 //
-//   sierra-tin [terrain options] [--zones MAP.png|auto [--palette P.json] [--band W] [--epsilon PX]]
+//   sierra-tin [terrain options] [--zones MAP.png|auto [--palette P.json] [--band W] [--epsilon
+//   PX]]
 //              [stop options] --out MESH.obj|.ply|.stl [--json STATS]
 //
 // The terrain options are the scene registrar's (the names and defaults of
@@ -64,7 +65,8 @@ ZoneInput loadZones(const scene::Scene& s, const terrain::Heightfield& field) {
     Stopwatch clock;
     ZoneInput z;
     const scene::ZonesDesc& d = s.zones;
-    z.palette = zones::loadPalette(d.palette.empty() ? scene::assetPath("palettes/default.json") : d.palette);
+    z.palette = zones::loadPalette(d.palette.empty() ? scene::assetPath("palettes/default.json")
+                                                     : d.palette);
     if (d.map == "auto") {
         // The renderer's auto-zoning: its sea level (none = below every sample) and thresholds.
         zones::AutoZoneDesc a;
@@ -78,11 +80,11 @@ ZoneInput loadZones(const scene::Scene& s, const terrain::Heightfield& field) {
     } else {
         z.map = zones::loadZoneMap(d.map, z.palette);
     }
-    SIERRA_CHECK(z.map.width >= 2 && z.map.height >= 2, "zone map ", d.map, " is ", z.map.width, "x", z.map.height,
-                 "; a TIN needs at least 2x2 pixels");
+    SIERRA_CHECK(z.map.width >= 2 && z.map.height >= 2, "zone map ", d.map, " is ", z.map.width,
+                 "x", z.map.height, "; a TIN needs at least 2x2 pixels");
     z.band = d.band >= 0.0f ? double(d.band) : double(z.palette.bandWidth);
-    z.lines = tin::gridBorderlines(z.map, z.palette, {.epsilon = d.epsilon, .bandWidth = z.band}, field.width(),
-                                   field.height());
+    z.lines = tin::gridBorderlines(z.map, z.palette, {.epsilon = d.epsilon, .bandWidth = z.band},
+                                   field.width(), field.height());
     z.constraints = tin::constraintsFromBorderlines(z.lines, field.width(), field.height());
     z.ms = clock.ms();
     return z;
@@ -130,7 +132,8 @@ int run(const Options& o) {
 
     clock.restart();
     const tin::ErrorStats error = tin::measureError(result.mesh, field);
-    const tin::ZoneAgreement agreement = zoned ? tin::zoneAgreement(result.mesh, z.map) : tin::ZoneAgreement{};
+    const tin::ZoneAgreement agreement =
+        zoned ? tin::zoneAgreement(result.mesh, z.map) : tin::ZoneAgreement{};
     const double measureMs = clock.ms();
     clock.restart();
     tin::ObjOptions objOptions{.uvPeriod = o.uvPeriod};
@@ -150,10 +153,12 @@ int run(const Options& o) {
     size_t borderSegments = 0;
     if (zoned) {
         for (const auto& e : z.lines.edges) borderSegments += e.left >= 0 && e.right >= 0;
-        std::printf("zones: %s, %dx%d, %zu surface types, %zu zones (%zu bands), %zu borderline segments, "
-                    "epsilon %.3g px, band %.3g px\n",
-                    s.zones.map.c_str(), z.map.width, z.map.height, z.palette.surfaces.size(), z.lines.zones.size(),
-                    z.constraints.bands.size(), borderSegments, double(s.zones.epsilon), z.band);
+        std::printf(
+            "zones: %s, %dx%d, %zu surface types, %zu zones (%zu bands), %zu borderline segments, "
+            "epsilon %.3g px, band %.3g px\n",
+            s.zones.map.c_str(), z.map.width, z.map.height, z.palette.surfaces.size(),
+            z.lines.zones.size(), z.constraints.bands.size(), borderSegments,
+            double(s.zones.epsilon), z.band);
     }
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
                 result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
@@ -161,10 +166,12 @@ int run(const Options& o) {
     std::printf("vertical error: max %.6g, rms %.6g (target %.6g) over %lld samples\n",
                 error.maxError, error.rmsError, st.targetError, (long long)error.samples);
     if (zoned)
-        std::printf("zone agreement: %.3f%% of %lld map pixels; %lld triangles claimed by two zones\n",
-                    100.0 * agreement.fraction(), (long long)agreement.pixels, (long long)st.zoneConflicts);
+        std::printf(
+            "zone agreement: %.3f%% of %lld map pixels; %lld triangles claimed by two zones\n",
+            100.0 * agreement.fraction(), (long long)agreement.pixels, (long long)st.zoneConflicts);
     std::printf(
-        "time ms: load %.1f, borderlines %.1f, setup %.1f, insert %.1f, zones %.1f, measure %.1f, write %.1f, "
+        "time ms: load %.1f, borderlines %.1f, setup %.1f, insert %.1f, zones %.1f, measure %.1f, "
+        "write %.1f, "
         "total %.1f\n",
         loadMs, z.ms, st.setupMs, st.insertMs, st.zonesMs, measureMs, writeMs, total.ms());
     std::printf("wrote %s\n", o.out.c_str());
@@ -197,7 +204,7 @@ int run(const Options& o) {
                                {"agreement_pixels", agreement.pixels},
                                {"conflicts", st.zoneConflicts}};
         }
-        report["time_ms"] = {{"load", loadMs},       {"borderlines", z.ms}, {"setup", st.setupMs},
+        report["time_ms"] = {{"load", loadMs},        {"borderlines", z.ms}, {"setup", st.setupMs},
                              {"insert", st.insertMs}, {"zones", st.zonesMs}, {"measure", measureMs},
                              {"write", writeMs},      {"total", total.ms()}};
         report["out"] = o.out;
@@ -221,16 +228,19 @@ int main(int argc, char** argv) {
     std::string zoneMap, palette;
     float band = zoneDefaults.band, epsilon = zoneDefaults.epsilon;
     const std::string zg = "Zones";
-    auto* zonesOpt = app.add_option("--zones", zoneMap,
-                                    "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
-                                    "its borderlines become constrained edges")
-                         ->type_name("MAP.png|auto")
-                         ->group(zg);
+    auto* zonesOpt =
+        app.add_option(
+               "--zones", zoneMap,
+               "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
+               "its borderlines become constrained edges")
+            ->type_name("MAP.png|auto")
+            ->group(zg);
     app.add_option("--palette", palette, "Palette JSON (default: assets/palettes/default.json)")
         ->type_name("P.json")
         ->group(zg)
         ->needs(zonesOpt);
-    app.add_option("--band", band, "Transition band width in zone-map pixels (default: the palette's bandWidth)")
+    app.add_option("--band", band,
+                   "Transition band width in zone-map pixels (default: the palette's bandWidth)")
         ->type_name("W")
         ->group(zg)
         ->needs(zonesOpt)
@@ -275,7 +285,9 @@ int main(int argc, char** argv) {
         ->type_name("MESH")
         ->group(sg)
         ->required();
-    app.add_option("--json", o.json, "Write the statistics to this JSON file")->type_name("STATS.json")->group(sg);
+    app.add_option("--json", o.json, "Write the statistics to this JSON file")
+        ->type_name("STATS.json")
+        ->group(sg);
     return apps::runMain(
         app, argc, argv,
         [&] {
@@ -287,7 +299,8 @@ int main(int argc, char** argv) {
             if (app.count("--band")) z.band = band;
             if (app.count("--epsilon")) z.epsilon = epsilon;
             if (!std::isfinite(z.epsilon) || z.epsilon < 0.0f)
-                throw Error(msg("--epsilon must be a finite number of pixels >= 0, got ", z.epsilon));
+                throw Error(
+                    msg("--epsilon must be a finite number of pixels >= 0, got ", z.epsilon));
             if (!std::isfinite(z.band))
                 throw Error(msg("--band must be a finite number of pixels, got ", z.band));
         },

@@ -43,10 +43,11 @@ std::string writeTin(const scene::Scene& s, const std::string& name, size_t* tri
     a.seaLevel = std::isnan(sea) ? field.range().first - 1.0f : sea;
     const zones::ZoneMap map = zones::autoZones(field, palette, a);
     const zones::Borderlines lines =
-        tin::gridBorderlines(map, palette, {.epsilon = 0.5, .bandWidth = palette.bandWidth}, field.width(),
-                             field.height());
-    const tin::TinResult r = tin::buildTin(field, tin::constraintsFromBorderlines(lines, field.width(), field.height()),
-                                           {.maxErrorRel = 0.01});
+        tin::gridBorderlines(map, palette, {.epsilon = 0.5, .bandWidth = palette.bandWidth},
+                             field.width(), field.height());
+    const tin::TinResult r =
+        tin::buildTin(field, tin::constraintsFromBorderlines(lines, field.width(), field.height()),
+                      {.maxErrorRel = 0.01});
     std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
     const std::string path = std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name;
     tin::writeObj(path, r.mesh);
@@ -55,7 +56,7 @@ std::string writeTin(const scene::Scene& s, const std::string& name, size_t* tri
 }
 
 class TinMesh : public test::GlTest {
-protected:
+  protected:
     void SetUp() override {
         createContext(kWidth, kHeight);
         scene_.terrain.generateSize = 129;
@@ -63,13 +64,16 @@ protected:
         scene_.lod.mesh = writeTin(scene_, "tin_mesh_test.obj", &tinTriangles_);
         field_ = scene::loadTerrain(scene_.terrain);
         sea_ = scene::resolveSeaLevel(scene_.terrain, field_);
-        renderer_.emplace(render::TerrainRenderer::create(render::sceneTerrainDesc(scene_, field_, sea_)));
+        renderer_.emplace(
+            render::TerrainRenderer::create(render::sceneTerrainDesc(scene_, field_, sea_)));
         render::applySceneSurface(*renderer_, scene_, field_, sea_);
-        target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
+        target_.emplace(
+            render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
     }
 
     gpu::Image renderFrame(const render::DrawOptions& options) {
-        render::Camera camera = render::defaultCamera(renderer_->bounds(), float(kWidth) / float(kHeight));
+        render::Camera camera =
+            render::defaultCamera(renderer_->bounds(), float(kWidth) / float(kHeight));
         target_->begin(render::TerrainRenderer::clearColour(options.lighting));
         stats_ = renderer_->draw(camera, kWidth, kHeight, options);
         return target_->read();
@@ -85,7 +89,8 @@ protected:
         }
         const test::GoldenComparison c = test::compareWithGolden(image, render::readPng(golden));
         std::printf("%s against golden: %s\n", name.c_str(), c.summary().c_str());
-        EXPECT_TRUE(c.matches) << c.summary() << " (frame written to " << SIERRA_TEST_OUTPUT_DIR << "/" << name << ")";
+        EXPECT_TRUE(c.matches) << c.summary() << " (frame written to " << SIERRA_TEST_OUTPUT_DIR
+                               << "/" << name << ")";
     }
 
     scene::Scene scene_;
@@ -136,7 +141,8 @@ TEST_F(TinMesh, MeshOfAnotherTerrainIsRefused) {
         FAIL() << "a mesh of another terrain was accepted";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("tin_mesh_other.obj"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("same terrain options"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("same terrain options"), std::string::npos)
+            << e.what();
     }
     other.lod.mesh = std::string(SIERRA_TEST_OUTPUT_DIR) + "/none.obj";
     EXPECT_THROW(render::applySceneMesh(*renderer_, other, field_), Error);

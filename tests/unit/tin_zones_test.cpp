@@ -58,7 +58,8 @@ void expectSegmentsAreMeshEdges(const tin::Constraints& c, const tin::TinMesh& m
             }
     int checked = 0;
     for (const auto& s : c.segments) {
-        const GridPoint a = snapped(c.vertices[size_t(s.a)], m), b = snapped(c.vertices[size_t(s.b)], m);
+        const GridPoint a = snapped(c.vertices[size_t(s.a)], m),
+                        b = snapped(c.vertices[size_t(s.b)], m);
         if (a == b) continue;
         std::vector<std::pair<int64_t, int>> on;  // (position along a-b, vertex)
         for (size_t v = 0; v < m.vertices.size(); ++v) {
@@ -69,13 +70,15 @@ void expectSegmentsAreMeshEdges(const tin::Constraints& c, const tin::TinMesh& m
             if (t >= 0 && t <= len) on.push_back({t, int(v)});
         }
         std::sort(on.begin(), on.end());
-        ASSERT_GE(on.size(), 2u) << "segment (" << a.x << "," << a.y << ")-(" << b.x << "," << b.y << ") has no vertices";
+        ASSERT_GE(on.size(), 2u) << "segment (" << a.x << "," << a.y << ")-(" << b.x << "," << b.y
+                                 << ") has no vertices";
         EXPECT_EQ(on.front().first, 0);
         for (size_t k = 0; k + 1 < on.size(); ++k) {
             const int u = on[k].second, w = on[k + 1].second;
             EXPECT_TRUE(constrained.count({std::min(u, w), std::max(u, w)}))
-                << "segment (" << a.x << "," << a.y << ")-(" << b.x << "," << b.y << "): no constrained edge ("
-                << m.vertices[size_t(u)].x << "," << m.vertices[size_t(u)].y << ")-(" << m.vertices[size_t(w)].x << ","
+                << "segment (" << a.x << "," << a.y << ")-(" << b.x << "," << b.y
+                << "): no constrained edge (" << m.vertices[size_t(u)].x << ","
+                << m.vertices[size_t(u)].y << ")-(" << m.vertices[size_t(w)].x << ","
                 << m.vertices[size_t(w)].y << ")";
         }
         ++checked;
@@ -109,7 +112,9 @@ double independentAgreement(const tin::TinMesh& m, const zones::ZoneMap& map) {
             EXPECT_GE(found, 0) << "pixel " << i << "," << j << " in no triangle";
             if (found < 0) continue;
             ++pixels;
-            agree += (m.surfaces[size_t(found)][0] == zone || m.surfaces[size_t(found)][1] == zone) ? 1 : 0;
+            agree += (m.surfaces[size_t(found)][0] == zone || m.surfaces[size_t(found)][1] == zone)
+                         ? 1
+                         : 0;
         }
     return pixels ? double(agree) / double(pixels) : 0.0;
 }
@@ -122,15 +127,18 @@ TEST(TinZones, BorderlineSegmentsAreMeshEdges) {
     // Touching and Figure 1 layouts, map as fine as the grid and half as fine.
     for (bool figure1 : {false, true})
         for (int gridSize : {65, 129}) {
-            SCOPED_TRACE(testing::Message() << (figure1 ? "Figure 1" : "touching") << ", grid " << gridSize);
+            SCOPED_TRACE(testing::Message()
+                         << (figure1 ? "Figure 1" : "touching") << ", grid " << gridSize);
             zones::ZoneMap map = threeZones(65);
             if (figure1) map = zones::drawBorderlines(map);
             const zones::Palette palette = zones::test::testPalette(3);
-            const zones::Borderlines lines = tin::gridBorderlines(map, palette, {.epsilon = 0.5}, gridSize, gridSize);
+            const zones::Borderlines lines =
+                tin::gridBorderlines(map, palette, {.epsilon = 0.5}, gridSize, gridSize);
             const tin::Constraints c = tin::constraintsFromBorderlines(lines, gridSize, gridSize);
             const terrain::Heightfield field = fractal(gridSize);
             // snapDistance 0: no bending, so each segment must be exactly a chain of edges.
-            const tin::TinResult r = tin::buildTin(field, c, {.maxErrorRel = 0.01, .snapDistance = 0.0});
+            const tin::TinResult r =
+                tin::buildTin(field, c, {.maxErrorRel = 0.01, .snapDistance = 0.0});
             expectSegmentsAreMeshEdges(c, r.mesh);
             EXPECT_EQ(r.stats.zoneConflicts, 0);
         }
@@ -141,7 +149,8 @@ TEST(TinZones, TriangleZonesAgreeWithTheMap) {
     const terrain::Heightfield field = fractal(65);
     for (bool figure1 : {false, true})
         for (double band : {0.0, 3.0}) {
-            SCOPED_TRACE(testing::Message() << (figure1 ? "Figure 1" : "touching") << ", band " << band);
+            SCOPED_TRACE(testing::Message()
+                         << (figure1 ? "Figure 1" : "touching") << ", band " << band);
             zones::ZoneMap map = threeZones(65);
             if (figure1) map = zones::drawBorderlines(map);
             const zones::Borderlines lines =
@@ -209,17 +218,20 @@ TEST(TinZones, BlendedTilesAndMaterials) {
     const zones::TileImage shifted = zones::blendTiles(red, blue, 1.0f);
     EXPECT_LT(shifted.rgba[0], 100);
     EXPECT_GT(shifted.rgba[2], 50);
-    EXPECT_THROW(zones::blendTiles(red, zones::TileImage{.size = 8, .rgba = std::vector<uint8_t>(8 * 8 * 4)}, 0.0f),
-                 Error);
+    EXPECT_THROW(
+        zones::blendTiles(red, zones::TileImage{.size = 8, .rgba = std::vector<uint8_t>(8 * 8 * 4)},
+                          0.0f),
+        Error);
     EXPECT_THROW(zones::loadTile(dir + "/tiles/none.png"), Error);
 
     zones::Palette palette = zones::test::testPalette(3);
     palette.surfaces[0].tile = dir + "/tiles/red.png";
     palette.surfaces[1].tile = dir + "/tiles/blue.png";
     palette.surfaces[2].tile = dir + "/tiles/red.png";
-    const zones::Borderlines lines = tin::gridBorderlines(threeZones(65), palette, {.bandWidth = 2.0}, 65, 65);
-    const tin::TinResult r =
-        tin::buildTin(fractal(65), tin::constraintsFromBorderlines(lines, 65, 65), {.maxErrorRel = 0.01});
+    const zones::Borderlines lines =
+        tin::gridBorderlines(threeZones(65), palette, {.bandWidth = 2.0}, 65, 65);
+    const tin::TinResult r = tin::buildTin(
+        fractal(65), tin::constraintsFromBorderlines(lines, 65, 65), {.maxErrorRel = 0.01});
     const std::string obj = dir + "/out/mesh.obj";
     std::filesystem::create_directories(dir + "/out");
     tin::writeObj(obj, r.mesh, tin::zoneMaterials(obj, r.mesh, palette));

@@ -22,7 +22,8 @@
 namespace sierra::tin {
 
 // Grid coordinates of a zone-map position (see above).
-Constraints::Vertex mapToGrid(double mapX, double mapY, int mapWidth, int mapHeight, int gridWidth, int gridHeight);
+Constraints::Vertex mapToGrid(double mapX, double mapY, int mapWidth, int mapHeight, int gridWidth,
+                              int gridHeight);
 
 // A zone map's borderlines ready for a gridWidth x gridHeight TIN:
 // vectorised and simplified (desc.epsilon), every vertex moved to the grid
@@ -33,7 +34,8 @@ Constraints::Vertex mapToGrid(double mapX, double mapY, int mapWidth, int mapHei
 // sierra::Error as zones::buildBorderlines, and for a map or grid smaller
 // than 2 x 2.
 zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palette& palette,
-                                   const zones::BorderlineDesc& desc, int gridWidth, int gridHeight);
+                                   const zones::BorderlineDesc& desc, int gridWidth,
+                                   int gridHeight);
 
 // The borderlines (zone-map pixel units) as constraints of a gridWidth x
 // gridHeight TIN: every edge becomes a segment with its two zones (the zones'
@@ -42,7 +44,8 @@ zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palet
 // band zone becomes a Constraints::Band of its two zones; defaultZone is the
 // zone of the first frame edge (a map with one zone has no other edge).
 // Throws sierra::Error for a map or grid smaller than 2 x 2.
-Constraints constraintsFromBorderlines(const zones::Borderlines& lines, int gridWidth, int gridHeight);
+Constraints constraintsFromBorderlines(const zones::Borderlines& lines, int gridWidth,
+                                       int gridHeight);
 
 // How far the triangles' zones agree with a zone map: each map pixel is
 // counted once, in the triangle that contains its centre; it agrees when its
@@ -65,6 +68,7 @@ ZoneAgreement zoneAgreement(const TinMesh& mesh, const zones::ZoneMap& map);
 // PNG beside the OBJ: <obj stem>_band_<a>_<b>.png. Throws sierra::Error when a
 // tile cannot be read, when two tiles of a band differ in size, or when a
 // file cannot be written.
-ObjOptions zoneMaterials(const std::string& objPath, const TinMesh& mesh, const zones::Palette& palette);
+ObjOptions zoneMaterials(const std::string& objPath, const TinMesh& mesh,
+                         const zones::Palette& palette);
 
 }  // namespace sierra::tin
