@@ -99,13 +99,16 @@ void runFrames(const FramesOptions& o) {
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(), context.platform().c_str());
     terrain::Heightfield field =
-        scene::loadTerrain(sc.terrain, &description, render::TerrainGpu::maxGridSide());
+        scene::loadTerrain(sc.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
+                            render::TerrainGpu::maxGridSide());
     float seaLevel = scene::resolveSeaLevel(sc.terrain, field);
     std::fprintf(stderr, "terrain: %s\n", description.c_str());
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
         std::fprintf(stderr, "%s\n", zones.c_str());
+    if (std::string mesh = render::applySceneMesh(terrain, sc, field); !mesh.empty())
+        std::fprintf(stderr, "%s\n", mesh.c_str());
     render::addOverlayPasses(terrain, sc, field);
     const std::vector<std::string> passNames = terrain.addedPassNames();
     if (o.overlayCosts && passNames.empty())

@@ -62,13 +62,15 @@ int run(const scene::Scene& s) {
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(), ")");
     terrain::Heightfield field =
-        scene::loadTerrain(s.terrain, &description, render::TerrainGpu::maxGridSide());
+        scene::loadTerrain(s.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
+                            render::TerrainGpu::maxGridSide());
     float seaLevel = scene::resolveSeaLevel(s.terrain, field);
     log::info("terrain: ", description);
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
         log::info(zones);
+    if (std::string mesh = render::applySceneMesh(terrain, s, field); !mesh.empty()) log::info(mesh);
     log::info("terrain on the GPU: ", terrain.summary());
     render::addOverlayPasses(terrain, s, field);
     render::FrameTarget target =

@@ -1,18 +1,38 @@
 // sierra-tin: a triangulated irregular network of a heightfield by greedy
 // insertion, written as OBJ (+MTL), PLY or STL. No GL.
+//
+//   sierra-tin [terrain options] [--zones MAP.png|auto [--palette P.json] [--band W] [--epsilon
+//   PX]]
+//              [stop options] --out MESH.obj|.ply|.stl [--json STATS]
+//
+// The terrain options are the scene registrar's (the names and defaults of
+// every Sierra app; no terrain option = the default scene's 1025^2 fractal);
+// the grid is meshed as read, never padded. With --zones the zone map's
+// borderlines (vectorised by the zones module, simplified by --epsilon,
+// doubled into bands of --band pixels) are constrained edges of the mesh, and
+// the OBJ gets one material per surface type and per band pair, textured with
+// the palette's tiles (blended for bands).
+
+#include "AppMain.h"
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/core/Timer.h>
-#include <sierra/terrain/DiamondSquare.h>
-#include <sierra/terrain/HeightfieldIO.h>
+#include <sierra/scene/Assets.h>
+#include <sierra/scene/Options.h>
+#include <sierra/scene/Terrain.h>
 #include <sierra/tin/Export.h>
 #include <sierra/tin/Tin.h>
+#include <sierra/tin/ZoneTin.h>
+#include <sierra/zones/Borderlines.h>
+#include <sierra/zones/Palette.h>
+#include <sierra/zones/ZoneMap.h>
 
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -21,9 +41,7 @@ using namespace sierra;
 namespace {
 
 struct Options {
-    std::string heightmap;
-    int generate = 0;
-    uint64_t seed = 1;
+    scene::Scene scene;  // its terrain, and its zones' map, palette, band and epsilon
     double maxError = 0.0;
     double maxErrorRel = 0.0;
     int64_t maxTriangles = 0;
@@ -34,23 +52,63 @@ struct Options {
     std::string json;
 };
 
+struct ZoneInput {
+    zones::Palette palette;
+    zones::ZoneMap map;
+    zones::Borderlines lines;
+    tin::Constraints constraints;
+    double band = 0.0;
+    double ms = 0.0;
+};
+
+ZoneInput loadZones(const scene::Scene& s, const terrain::Heightfield& field) {
+    Stopwatch clock;
+    ZoneInput z;
+    const scene::ZonesDesc& d = s.zones;
+    z.palette = zones::loadPalette(d.palette.empty() ? scene::assetPath("palettes/default.json")
+                                                     : d.palette);
+    if (d.map == "auto") {
+        // The renderer's auto-zoning: its sea level (none = below every sample) and thresholds.
+        zones::AutoZoneDesc a;
+        const float sea = scene::resolveSeaLevel(s.terrain, field);
+        a.seaLevel = std::isnan(sea) ? field.range().first - 1.0f : sea;
+        a.deepWater = d.deepWater;
+        a.sandTop = d.sandTop;
+        a.snowLine = d.snowLine;
+        a.rockSlope = d.rockSlope;
+        z.map = zones::autoZones(field, z.palette, a);
+    } else {
+        z.map = zones::loadZoneMap(d.map, z.palette);
+    }
+    SIERRA_CHECK(z.map.width >= 2 && z.map.height >= 2, "zone map ", d.map, " is ", z.map.width,
+                 "x", z.map.height, "; a TIN needs at least 2x2 pixels");
+    z.band = d.band >= 0.0f ? double(d.band) : double(z.palette.bandWidth);
+    z.lines = tin::gridBorderlines(z.map, z.palette, {.epsilon = d.epsilon, .bandWidth = z.band},
+                                   field.width(), field.height());
+    z.constraints = tin::constraintsFromBorderlines(z.lines, field.width(), field.height());
+    z.ms = clock.ms();
+    return z;
+}
+
 int run(const Options& o) {
-    // Reject an unknown mesh format before the work, not after it.
+    // Reject an unknown mesh format and an unwritable output before the work, not after it.
     std::string ext = o.out.size() >= 4 ? o.out.substr(o.out.size() - 4) : "";
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".obj" && ext != ".ply" && ext != ".stl")
         throw Error(msg(o.out, ": unknown mesh format (use .obj, .ply or .stl)"));
+    ensureWritableLocation(o.out);
+    if (!o.json.empty()) ensureWritableLocation(o.json);
+    const scene::Scene& s = o.scene;
     Stopwatch clock, total;
     nlohmann::json report;
-    terrain::Heightfield field;
-    if (!o.heightmap.empty()) {
-        field = terrain::loadHeightfield(o.heightmap);
-        report["input"] = o.heightmap;
-    } else {
-        field = terrain::generateDiamondSquare({.size = o.generate, .seed = o.seed});
-        report["input"] = msg("diamond-square ", o.generate, " seed ", o.seed);
-    }
+    std::string source;
+    const terrain::Heightfield field = scene::loadTerrain(s.terrain, &source, scene::Padding::None);
+    report["input"] = source;
     const double loadMs = clock.ms();
+
+    const bool zoned = !s.zones.map.empty();
+    ZoneInput z;
+    if (zoned) z = loadZones(s, field);
 
     tin::TinDesc desc{.maxError = o.maxError,
                       .maxErrorRel = o.maxErrorRel,
@@ -69,30 +127,53 @@ int run(const Options& o) {
                      terminal ? "\r" : "", (long long)p.points, (long long)p.triangles,
                      p.worstError, p.targetError, terminal ? "   " : "\n");
     };
-    tin::TinResult result = tin::buildTin(field, {}, desc);
+    tin::TinResult result = tin::buildTin(field, z.constraints, desc);
     if (terminal) std::fprintf(stderr, "\n");
 
     clock.restart();
     const tin::ErrorStats error = tin::measureError(result.mesh, field);
+    const tin::ZoneAgreement agreement =
+        zoned ? tin::zoneAgreement(result.mesh, z.map) : tin::ZoneAgreement{};
     const double measureMs = clock.ms();
     clock.restart();
-    tin::writeMesh(o.out, result.mesh, {.uvPeriod = o.uvPeriod});
+    tin::ObjOptions objOptions{.uvPeriod = o.uvPeriod};
+    if (zoned && ext == ".obj") {
+        objOptions = tin::zoneMaterials(o.out, result.mesh, z.palette);
+        objOptions.uvPeriod = o.uvPeriod;
+    }
+    tin::writeMesh(o.out, result.mesh, objOptions);
     const double writeMs = clock.ms();
 
-    const auto& s = result.stats;
+    const auto& st = result.stats;
     const double pointsPerSecond =
-        s.insertMs > 0 ? double(s.inserted) / (s.insertMs / 1000.0) : 0.0;
+        st.insertMs > 0 ? double(st.inserted) / (st.insertMs / 1000.0) : 0.0;
+    std::printf("terrain: %s\n", source.c_str());
     std::printf("grid %d x %d, %s triangulation\n", field.width(), field.height(),
                 o.delaunay == "data" ? "data-dependent" : "Delaunay");
+    size_t borderSegments = 0;
+    if (zoned) {
+        for (const auto& e : z.lines.edges) borderSegments += e.left >= 0 && e.right >= 0;
+        std::printf(
+            "zones: %s, %dx%d, %zu surface types, %zu zones (%zu bands), %zu borderline segments, "
+            "epsilon %.3g px, band %.3g px\n",
+            s.zones.map.c_str(), z.map.width, z.map.height, z.palette.surfaces.size(),
+            z.lines.zones.size(), z.constraints.bands.size(), borderSegments,
+            double(s.zones.epsilon), z.band);
+    }
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
-                result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)s.inserted,
-                pointsPerSecond, tin::toString(s.stop));
+                result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
+                pointsPerSecond, tin::toString(st.stop));
     std::printf("vertical error: max %.6g, rms %.6g (target %.6g) over %lld samples\n",
-                error.maxError, error.rmsError, s.targetError, (long long)error.samples);
+                error.maxError, error.rmsError, st.targetError, (long long)error.samples);
+    if (zoned)
+        std::printf(
+            "zone agreement: %.3f%% of %lld map pixels; %lld triangles claimed by two zones\n",
+            100.0 * agreement.fraction(), (long long)agreement.pixels, (long long)st.zoneConflicts);
     std::printf(
-        "time ms: load %.1f, setup %.1f, insert %.1f, zones %.1f, measure %.1f, write %.1f, total "
-        "%.1f\n",
-        loadMs, s.setupMs, s.insertMs, s.zonesMs, measureMs, writeMs, total.ms());
+        "time ms: load %.1f, borderlines %.1f, setup %.1f, insert %.1f, zones %.1f, measure %.1f, "
+        "write %.1f, "
+        "total %.1f\n",
+        loadMs, z.ms, st.setupMs, st.insertMs, st.zonesMs, measureMs, writeMs, total.ms());
     std::printf("wrote %s\n", o.out.c_str());
 
     if (!o.json.empty()) {
@@ -100,19 +181,32 @@ int run(const Options& o) {
         report["triangulation"] = o.delaunay;
         report["triangles"] = result.mesh.triangles.size();
         report["vertices"] = result.mesh.vertices.size();
-        report["inserted"] = s.inserted;
-        report["flips"] = s.flips;
-        report["edge_splits"] = s.edgeSplits;
-        report["snap_splits"] = s.snapSplits;
-        report["stop"] = tin::toString(s.stop);
-        report["target_error"] = s.targetError;
+        report["inserted"] = st.inserted;
+        report["flips"] = st.flips;
+        report["edge_splits"] = st.edgeSplits;
+        report["snap_splits"] = st.snapSplits;
+        report["stop"] = tin::toString(st.stop);
+        report["target_error"] = st.targetError;
         report["max_error"] = error.maxError;
         report["rms_error"] = error.rmsError;
         report["samples"] = error.samples;
         report["points_per_second"] = pointsPerSecond;
-        report["time_ms"] = {{"load", loadMs},     {"setup", s.setupMs},   {"insert", s.insertMs},
-                             {"zones", s.zonesMs}, {"measure", measureMs}, {"write", writeMs},
-                             {"total", total.ms()}};
+        if (zoned) {
+            report["zones"] = {{"map", s.zones.map},
+                               {"map_size", {z.map.width, z.map.height}},
+                               {"surfaces", z.palette.surfaces.size()},
+                               {"zones", z.lines.zones.size()},
+                               {"bands", z.constraints.bands.size()},
+                               {"borderline_segments", borderSegments},
+                               {"epsilon", s.zones.epsilon},
+                               {"band", z.band},
+                               {"agreement", agreement.fraction()},
+                               {"agreement_pixels", agreement.pixels},
+                               {"conflicts", st.zoneConflicts}};
+        }
+        report["time_ms"] = {{"load", loadMs},        {"borderlines", z.ms}, {"setup", st.setupMs},
+                             {"insert", st.insertMs}, {"zones", st.zonesMs}, {"measure", measureMs},
+                             {"write", writeMs},      {"total", total.ms()}};
         report["out"] = o.out;
         writeFileAtomic(o.json, report.dump(2) + "\n");
     }
@@ -126,48 +220,92 @@ int main(int argc, char** argv) {
     CLI::App app{
         "sierra-tin: a triangulated irregular network of a heightfield by greedy insertion\n"
         "(the grid sample of largest vertical error first), written as OBJ (+MTL), PLY or STL.\n"
-        "With no stop option: --max-error-rel 0.001."};
-    app.option_defaults()->always_capture_default();
-    auto* heightmap = app.add_option(
-        "--heightmap", o.heightmap,
-        "Heightmap to load: .png (8/16-bit), .pgm, .r16/.r32, .hgt, .npy (any width x height)");
-    auto* generate = app.add_option("--generate", o.generate,
-                                    "Generate a diamond-square terrain of N = 2^n+1 samples")
-                         ->excludes(heightmap);
-    heightmap->excludes(generate);
-    app.add_option("--seed", o.seed, "Seed of the generated terrain");
+        "With --zones the zone borderlines are constrained edges and the OBJ is textured with the\n"
+        "palette's tiles. With no stop option: --max-error-rel 0.001.",
+        "sierra-tin"};
+    scene::SceneOptions sceneOptions(app, o.scene, scene::kTerrainOptions);
+    const scene::ZonesDesc zoneDefaults;
+    std::string zoneMap, palette;
+    float band = zoneDefaults.band, epsilon = zoneDefaults.epsilon;
+    const std::string zg = "Zones";
+    auto* zonesOpt =
+        app.add_option(
+               "--zones", zoneMap,
+               "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
+               "its borderlines become constrained edges")
+            ->type_name("MAP.png|auto")
+            ->group(zg);
+    app.add_option("--palette", palette, "Palette JSON (default: assets/palettes/default.json)")
+        ->type_name("P.json")
+        ->group(zg)
+        ->needs(zonesOpt);
+    app.add_option("--band", band,
+                   "Transition band width in zone-map pixels (default: the palette's bandWidth)")
+        ->type_name("W")
+        ->group(zg)
+        ->needs(zonesOpt)
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--epsilon", epsilon, "Borderline simplification (rule 3) in zone-map pixels")
+        ->type_name("PX")
+        ->group(zg)
+        ->needs(zonesOpt)
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    const std::string sg = "Mesh";
     app.add_option("--max-error", o.maxError,
                    "Stop when the largest vertical error is at most E (world height units)")
+        ->type_name("E")
+        ->group(sg)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--max-error-rel", o.maxErrorRel,
                    "Stop when the largest vertical error is at most F x the height range")
+        ->type_name("F")
+        ->group(sg)
         ->check(CLI::Range(0.0, 1.0));
     app.add_option("--max-triangles", o.maxTriangles,
                    "Stop before exceeding N triangles (0 = no limit)")
+        ->type_name("N")
+        ->group(sg)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--max-points", o.maxPoints, "Stop before exceeding N vertices (0 = no limit)")
+        ->type_name("N")
+        ->group(sg)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--delaunay", o.delaunay, "plain: Delaunay flips; data: data-dependent flips")
-        ->check(CLI::IsMember({"plain", "data"}));
+        ->type_name("plain|data")
+        ->group(sg)
+        ->check(CLI::IsMember({"plain", "data"}))
+        ->capture_default_str();
     app.add_option("--uv-period", o.uvPeriod, "OBJ planar UVs: grid samples per texture repeat")
-        ->check(CLI::PositiveNumber);
+        ->type_name("P")
+        ->group(sg)
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl")
+        ->type_name("MESH")
+        ->group(sg)
         ->required();
-    app.add_option("--json", o.json, "Write the statistics to this JSON file");
-    try {
-        app.parse(argc, argv);
-        if (o.heightmap.empty() && o.generate == 0)
-            throw CLI::ValidationError("give --heightmap FILE or --generate N");
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "sierra-tin: usage: %s (see --help)\n", e.what());
-        return 2;
-    }
-    try {
-        return run(o);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sierra-tin: error: %s\n", e.what());
-        return 1;
-    }
+    app.add_option("--json", o.json, "Write the statistics to this JSON file")
+        ->type_name("STATS.json")
+        ->group(sg);
+    return apps::runMain(
+        app, argc, argv,
+        [&] {
+            sceneOptions.apply();
+            // The zone options given override the scene's (from --config, or the defaults).
+            scene::ZonesDesc& z = o.scene.zones;
+            if (!zoneMap.empty()) z.map = zoneMap;
+            if (!palette.empty()) z.palette = palette;
+            if (app.count("--band")) z.band = band;
+            if (app.count("--epsilon")) z.epsilon = epsilon;
+            if (!std::isfinite(z.epsilon) || z.epsilon < 0.0f)
+                throw Error(
+                    msg("--epsilon must be a finite number of pixels >= 0, got ", z.epsilon));
+            if (!std::isfinite(z.band))
+                throw Error(msg("--band must be a finite number of pixels, got ", z.band));
+        },
+        [&] {
+            if (sceneOptions.printConfigRequested()) return 0;
+            return run(o);
+        });
 }

@@ -92,7 +92,7 @@ Scene unusualScene() {
                             {.time = 2.5f, .position = {-1e-3f, 7.25f, 0.3f}, .target = {0, 0, 0}}}};
     s.lighting = {.sunAzimuth = 90.0f, .sunAltitude = 0.7f, .ambient = 0.123456789f, .fog = 0.0f,
                   .sky = {0.0f, 1.0f, 0.333f}};
-    s.lod = {.mode = LodMode::Full, .tau = 2.75f, .geomorph = false, .cull = false, .threads = 7};
+    s.lod = {.mode = LodMode::Full, .tau = 2.75f, .geomorph = false, .cull = false, .threads = 7, .mesh = "tin.obj"};
     s.output = {.width = 333, .height = 4097, .msaa = 8, .frame = "f/x.png", .debug = "", .depth = "d.npy",
                 .alpha = true};
     s.style = {.wireframe = true};

@@ -82,6 +82,30 @@ TEST(SceneTerrain, ChannelReachesTheLoader) {
     EXPECT_GT(loadTerrain(red).range().second, 7.0f);
 }
 
+TEST(SceneTerrain, PaddingNoneKeepsTheSamplesAsRead) {
+    // A 6x3 grey image: padded to 9x9 for the SBT, kept 6x3 for the TIN, with
+    // the same samples, spacing and vertical scale.
+    const std::string path = ::testing::TempDir() + "/scene_as_read.png";
+    std::vector<uint8_t> grey(6 * 3);
+    for (size_t k = 0; k < grey.size(); ++k) grey[k] = uint8_t(10 * k);
+    ASSERT_TRUE(stbi_write_png(path.c_str(), 6, 3, 1, grey.data(), 6));
+    TerrainSource source{.heightmap = path};
+    std::string paddedText, plainText;
+    terrain::Heightfield padded = loadTerrain(source, &paddedText);
+    terrain::Heightfield plain = loadTerrain(source, &plainText, Padding::None);
+    EXPECT_EQ(padded.width(), 9);
+    EXPECT_EQ(padded.height(), 9);
+    ASSERT_EQ(plain.width(), 6);
+    ASSERT_EQ(plain.height(), 3);
+    EXPECT_FALSE(plain.hasMask());
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 6; ++i) EXPECT_EQ(plain.at(i, j), padded.at(i, j)) << i << "," << j;
+    EXPECT_EQ(plain.verticalScale(), padded.verticalScale());
+    EXPECT_EQ(plain.spacingX(), padded.spacingX());
+    EXPECT_THAT(paddedText, HasSubstr("padded to 9x9"));
+    EXPECT_THAT(plainText, ::testing::Not(HasSubstr("padded")));
+}
+
 TEST(SceneTerrain, EnumNamesRoundTrip) {
     for (HeightUnits u : {HeightUnits::Auto, HeightUnits::Metres, HeightUnits::None})
         EXPECT_EQ(parseHeightUnits(toString(u), "x"), u);
@@ -107,9 +131,9 @@ TEST(SceneTerrain, MaxPaddedSideBoundsFilesAndTheGenerator) {
         std::fclose(f);
     }
     TerrainSource file{.heightmap = path};
-    EXPECT_EQ(loadTerrain(file, nullptr, 65).width(), 65);
+    EXPECT_EQ(loadTerrain(file, nullptr, Padding::PowerOfTwoPlusOne, 65).width(), 65);
     try {
-        loadTerrain(file, nullptr, 33);
+        loadTerrain(file, nullptr, Padding::PowerOfTwoPlusOne, 33);
         ADD_FAILURE() << "a 40x2 file was loaded under a 33x33 limit";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("pads to a 65x65 grid (4225 samples), over the limit of 33x33"),
@@ -117,8 +141,8 @@ TEST(SceneTerrain, MaxPaddedSideBoundsFilesAndTheGenerator) {
             << e.what();
     }
     TerrainSource generated{.generateSize = 65};
-    EXPECT_EQ(loadTerrain(generated, nullptr, 65).width(), 65);
-    EXPECT_THROW(loadTerrain(generated, nullptr, 33), Error);
+    EXPECT_EQ(loadTerrain(generated, nullptr, Padding::PowerOfTwoPlusOne, 65).width(), 65);
+    EXPECT_THROW(loadTerrain(generated, nullptr, Padding::PowerOfTwoPlusOne, 33), Error);
 }
 
 // Roughness only sets the generated heights' units; beyond kMaxRoughness the

@@ -17,7 +17,7 @@ Lod parseLod(const std::string& name) {
     throw Error(msg("unknown level of detail '", name, "': use sbt or full"));
 }
 
-const char* lodName(Lod lod) { return lod == Lod::Sbt ? "sbt" : "full"; }
+const char* lodName(Lod lod) { return lod == Lod::Sbt ? "sbt" : lod == Lod::Full ? "full" : "tin"; }
 
 void MeshDraw::draw() const {
     glVertexArrayElementBuffer(vertexArray, elementBuffer);
@@ -65,6 +65,12 @@ MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width
         mesh.byteOffset = ring_.offset();
         mesh.count = GLsizei(strip_.size());
         pending_ = true;
+    } else if (lod.lod == Lod::Mesh) {
+        SIERRA_CHECK(terrain.meshIndexCount() > 0, "level of detail 'tin' needs a mesh (TerrainGpu::setMesh)");
+        mesh.elementBuffer = terrain.meshIndices().id();
+        mesh.count = GLsizei(terrain.meshIndexCount());
+        stats.indices = terrain.meshIndexCount();
+        stats.triangles = stats.indices / 3;
     } else {
         mesh.elementBuffer = terrain.fullGridIndices().id();
         mesh.count = GLsizei(terrain.fullGridIndexCount());

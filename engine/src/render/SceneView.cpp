@@ -9,6 +9,7 @@
 #include <sierra/render/passes/LinePass.h>
 #include <sierra/scene/Assets.h>
 #include <sierra/scene/Terrain.h>
+#include <sierra/tin/Export.h>
 
 #include <cmath>
 #include <memory>
@@ -138,7 +139,9 @@ TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& 
 }
 
 DrawOptions sceneDrawOptions(const scene::Scene& s) {
-    return {.lod = s.lod.mode == scene::LodMode::Full ? Lod::Full : Lod::Sbt,
+    return {.lod = !s.lod.mesh.empty()                  ? Lod::Mesh
+                   : s.lod.mode == scene::LodMode::Full ? Lod::Full
+                                                        : Lod::Sbt,
             .tau = s.lod.tau,
             .geomorph = s.lod.geomorph,
             .cull = s.lod.cull,
@@ -148,6 +151,43 @@ DrawOptions sceneDrawOptions(const scene::Scene& s) {
             .colourBy = s.style.colourBy == "level" ? 1 : s.style.colourBy == "error" ? 2 : 0,
             .threads = s.lod.threads,
             .lighting = sceneLighting(s.lighting, s.output.alpha)};
+}
+
+std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field) {
+    if (s.lod.mesh.empty()) return {};
+    const std::string& path = s.lod.mesh;
+    const tin::ObjFile obj = tin::readObj(path);
+    SIERRA_CHECK(!obj.faces.empty(), "mesh ", path, ": no triangles");
+    TerrainGpu& terrain = renderer.terrain();
+    const glm::vec2 spacing = terrain.spacing();
+    const SceneBounds bounds = terrain.bounds();
+    const int realW = int(std::lround(bounds.max.x / spacing.x)) + 1;
+    const int realH = int(std::lround(bounds.max.z / spacing.y)) + 1;
+    auto [lo, hi] = field.range();
+    const double heightTolerance = 1e-3 * std::max(double(hi - lo) * field.verticalScale(), 1e-6);
+    std::vector<uint32_t> linear(obj.positions.size());
+    for (size_t v = 0; v < obj.positions.size(); ++v) {
+        const auto& p = obj.positions[v];
+        const double gi = double(p[0]) / spacing.x, gj = double(p[2]) / spacing.y;
+        const long i = std::lround(gi), j = std::lround(gj);
+        const bool onSample = std::abs(gi - double(i)) < 1e-3 && std::abs(gj - double(j)) < 1e-3 && i >= 0 &&
+                              j >= 0 && i < realW && j < realH;
+        if (!onSample)
+            throw Error(msg("mesh ", path, ": vertex ", v + 1, " at (", p[0], ", ", p[2],
+                            ") is not a sample of the terrain's ", realW, "x", realH, " grid (spacing ", spacing.x,
+                            "); make the mesh with sierra-tin and the same terrain options"));
+        const double h = double(field.at(int(i), int(j))) * field.verticalScale();
+        if (std::abs(double(p[1]) - h) > heightTolerance)
+            throw Error(msg("mesh ", path, ": vertex ", v + 1, " has height ", p[1], ", the terrain ", h, " at sample (",
+                            i, ", ", j, "); make the mesh with sierra-tin and the same terrain options"));
+        linear[v] = uint32_t(j) * uint32_t(terrain.side()) + uint32_t(i);
+    }
+    std::vector<uint32_t> triangles;
+    triangles.reserve(obj.faces.size() * 3);
+    for (const auto& f : obj.faces)
+        for (int32_t v : f) triangles.push_back(linear[size_t(v)]);
+    terrain.setMesh(triangles);
+    return msg("mesh: ", path, ", ", obj.faces.size(), " triangles, ", obj.positions.size(), " vertices");
 }
 
 OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field) {

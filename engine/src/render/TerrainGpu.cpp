@@ -79,6 +79,8 @@ struct TerrainGpu::State {
     gpu::Buffer uniforms;
     gpu::Buffer fullIndices;
     uint64_t fullIndexCount = 0;
+    gpu::Buffer meshIndices;
+    uint64_t meshIndexCount = 0;
 };
 
 int TerrainGpu::maxGridSide() {
@@ -196,6 +198,20 @@ const gpu::Buffer& TerrainGpu::fullGridIndices() {
 }
 
 uint64_t TerrainGpu::fullGridIndexCount() const { return state_->fullIndexCount; }
+
+void TerrainGpu::setMesh(const std::vector<uint32_t>& triangles) {
+    State& s = *state_;
+    SIERRA_CHECK(!triangles.empty() && triangles.size() % 3 == 0, "a terrain mesh needs whole triangles, got ",
+                 triangles.size(), " indices");
+    const uint64_t samples = uint64_t(s.side) * uint64_t(s.side);
+    for (uint32_t index : triangles)
+        SIERRA_CHECK(index < samples, "a terrain mesh index ", index, " is outside the ", s.side, "^2 grid");
+    s.meshIndices = gpu::Buffer::create({.size = triangles.size() * sizeof(uint32_t), .data = triangles.data()});
+    s.meshIndexCount = triangles.size();
+}
+
+const gpu::Buffer& TerrainGpu::meshIndices() const { return state_->meshIndices; }
+uint64_t TerrainGpu::meshIndexCount() const { return state_->meshIndexCount; }
 SceneBounds TerrainGpu::bounds() const { return state_->bounds; }
 glm::vec2 TerrainGpu::worldRange() const { return state_->worldRange; }
 bool TerrainGpu::hasWater() const { return !std::isnan(state_->seaLevel); }

@@ -253,6 +253,8 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
         addFlag("--no-cull", "Do not cull against the view frustum", g, [](Scene& s, Words) { s.lod.cull = false; });
         add("--threads", "CPU threads (0 = all cores)", g, "N", msg(d.lod.threads), 1,
             [](Scene& s, Words w) { s.lod.threads = parseInt(w[0], "--threads"); });
+        add("--mesh", "Draw this TIN (an OBJ from sierra-tin of the same terrain) instead of the SBT", g, "MESH.obj",
+            d.lod.mesh, 1, [](Scene& s, Words w) { s.lod.mesh = w[0]; });
     }
 
     if (groups & kFrameOptions) {

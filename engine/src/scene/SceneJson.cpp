@@ -255,6 +255,7 @@ void readLod(ObjectReader& r, LodDesc& l) {
     r.field("geomorph", [&](const Json& v, const std::string& k) { l.geomorph = r.toBool(v, k); });
     r.field("cull", [&](const Json& v, const std::string& k) { l.cull = r.toBool(v, k); });
     r.field("threads", [&](const Json& v, const std::string& k) { l.threads = r.toInt(v, k); });
+    r.field("mesh", [&](const Json& v, const std::string& k) { l.mesh = r.toString(v, k); });
 }
 
 void readOutput(ObjectReader& r, OutputDesc& o) {
@@ -398,7 +399,7 @@ Json sceneToJson(const Scene& s) {
     };
     Json lod = {
         {"mode", toString(s.lod.mode)},         {"tau", number(s.lod.tau)}, {"geomorph", s.lod.geomorph},
-        {"cull", s.lod.cull},                   {"threads", s.lod.threads},
+        {"cull", s.lod.cull},                   {"threads", s.lod.threads}, {"mesh", s.lod.mesh},
     };
     const OutputDesc& o = s.output;
     Json output = {

@@ -83,7 +83,8 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
     return parseSize(text, option, 65537, "4097x4097");
 }
 
-terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description, int maxPaddedSide) {
+terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description, Padding padding,
+                                 int maxPaddedSide) {
     terrain::Heightfield field;
     std::string what;
     bool metric = false;
@@ -104,12 +105,14 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
                                                                                      : toString(source.channel),
                                           .maxPaddedSide = maxPaddedSide});
         what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
-        if (std::string warning = terrain::paddingWarning(field.width(), field.height()); !warning.empty())
+        if (std::string warning = padding == Padding::None ? std::string()
+                                                           : terrain::paddingWarning(field.width(), field.height());
+            !warning.empty())
             what += msg(" [warning: ", warning, "]");
     }
     metric = metricHeights(source);
     int originalWidth = field.width(), originalHeight = field.height();
-    field = terrain::padToPowerOfTwoPlusOne(field);
+    if (padding == Padding::PowerOfTwoPlusOne) field = terrain::padToPowerOfTwoPlusOne(field);
     if (field.width() != originalWidth || field.height() != originalHeight)
         what += msg(", padded to ", field.width(), "x", field.height());
 

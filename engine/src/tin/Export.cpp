@@ -93,11 +93,19 @@ void writeObj(const std::string& path, const TinMesh& mesh, const ObjOptions& op
                     << ": no blended image given, the first surface's tile stands in\n";
             }
         }
-        // A stable plain colour per material for viewers without textures.
-        const uint32_t h = uint32_t(surfaces[0]) * 2654435761u ^ uint32_t(surfaces[1]) * 40503u;
-        mtl << "Ka 0 0 0\nKd " << 0.35 + 0.6 * ((h >> 0) & 255) / 255.0 << " "
-            << 0.35 + 0.6 * ((h >> 8) & 255) / 255.0 << " "
-            << 0.35 + 0.6 * ((h >> 16) & 255) / 255.0 << "\nKs 0 0 0\nillum 1\n";
+        // The palette colours, or a stable plain colour per material, for viewers without textures.
+        auto a = options.surfaceColours.find(surfaces[0]), b = options.surfaceColours.find(surfaces[1]);
+        if (a != options.surfaceColours.end() && b != options.surfaceColours.end()) {
+            mtl << "Ka 0 0 0\nKd";
+            for (int shift : {16, 8, 0})
+                mtl << " " << (double((a->second >> shift) & 255u) + double((b->second >> shift) & 255u)) / 510.0;
+            mtl << "\nKs 0 0 0\nillum 1\n";
+        } else {
+            const uint32_t h = uint32_t(surfaces[0]) * 2654435761u ^ uint32_t(surfaces[1]) * 40503u;
+            mtl << "Ka 0 0 0\nKd " << 0.35 + 0.6 * ((h >> 0) & 255) / 255.0 << " "
+                << 0.35 + 0.6 * ((h >> 8) & 255) / 255.0 << " "
+                << 0.35 + 0.6 * ((h >> 16) & 255) / 255.0 << "\nKs 0 0 0\nillum 1\n";
+        }
         if (!image.empty()) mtl << "map_Kd " << image << "\n";
     }
     writeFileAtomic(mtlPath, mtl.str());

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -561,7 +562,7 @@ std::pair<std::vector<uint32_t>, std::vector<uint32_t>> offsetArc(std::vector<Ve
 
 }  // namespace
 
-void doubleBorderlines(Borderlines& lines, double width) {
+void doubleBorderlines(Borderlines& lines, double width, const std::function<Vertex(const Vertex&)>& snap) {
     if (!(width > 0.0)) return;
     Adjacency adj = adjacency(lines);
     const std::vector<Arc> arcs = extractArcs(lines, adj, junctionsOf(lines, adj));
@@ -610,6 +611,24 @@ void doubleBorderlines(Borderlines& lines, double width) {
             out.push_back({rightCopy, band[a], arcs[a].right, arcs[a].closed});
             source.push_back(a);
             source.push_back(a);
+        }
+        if (snap) {
+            // Snapped copies are what gets checked, so the check sees the final
+            // geometry; a copy's vertices that snap together become one.
+            for (size_t v = baseVertices; v < vertices.size(); ++v) vertices[v] = snap(vertices[v]);
+            auto same = [&](uint32_t a, uint32_t b) {
+                return vertices[a].x == vertices[b].x && vertices[a].y == vertices[b].y;
+            };
+            for (Arc& arc : out) {
+                std::vector<uint32_t> kept;
+                for (uint32_t v : arc.chain)
+                    if (kept.empty() || !same(kept.back(), v)) kept.push_back(v);
+                // A closed copy keeps its first vertex as its last.
+                if (kept.size() > 1 && arc.chain.front() == arc.chain.back() && kept.back() != kept.front() &&
+                    same(kept.back(), kept.front()))
+                    kept.back() = kept.front();
+                arc.chain = std::move(kept);
+            }
         }
         Borderlines candidate = lines;
         candidate.vertices = std::move(vertices);

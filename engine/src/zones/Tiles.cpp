@@ -3,9 +3,13 @@
 #include "Png.h"
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
+
+#include <stb/stb_image.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace sierra::zones {
 namespace {
@@ -198,6 +202,47 @@ TileImage generateTile(const std::string& name, int size, uint64_t seed) {
             p[3] = byte(t.height);
         }
     return tile;
+}
+
+TileImage loadTile(const std::string& path) {
+    constexpr int kMaxTile = 4096;
+    auto bytes = readFileBytes(path);
+    if (bytes.size() > size_t(INT32_MAX)) throw Error(msg("tile ", path, ": file too large"));
+    int w = 0, h = 0, channels = 0;
+    if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels))
+        throw Error(msg("tile ", path, " is not an image (", stbi_failure_reason(), ")"));
+    SIERRA_CHECK(w == h && w > 0 && w <= kMaxTile, "tile ", path, " is ", w, "x", h, "; tiles are square, 1..",
+                 kMaxTile, " per side");
+    std::unique_ptr<uint8_t, void (*)(void*)> pixels(
+        stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 4), stbi_image_free);
+    if (!pixels) throw Error(msg("tile ", path, " cannot be decoded: ", stbi_failure_reason()));
+    TileImage tile;
+    tile.size = w;
+    tile.rgba.assign(pixels.get(), pixels.get() + size_t(w) * size_t(h) * 4);
+    return tile;
+}
+
+TileImage blendTiles(const TileImage& first, const TileImage& second, float heightBlend) {
+    SIERRA_CHECK(first.size == second.size && first.size > 0, "blending tiles of ", first.size, " and ", second.size,
+                 " texels: both must have one size");
+    auto smoothstep = [](double e0, double e1, double x) {
+        double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+        return t * t * (3.0 - 2.0 * t);
+    };
+    TileImage out;
+    out.size = first.size;
+    out.rgba.resize(first.rgba.size());
+    for (size_t k = 0; k < out.rgba.size(); k += 4) {
+        const uint8_t* a = &first.rgba[k];
+        const uint8_t* b = &second.rgba[k];
+        // The shader's shift at weight w is strength (hb - ha) 4 w (1 - w): at w = 0.5, strength (hb - ha).
+        double weight = std::clamp(0.5 + double(heightBlend) * (double(b[3]) - double(a[3])) / 255.0, 0.0, 1.0);
+        if (heightBlend > 0.0f) weight = smoothstep(0.15, 0.85, weight);
+        for (int c = 0; c < 3; ++c)
+            out.rgba[k + size_t(c)] = uint8_t(std::lround(double(a[c]) * (1.0 - weight) + double(b[c]) * weight));
+        out.rgba[k + 3] = uint8_t((int(a[3]) + int(b[3]) + 1) / 2);
+    }
+    return out;
 }
 
 std::vector<uint8_t> encodeTilePng(const TileImage& tile) {

@@ -15,10 +15,11 @@ namespace sierra::render {
 
 class TerrainGpu;
 
-enum class Lod { Sbt, Full };
+// Mesh: the TIN given to the terrain (TerrainGpu::setMesh), drawn as it is.
+enum class Lod { Sbt, Full, Mesh };
 
 Lod parseLod(const std::string& name);  // "sbt" or "full"; throws otherwise
-const char* lodName(Lod lod);
+const char* lodName(Lod lod);           // "sbt", "full" or "tin"
 
 // One element-buffer range and how to draw it. Vertices carry no attributes:
 // each index is a linear grid position that the vertex shader reads as

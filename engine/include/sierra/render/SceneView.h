@@ -37,6 +37,14 @@ glm::vec3 toGlm(const scene::Vec3& v);
 // `field` and `seaLevel` as for sceneTerrainDesc.
 std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& scene, const terrain::Heightfield& field,
                               float seaLevel);
+// Gives the renderer the scene's TIN (lod.mesh, an OBJ from sierra-tin) and
+// returns one line saying what was loaded ("" for none; sceneDrawOptions then
+// picks Lod::Mesh). Every OBJ vertex must be a real sample of `field` (x =
+// i * spacing, z = j * spacing, within 1e-3 of a sample) with its height
+// (within 1e-3 of the height range): a mesh made for another terrain is
+// refused with sierra::Error naming the file.
+std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& scene, const terrain::Heightfield& field);
+
 // What addOverlayPasses added.
 struct OverlayInfo {
     size_t lines = 0;     // polylines traced

@@ -50,6 +50,12 @@ public:
     // Every grid cell as indexed triangles, built on first use.
     const gpu::Buffer& fullGridIndices();
     uint64_t fullGridIndexCount() const;
+    // A mesh of the terrain's own samples (a TIN) as indexed triangles of
+    // linear grid positions j * side() + i, drawn with Lod::Mesh. Throws
+    // sierra::Error for an index outside the grid or a count not a multiple of 3.
+    void setMesh(const std::vector<uint32_t>& triangles);
+    const gpu::Buffer& meshIndices() const;
+    uint64_t meshIndexCount() const;
 
     SceneBounds bounds() const;      // the real samples' box (padding excluded), world units
     glm::vec2 worldRange() const;    // lowest and highest world height of the real samples

@@ -107,6 +107,9 @@ struct LodDesc {
     bool geomorph = true;   // blend newly active vertices in, so none pops
     bool cull = true;       // frustum culling during refinement
     int threads = 0;        // CPU threads; 0 = sierra::defaultThreadCount()
+    // A TIN (an OBJ from sierra-tin, made with the same terrain options) drawn
+    // instead of the SBT or the full grid; "" = none.
+    std::string mesh;
     bool operator==(const LodDesc&) const = default;
 };
 

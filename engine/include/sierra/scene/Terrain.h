@@ -74,18 +74,27 @@ std::pair<int, int> parseFrameSize(const std::string& text, const std::string& o
 // throws sierra::Error naming `option`.
 std::pair<int, int> parseRawSize(const std::string& text, const std::string& option = "--raw-size");
 
-// The terrain ready for the SBT. Automatic spacing is the loader's (1 for image
+// How loadTerrain shapes the grid.
+enum class Padding {
+    PowerOfTwoPlusOne,  // the SBT's (2^n+1)^2 grid: edge-clamped, the padding masked (the default)
+    None,               // the samples as read, any width x height (the TIN meshes exactly these)
+};
+
+// The terrain ready for the SBT (or, with Padding::None, as read). Automatic spacing is the loader's (1 for image
 // and array formats; SRTM: 90 m for 1201 wide tiles, 30 m for 3601; GeoTIFF: the
 // pixel size of a projected system). Automatic vertical scale is 1 for metric
 // heights (height units metres, or auto with SRTM/GeoTIFF) and otherwise makes
 // the relief 20% of the horizontal extent. `description`, when given, receives
 // one line saying what was loaded and the choices made. Throws sierra::Error
 // for bad input, and for a `hurst` or `channel` that this build's terrain
-// module cannot honour yet. `maxPaddedSide` is the largest (2^n+1) grid side
-// the caller can take (a renderer: its GL's texture limit, see
-// render::TerrainGpu::maxGridSide); a file or a generator size that pads past it
-// is refused before its samples are allocated.
+// module cannot honour yet.
+// Spacing, vertical scale and description do not depend on `padding`.
+// `maxPaddedSide` is the largest (2^n+1) grid side the caller can take (a
+// renderer: its GL's texture limit, see render::TerrainGpu::maxGridSide); a
+// file or a generator size that pads past it is refused before its samples
+// are allocated.
 terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description = nullptr,
+                                 Padding padding = Padding::PowerOfTwoPlusOne,
                                  int maxPaddedSide = terrain::kDefaultMaxPaddedSide);
 
 // True when the source's heights are metres: height units `m`, or automatic

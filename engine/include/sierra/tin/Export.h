@@ -25,6 +25,9 @@ struct ObjOptions {
     // Image of a band's blended tiles, by its two surface types (first, second).
     // A band with none names the first surface's tile (the MTL says so).
     std::map<std::pair<int32_t, int32_t>, std::string> bandImages;
+    // Kd colour (0xRRGGBB) of each surface type; a band gets the mean of its
+    // two. A surface with none gets a stable made-up colour.
+    std::map<int32_t, uint32_t> surfaceColours;
     // Planar UVs: u = x / uvPeriod, v = y / uvPeriod (grid samples per tile
     // repeat, default 64).
     double uvPeriod = 64.0;

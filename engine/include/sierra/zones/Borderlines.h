@@ -12,6 +12,7 @@
 #include <sierra/zones/ZoneMap.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -92,8 +93,11 @@ void simplifyArcs(Borderlines& lines, double epsilon);
 // fit (a strip narrower than the band, a tight bend) and its copies would cross
 // other lines, that arc's band is narrowed to width/2, then width/4, and at
 // last the arc is left single: the result is always a valid subdivision.
-// width <= 0 does nothing.
-void doubleBorderlines(Borderlines& lines, double width);
+// width <= 0 does nothing. `snap`, when given, moves every vertex of the
+// copies (e.g. onto the samples of a mesh's grid) before that check, so the
+// result is a valid subdivision with the snapped positions; consecutive copy
+// vertices that snap to one position become one.
+void doubleBorderlines(Borderlines& lines, double width, const std::function<Vertex(const Vertex&)>& snap = {});
 
 struct BorderlineDesc {
     double epsilon = 0.0;    // rule 3 tolerance, zone-map pixels; 0 = rules 1-2 only

@@ -1,0 +1,74 @@
+#pragma once
+// The zones module's output as the TIN's input and output: vectorised
+// borderlines become constrained edges, the zone map checks the triangles'
+// zones, and the palette's tiles (blended for bands) become the OBJ's
+// materials.
+//
+// Zone map and grid: the map's pixel centres lie on the terrain's samples and
+// the map is stretched over the grid, as the terrain shader places it. Map
+// position m (pixel units, pixel (i, j) covering [i, i+1] x [j, j+1]) is grid
+// position (m - 0.5) * (gridSide - 1) / (mapSide - 1) on each axis, so a map
+// of the grid's size puts pixel (i, j)'s centre on sample (i, j).
+
+#include <sierra/tin/Export.h>
+#include <sierra/tin/Tin.h>
+#include <sierra/zones/Borderlines.h>
+#include <sierra/zones/Palette.h>
+#include <sierra/zones/ZoneMap.h>
+
+#include <cstdint>
+#include <string>
+
+namespace sierra::tin {
+
+// Grid coordinates of a zone-map position (see above).
+Constraints::Vertex mapToGrid(double mapX, double mapY, int mapWidth, int mapHeight, int gridWidth,
+                              int gridHeight);
+
+// A zone map's borderlines ready for a gridWidth x gridHeight TIN:
+// vectorised and simplified (desc.epsilon), every vertex moved to the grid
+// sample the TIN snaps it to (Constraints' rule), written back in zone-map
+// pixels, coincident vertices merged (rule 1), then doubled into bands
+// (desc.bandWidth) with the copies snapped the same way before their crossing
+// check, so the bands stay a valid subdivision on the grid. Throws
+// sierra::Error as zones::buildBorderlines, and for a map or grid smaller
+// than 2 x 2.
+zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palette& palette,
+                                   const zones::BorderlineDesc& desc, int gridWidth,
+                                   int gridHeight);
+
+// The borderlines (zone-map pixel units) as constraints of a gridWidth x
+// gridHeight TIN: every edge becomes a segment with its two zones (the zones'
+// "left as drawn", y down, is the TIN's right: cross(b - a, p - a) < 0); a frame
+// edge carries its inside zone on both sides (its outside has no triangle); a
+// band zone becomes a Constraints::Band of its two zones; defaultZone is the
+// zone of the first frame edge (a map with one zone has no other edge).
+// Throws sierra::Error for a map or grid smaller than 2 x 2.
+Constraints constraintsFromBorderlines(const zones::Borderlines& lines, int gridWidth,
+                                       int gridHeight);
+
+// How far the triangles' zones agree with a zone map: each map pixel is
+// counted once, in the triangle that contains its centre; it agrees when its
+// zone is one of that triangle's two surface types. A centre on an edge (a
+// Touching map's borderlines run through the samples after snapping, so whole
+// rows of centres do) goes to the triangle on its +x side, then +y: the centre
+// is moved by (1.3e-4, 0.7e-4) samples (inwards at the grid's far edges).
+// Borderline pixels of Figure 1 maps belong to no zone and are not counted.
+struct ZoneAgreement {
+    int64_t pixels = 0;  // pixels counted
+    int64_t agree = 0;   // of those, pixels whose zone the triangle carries
+    double fraction() const { return pixels > 0 ? double(agree) / double(pixels) : 1.0; }
+};
+ZoneAgreement zoneAgreement(const TinMesh& mesh, const zones::ZoneMap& map);
+
+// The OBJ materials of a zoned TIN: each surface type's tile (palette order)
+// named relative to the OBJ's folder (absolute when no relative path exists),
+// its palette colour as Kd, and for every band pair in the mesh a blended tile
+// (zones::blendTiles, heightBlend the mean of the two surfaces') written as a
+// PNG beside the OBJ: <obj stem>_band_<a>_<b>.png. Throws sierra::Error when a
+// tile cannot be read, when two tiles of a band differ in size, or when a
+// file cannot be written.
+ObjOptions zoneMaterials(const std::string& objPath, const TinMesh& mesh,
+                         const zones::Palette& palette);
+
+}  // namespace sierra::tin

@@ -1,0 +1,172 @@
+#include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
+#include <sierra/tin/ZoneTin.h>
+#include <sierra/zones/Tiles.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <utility>
+
+namespace sierra::tin {
+
+Constraints::Vertex mapToGrid(double mapX, double mapY, int mapWidth, int mapHeight, int gridWidth,
+                              int gridHeight) {
+    return {(mapX - 0.5) * double(gridWidth - 1) / double(mapWidth - 1),
+            (mapY - 0.5) * double(gridHeight - 1) / double(mapHeight - 1)};
+}
+
+zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palette& palette,
+                                   const zones::BorderlineDesc& desc, int gridWidth,
+                                   int gridHeight) {
+    SIERRA_CHECK(map.width >= 2 && map.height >= 2,
+                 "a zone map for a TIN needs at least 2x2 pixels, got ", map.width, "x",
+                 map.height);
+    SIERRA_CHECK(gridWidth >= 2 && gridHeight >= 2,
+                 "a TIN needs a grid of at least 2x2 samples, got ", gridWidth, "x", gridHeight);
+    zones::Borderlines lines =
+        zones::buildBorderlines(map, palette, {.epsilon = desc.epsilon, .bandWidth = 0.0});
+    const double sx = double(map.width - 1) / double(gridWidth - 1);
+    const double sy = double(map.height - 1) / double(gridHeight - 1);
+    auto snap = [&](const zones::Vertex& v) {
+        const Constraints::Vertex g =
+            mapToGrid(v.x, v.y, map.width, map.height, gridWidth, gridHeight);
+        const double x = std::clamp(std::floor(g.x + 0.5), 0.0, double(gridWidth - 1));
+        const double y = std::clamp(std::floor(g.y + 0.5), 0.0, double(gridHeight - 1));
+        return zones::Vertex{x * sx + 0.5, y * sy + 0.5};
+    };
+    for (zones::Vertex& v : lines.vertices) v = snap(v);
+    zones::removeDuplicateVertices(lines);
+    zones::doubleBorderlines(lines, desc.bandWidth, snap);
+    return lines;
+}
+
+Constraints constraintsFromBorderlines(const zones::Borderlines& lines, int gridWidth,
+                                       int gridHeight) {
+    SIERRA_CHECK(lines.mapWidth >= 2 && lines.mapHeight >= 2,
+                 "a zone map for a TIN needs at least 2x2 pixels, got ", lines.mapWidth, "x",
+                 lines.mapHeight);
+    SIERRA_CHECK(gridWidth >= 2 && gridHeight >= 2,
+                 "a TIN needs a grid of at least 2x2 samples, got ", gridWidth, "x", gridHeight);
+    Constraints c;
+    c.vertices.reserve(lines.vertices.size());
+    for (const zones::Vertex& v : lines.vertices)
+        c.vertices.push_back(
+            mapToGrid(v.x, v.y, lines.mapWidth, lines.mapHeight, gridWidth, gridHeight));
+    c.segments.reserve(lines.edges.size());
+    bool haveDefault = false;
+    for (const zones::Edge& e : lines.edges) {
+        if (e.left < 0 && e.right < 0)
+            continue;  // no zone on either side: nothing to seed or separate
+        // The zones' "left as drawn" (y down) is where cross(b - a, p - a) < 0, the
+        // TIN's right. A frame edge: its outside has no triangle, so the inside
+        // zone goes on both sides.
+        const int32_t left = e.right >= 0 ? e.right : e.left;
+        const int32_t right = e.left >= 0 ? e.left : e.right;
+        if (!haveDefault && (e.left < 0 || e.right < 0)) c.defaultZone = left, haveDefault = true;
+        c.segments.push_back(
+            {.a = int32_t(e.from), .b = int32_t(e.to), .leftZone = left, .rightZone = right});
+    }
+    for (const zones::Zone& z : lines.zones)
+        if (z.bandOf[0] >= 0)
+            c.bands.push_back({.zone = z.id, .first = z.bandOf[0], .second = z.bandOf[1]});
+    return c;
+}
+
+ZoneAgreement zoneAgreement(const TinMesh& mesh, const zones::ZoneMap& map) {
+    SIERRA_CHECK(map.width >= 2 && map.height >= 2 && mesh.gridWidth >= 2 && mesh.gridHeight >= 2,
+                 "zone agreement needs a map and a grid of at least 2x2, got ", map.width, "x",
+                 map.height, " and ", mesh.gridWidth, "x", mesh.gridHeight);
+    // Grid units per pixel; pixel (i, j)'s centre lies at (i sx, j sy), moved
+    // by the tie-breaking offset (see the header) and back inside at the far edges.
+    constexpr double kNudgeX = 1.3e-4, kNudgeY = 0.7e-4;
+    const double sx = double(mesh.gridWidth - 1) / double(map.width - 1);
+    const double sy = double(mesh.gridHeight - 1) / double(map.height - 1);
+    auto centreX = [&](int i) {
+        return i == map.width - 1 ? double(mesh.gridWidth - 1) - kNudgeX : i * sx + kNudgeX;
+    };
+    auto centreY = [&](int j) {
+        return j == map.height - 1 ? double(mesh.gridHeight - 1) - kNudgeY : j * sy + kNudgeY;
+    };
+    std::vector<uint8_t> counted(size_t(map.width) * size_t(map.height), 0);
+    ZoneAgreement result;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        double px[3], py[3];
+        for (int k = 0; k < 3; ++k) {
+            const GridPoint& g = mesh.vertices[size_t(mesh.triangles[t][size_t(k)])];
+            px[k] = double(g.x);
+            py[k] = double(g.y);
+        }
+        const double area = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
+        if (area == 0.0) continue;
+        // The pixels whose centres the bounding box can hold (one pixel of margin for the offset).
+        const int i0 = std::max(0, int(std::floor(std::min({px[0], px[1], px[2]}) / sx)) - 1);
+        const int i1 =
+            std::min(map.width - 1, int(std::ceil(std::max({px[0], px[1], px[2]}) / sx)) + 1);
+        const int j0 = std::max(0, int(std::floor(std::min({py[0], py[1], py[2]}) / sy)) - 1);
+        const int j1 =
+            std::min(map.height - 1, int(std::ceil(std::max({py[0], py[1], py[2]}) / sy)) + 1);
+        const int32_t s0 = mesh.surfaces[t][0], s1 = mesh.surfaces[t][1];
+        for (int j = j0; j <= j1; ++j) {
+            const double y = centreY(j);
+            for (int i = i0; i <= i1; ++i) {
+                const double x = centreX(i);
+                bool inside = true;
+                for (int k = 0; k < 3 && inside; ++k) {
+                    const int n = (k + 1) % 3;
+                    const double e = (px[n] - px[k]) * (y - py[k]) - (py[n] - py[k]) * (x - px[k]);
+                    inside = (area > 0 ? e : -e) > 0.0;
+                }
+                if (!inside) continue;
+                const size_t p = size_t(j) * size_t(map.width) + size_t(i);
+                if (counted[p]) continue;
+                counted[p] = 1;
+                const int zone = map.ids[p];
+                if (zone == zones::kBorderlinePixel) continue;
+                ++result.pixels;
+                result.agree += (zone == s0 || zone == s1) ? 1 : 0;
+            }
+        }
+    }
+    return result;
+}
+
+ObjOptions zoneMaterials(const std::string& objPath, const TinMesh& mesh,
+                         const zones::Palette& palette) {
+    namespace fs = std::filesystem;
+    const fs::path obj(objPath);
+    const fs::path folder = obj.parent_path().empty() ? fs::path(".") : obj.parent_path();
+    ObjOptions options;
+    auto reference = [&](const std::string& file) {
+        std::error_code ec;
+        fs::path rel = fs::proximate(fs::path(file), folder, ec);
+        return ec || rel.empty() ? fs::absolute(file).string() : rel.generic_string();
+    };
+    for (size_t s = 0; s < palette.surfaces.size(); ++s) {
+        options.surfaceColours[int32_t(s)] = palette.surfaces[s].colour;
+        if (!palette.surfaces[s].tile.empty())
+            options.tileImages[int32_t(s)] = reference(palette.surfaces[s].tile);
+    }
+    std::set<std::pair<int32_t, int32_t>> bands;
+    for (const auto& s : mesh.surfaces)
+        if (s[0] != s[1]) bands.insert({s[0], s[1]});
+    for (const auto& [a, b] : bands) {
+        SIERRA_CHECK(a >= 0 && b >= 0 && size_t(a) < palette.surfaces.size() &&
+                         size_t(b) < palette.surfaces.size(),
+                     "band of surfaces ", a, " and ", b, ": the palette has ",
+                     palette.surfaces.size(), " surfaces");
+        const zones::SurfaceType& first = palette.surfaces[size_t(a)];
+        const zones::SurfaceType& second = palette.surfaces[size_t(b)];
+        if (first.tile.empty() || second.tile.empty()) continue;
+        zones::TileImage blend =
+            zones::blendTiles(zones::loadTile(first.tile), zones::loadTile(second.tile),
+                              0.5f * (first.heightBlend + second.heightBlend));
+        const std::string name = msg(obj.stem().string(), "_band_", a, "_", b, ".png");
+        writeFileAtomic((folder / name).string(), zones::encodeTilePng(blend));
+        options.bandImages[{a, b}] = name;
+    }
+    return options;
+}
+
+}  // namespace sierra::tin
