@@ -108,12 +108,13 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
         std::vector<uint8_t> out(size_t(m.size));
         if (m.method == 0) {
             if (m.compressed != m.size) throw fail(msg("corrupt .npz: stored member ", m.name, " changes size"));
-            std::memcpy(out.data(), &bytes[data], out.size());
+            // An empty member has no data to copy (and out.data() may be null).
+            if (!out.empty()) std::memcpy(out.data(), bytes.data() + data, out.size());
         } else {
             // Raw deflate (no zlib header) into a buffer of exactly the declared size.
             z_stream z{};
             if (inflateInit2(&z, -MAX_WBITS) != Z_OK) throw fail("cannot start zlib's inflate");
-            z.next_in = const_cast<Bytef*>(&bytes[data]);
+            z.next_in = const_cast<Bytef*>(bytes.data() + data);
             z.avail_in = uInt(m.compressed);
             z.next_out = out.data();
             z.avail_out = uInt(out.size());
