@@ -30,7 +30,7 @@ endfunction()
 # Zone maps.
 run_bad(map_missing 1 "none.png" --zones none.png)
 file(WRITE ${WORK_DIR}/notimage.png "this is not a png at all")
-run_bad(map_corrupt 1 "not a PNG file" --zones notimage.png)
+run_bad(map_corrupt 1 "is not an image" --zones notimage.png)
 # A truncated PNG: the real header, half the data.
 file(SIZE ${MAP} mapSize)
 math(EXPR half "${mapSize} / 2")

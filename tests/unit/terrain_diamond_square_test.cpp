@@ -147,10 +147,11 @@ TEST(TerrainDiamondSquare, RejectsBadSizeAndRoughness) {
     EXPECT_THAT(generateError({.size = 32769}), HasSubstr("is not 2^n + 1"));
     EXPECT_THAT(generateError({.size = 0}), HasSubstr("is not 2^n + 1"));
     EXPECT_THAT(generateError({.size = 9, .roughness = 0.0f}),
-                HasSubstr("roughness 0 must be finite and > 0"));
+                HasSubstr("roughness 0 must be in (0, 1e+06]"));
     EXPECT_THAT(generateError({.size = 9, .roughness = -1.0f}),
-                HasSubstr("must be finite and > 0"));
-    EXPECT_THAT(generateError({.size = 9, .roughness = NAN}), HasSubstr("must be finite and > 0"));
+                HasSubstr("must be in (0, 1e+06]"));
+    EXPECT_THAT(generateError({.size = 9, .roughness = NAN}), HasSubstr("must be in (0, 1e+06]"));
+    EXPECT_THAT(generateError({.size = 9, .roughness = 1e38f}), HasSubstr("must be in (0, 1e+06]"));
     EXPECT_EQ(generateDiamondSquare({.size = 3}).width(), 3);
 }
 

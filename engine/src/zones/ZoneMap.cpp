@@ -7,6 +7,8 @@
 #include <sierra/terrain/HeightfieldIO.h>
 #include <sierra/terrain/Maps.h>
 
+#include <stb/stb_image.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -75,14 +77,29 @@ ZoneMap classifyZoneMap(int width, int height, std::span<const uint8_t> rgb, con
 }
 
 ZoneMap loadZoneMap(const std::string& path, const Palette& palette) {
-    // Decoded like a PNG heightmap (every CRC checked, limits before the pixels
-    // are allocated); a zone map is as large as the terrain it covers at most.
-    // An RGB PNG of kMaxSide^2 stored uncompressed, plus framing, is the largest.
+    // An RGB image of kMaxSide^2 stored uncompressed, plus framing, is the largest.
     const uint64_t maxBytes = uint64_t(kMaxSide) * kMaxSide * 4 + (uint64_t(1) << 20);
     const std::vector<uint8_t> bytes =
         readFileBytes(path, maxBytes, msg("a zone map of at most ", kMaxSide, "x", kMaxSide, " pixels is smaller"));
-    const terrain::RgbImage image = terrain::decodePngRgb8(msg("zone map ", path), bytes);
-    return classifyZoneMap(image.width, image.height, image.rgb, palette, path);
+    // PNG is decoded like a PNG heightmap: every CRC checked, the size limits
+    // before the pixels are allocated.
+    static const uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (bytes.size() >= 8 && std::equal(kPngSignature, kPngSignature + 8, bytes.begin())) {
+        const terrain::RgbImage image = terrain::decodePngRgb8(msg("zone map ", path), bytes);
+        return classifyZoneMap(image.width, image.height, image.rgb, palette, path);
+    }
+    // Other formats (PPM/PGM, BMP, TGA) through the image library, its header
+    // read and the size checked before the pixels are decoded.
+    int w = 0, h = 0, channels = 0;
+    if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels))
+        throw Error(msg("zone map ", path, " is not an image (", stbi_failure_reason(),
+                        "); expected a PNG whose colours are in the palette"));
+    SIERRA_CHECK(w > 0 && h > 0 && w <= kMaxSide && h <= kMaxSide, "zone map ", path, ": size ", w, "x", h,
+                 " must be 1..", kMaxSide, " per side");
+    std::unique_ptr<uint8_t, void (*)(void*)> pixels(
+        stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 3), stbi_image_free);
+    if (!pixels) throw Error(msg("zone map ", path, " cannot be decoded: ", stbi_failure_reason()));
+    return classifyZoneMap(w, h, std::span<const uint8_t>(pixels.get(), size_t(w) * size_t(h) * 3), palette, path);
 }
 
 ZoneMap autoZones(const terrain::Heightfield& field, const Palette& palette, const AutoZoneDesc& desc) {
