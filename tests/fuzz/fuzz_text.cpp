@@ -23,8 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 #elif SIERRA_FUZZ_TARGET == 2
         sierra::zones::parsePalette(text, "/nonexistent", "fuzz.json", false);
 #elif SIERRA_FUZZ_TARGET == 3
-        const auto json = sierra::scene::Json::parse(text, nullptr, false);
-        if (!json.is_discarded()) sierra::scene::validateScene(sierra::scene::sceneFromJson(json, "fuzz.json"));
+        sierra::scene::validateScene(
+            sierra::scene::sceneFromJson(sierra::scene::parseJson(text, "fuzz.json"), "fuzz.json"));
 #elif SIERRA_FUZZ_TARGET == 4
         sierra::terrain::decodePngRgb8("zone map", std::span<const uint8_t>(data, size), 2049);
 #else

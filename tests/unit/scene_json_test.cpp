@@ -208,6 +208,8 @@ TEST_F(SceneJson, NotJsonGivesTheParserPosition) {
     EXPECT_THAT(loadError("{\n  \"camera\": {\"fov\": 30,}\n}"),
                 AllOf(HasSubstr("bad.json"), HasSubstr("not a JSON"), HasSubstr("line 2")));
     EXPECT_THAT(loadError(""), HasSubstr("bad.json"));
+    // A number beyond double's range is refused the same way (found by fuzzing the palette reader).
+    EXPECT_THAT(loadError("{\"lod\": {\"tau\": 3e58836}}"), AllOf(HasSubstr("bad.json"), HasSubstr("not a JSON")));
 }
 
 TEST_F(SceneJson, MissingFileIsNamed) {

@@ -62,6 +62,9 @@ TEST_F(ZonesIo, PaletteReadsFieldsAndResolvesTiles) {
 
 TEST_F(ZonesIo, BadPalettesSayWhy) {
     EXPECT_NE(errorOf([&] { loadPalette(write("p.json", "{zones: oops")); }).find("is not JSON"), std::string::npos);
+    // A number beyond double's range (found by fuzzing): a clear error, not an escaped exception.
+    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", R"({"zones": [], "x": 3e58836})")); }).find("is not JSON"),
+              std::string::npos);
     std::string missing = R"({"zones": [{"name": "a", "colour": "#ff0000", "tile": "tiles/none.png"}]})";
     std::string e = errorOf([&] { loadPalette(write("p.json", missing)); });
     EXPECT_NE(e.find("none.png"), std::string::npos) << e;

@@ -208,7 +208,7 @@ StyleParams loadStyleFile(const std::string& path) {
     json doc;
     try {
         doc = json::parse(bytes.begin(), bytes.end());
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse errors and numbers out of range
         throw Error(msg(path, ": not valid JSON (", e.what(), ")"));
     }
     if (!doc.is_object() || !doc.contains("style"))

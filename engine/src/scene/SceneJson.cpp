@@ -314,16 +314,21 @@ void readZones(ObjectReader& r, ZonesDesc& z) {
 
 }  // namespace
 
-Json readJsonFile(const std::string& path) {
-    std::vector<uint8_t> bytes = readFileBytes(path);
+Json parseJson(std::string_view text, const std::string& source) {
     try {
-        return Json::parse(bytes.begin(), bytes.end());
-    } catch (const Json::parse_error& e) {
-        // what() is "[json.exception.parse_error.101] parse error at line L, column C: ...".
-        std::string_view text = e.what();
-        size_t start = text.find("] ");
-        throw Error(msg(path, ": not a JSON scene file: ", start == text.npos ? text : text.substr(start + 2)));
+        return Json::parse(text.begin(), text.end());
+    } catch (const Json::exception& e) {
+        // Parse errors and numbers out of range alike; what() is
+        // "[json.exception.parse_error.101] parse error at line L, column C: ...".
+        std::string_view what = e.what();
+        size_t start = what.find("] ");
+        throw Error(msg(source, ": not a JSON scene file: ", start == what.npos ? what : what.substr(start + 2)));
     }
+}
+
+Json readJsonFile(const std::string& path) {
+    const std::vector<uint8_t> bytes = readFileBytes(path);
+    return parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
 }
 
 Scene sceneFromJson(const Json& json, const std::string& source, const Scene& base) {

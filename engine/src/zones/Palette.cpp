@@ -64,7 +64,7 @@ Palette parsePalette(const std::string& text, const std::string& baseDir, const 
     nlohmann::json doc;
     try {
         doc = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {  // parse errors and numbers out of range
         throw Error(msg("palette ", source, " is not JSON: ", e.what()));
     }
     if (!doc.is_object() || !doc.contains("zones") || !doc["zones"].is_array())

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <string_view>
 
 namespace sierra::scene {
 
@@ -27,8 +28,10 @@ namespace sierra::scene {
 // would sort alphabetically.
 using Json = nlohmann::ordered_json;
 
-// Parses a JSON file; throws sierra::Error naming the file (unreadable, or not
-// JSON: with the parser's line and column).
+// Parses JSON text; throws sierra::Error naming `source` for text that is not
+// JSON (with the parser's line and column) or holds a number out of range.
+Json parseJson(std::string_view text, const std::string& source);
+// Reads and parses a JSON file the same way (unreadable files named too).
 Json readJsonFile(const std::string& path);
 
 // The scene described by `json`, starting from `base` (keys absent from `json`
