@@ -719,8 +719,11 @@ void checkFieldSize(const std::string& what, int64_t width, int64_t height, int 
         throw Error(msg(what, " size ", width, "x", height, " pads to a ", side, "x", side,
                         " grid (", int64_t(side) * side, " samples), over the limit of ",
                         maxPaddedSide, "x", maxPaddedSide,
-                        " samples (maxPaddedSide, the largest texture side GL drivers "
-                        "usually allow)"));
+                        " samples (maxPaddedSide: ",
+                        maxPaddedSide == kDefaultMaxPaddedSide
+                            ? "the loaders' budget, 1 GiB of float32 heights"
+                            : "the largest grid the caller takes, for a renderer its GL's texture size",
+                        ")"));
 }
 
 namespace {
