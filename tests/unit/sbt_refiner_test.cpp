@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -527,3 +528,12 @@ TEST(SbtView, FastPathEmitsTheBaselineStrip) {
 }
 
 }  // namespace
+
+// The largest grid is the largest 2^n+1 side whose vertices 32-bit strip
+// indices address without reaching the restart index; the next one would wrap.
+TEST(SbtLimits, LargestGridFitsThirtyTwoBitIndices) {
+    const uint64_t side = uint64_t(sierra::sbt::kMaxSbtSide);
+    EXPECT_TRUE(std::has_single_bit(side - 1));
+    EXPECT_LT(side * side, uint64_t(sierra::sbt::kRestartIndex));
+    EXPECT_GE((2 * side - 1) * (2 * side - 1), uint64_t(sierra::sbt::kRestartIndex));
+}

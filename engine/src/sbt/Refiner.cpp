@@ -588,6 +588,9 @@ Refiner::Refiner(const terrain::Heightfield& field, const VertexErrors& errors, 
                      errors.radius.size() == size_t(field.sampleCount()),
                  "Refiner: the vertex errors do not belong to this ", field.width(), "x",
                  field.height(), " grid");
+    SIERRA_CHECK(field.width() <= kMaxSbtSide, "Refiner: a ", field.width(), "x", field.width(),
+                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide, "x",
+                 kMaxSbtSide, ")");
     n_ = n;
     side_ = field.width();
     chunkLevel_ = desc.chunkLevel >= 0 ? std::min(desc.chunkLevel, 2 * n - 1)

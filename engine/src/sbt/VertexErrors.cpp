@@ -89,6 +89,9 @@ VertexErrors computeVertexErrors(const terrain::Heightfield& field, int threads)
     int n = 0;
     SIERRA_CHECK(isSbtGrid(field, &n), "the SBT needs a (2^n+1)^2 grid with n >= 1, got ",
                  field.width(), "x", field.height(), " (pad it with padToPowerOfTwoPlusOne)");
+    SIERRA_CHECK(field.width() <= kMaxSbtSide, "a ", field.width(), "x", field.width(),
+                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide, "x",
+                 kMaxSbtSide, ")");
     if (threads <= 0) threads = defaultThreadCount();
     const int side = field.width(), S = side - 1;
     VertexErrors out;
@@ -168,6 +171,9 @@ std::vector<float> buildMorphBase(const terrain::Heightfield& field, int threads
     int n = 0;
     SIERRA_CHECK(isSbtGrid(field, &n), "the SBT needs a (2^n+1)^2 grid with n >= 1, got ",
                  field.width(), "x", field.height(), " (pad it with padToPowerOfTwoPlusOne)");
+    SIERRA_CHECK(field.width() <= kMaxSbtSide, "a ", field.width(), "x", field.width(),
+                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide, "x",
+                 kMaxSbtSide, ")");
     if (threads <= 0) threads = defaultThreadCount();
     const int side = field.width();
     std::vector<float> base(size_t(side) * side);

@@ -39,6 +39,14 @@ struct VertexErrors {
 // True when the field is (2^n + 1)^2 with n >= 1; n is returned through `n`.
 bool isSbtGrid(const terrain::Heightfield& field, int* n = nullptr);
 
+// The largest grid side the SBT takes: strips index vertices j * side + i with
+// 32-bit indices and 0xFFFFFFFF as the restart index, so side^2 must stay below
+// it. 32769^2 = 1.07e9 vertices fit; the next grid, 65537^2 = 4.3e9, would wrap
+// and turn the restart index into a vertex. computeVertexErrors and the Refiner
+// refuse larger grids before allocating.
+inline constexpr int kMaxSbtSide = 32769;
+static_assert(uint64_t(kMaxSbtSide) * kMaxSbtSide < 0xFFFFFFFFull);
+
 // One bottom-up pass, level by level, each level split across `threads`
 // (0 = sierra::defaultThreadCount()). Throws sierra::Error unless the field is
 // (2^n + 1)^2 (pad it first with terrain::padToPowerOfTwoPlusOne).
