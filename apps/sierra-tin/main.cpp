@@ -245,7 +245,8 @@ int main(int argc, char** argv) {
         ->group(zg)
         ->needs(zonesOpt)
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--epsilon", epsilon, "Borderline simplification (rule 3) in zone-map pixels")
+    // --epsilon, or --zone-epsilon as in every other program.
+    app.add_option("--epsilon,--zone-epsilon", epsilon, "Borderline simplification (rule 3) in zone-map pixels")
         ->type_name("PX")
         ->group(zg)
         ->needs(zonesOpt)

@@ -169,6 +169,8 @@ run_app(write_atlas EXPECT_OK COMMAND ${GEN} map --generate 65 --scheme atlas --
 run_app(odd_colours EXPECT_FAIL EXIT 1 MESSAGE "atlas.png" COMMAND ${TIN} --generate 65 --zones atlas.png --out z3.obj)
 run_app(no_palette EXPECT_FAIL EXIT 1 MESSAGE "nopal.json" COMMAND ${TIN} --generate 65 --zones auto --palette nopal.json --out z4.obj)
 run_app(neg_epsilon EXPECT_FAIL EXIT 2 MESSAGE "--epsilon" COMMAND ${TIN} --generate 65 --zones auto --epsilon -1 --out z5.obj)
+# The shared name of every other program works too.
+run_app(neg_zone_epsilon EXPECT_FAIL EXIT 2 MESSAGE "epsilon" COMMAND ${TIN} --generate 65 --zones auto --zone-epsilon -1 --out z6.obj)
 run_app(nan_epsilon EXPECT_FAIL EXIT 2 MESSAGE "--epsilon" COMMAND ${TIN} --generate 65 --zones auto --epsilon nan --out z6.obj)
 run_app(neg_band EXPECT_FAIL EXIT 2 MESSAGE "--band" COMMAND ${TIN} --generate 65 --zones auto --band -2 --out z7.obj)
 run_app(epsilon_alone EXPECT_FAIL EXIT 2 MESSAGE "--zones" COMMAND ${TIN} --generate 65 --epsilon 1 --out z8.obj)
