@@ -159,7 +159,8 @@ TEST(SceneTerrain, RoughnessIsBounded) {
     scene.terrain.roughness = terrain::kMaxRoughness;
     EXPECT_NO_THROW(validateScene(scene));
     TerrainSource rough{.generateSize = 33, .roughness = terrain::kMaxRoughness};
-    for (float h : loadTerrain(rough).samples()) ASSERT_TRUE(std::isfinite(h));
+    const terrain::Heightfield field = loadTerrain(rough);
+    for (float h : field.samples()) ASSERT_TRUE(std::isfinite(h));
 }
 
 }  // namespace
