@@ -15,7 +15,6 @@
 #include "Commands.h"
 
 #include "AppMain.h"
-#include "GenTerrain.h"
 
 #include <sierra/analysis/Curvature.h>
 #include <sierra/core/Error.h>
@@ -103,7 +102,7 @@ void runCurvature(const CurvatureCommandOptions& o) {
     if (!o.png.empty()) ensureWritableLocation(o.png);
 
     std::string source;
-    const terrain::Heightfield field = loadRealTerrain(o.scene.terrain, &source);
+    const terrain::Heightfield field = scene::loadTerrain(o.scene.terrain, &source, scene::Padding::None);
     log::info("terrain: ", source, "; curvature of ", field.width(), "x", field.height(), " samples");
     analysis::CurvatureField curvature;
     if (o.device == "gpu") {

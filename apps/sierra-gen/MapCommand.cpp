@@ -11,7 +11,6 @@
 #include "Commands.h"
 
 #include "AppMain.h"
-#include "GenTerrain.h"
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
@@ -57,7 +56,7 @@ void runMap(const MapOptions& o) {
     std::optional<terrain::CptTable> cpt;
     if (!o.cpt.empty()) cpt = terrain::readCpt(o.cpt);
     std::string source;
-    terrain::Heightfield field = loadRealTerrain(o.scene.terrain, &source);
+    terrain::Heightfield field = scene::loadTerrain(o.scene.terrain, &source, scene::Padding::None);
     log::info("terrain: ", source, "; map ", field.width(), "x", field.height());
     auto [lo, hi] = field.range();
     if (!(hi > lo)) hi = lo + 1.0f;

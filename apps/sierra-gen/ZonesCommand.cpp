@@ -16,12 +16,12 @@
 #include "Commands.h"
 
 #include "AppMain.h"
-#include "GenTerrain.h"
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/scene/Assets.h>
 #include <sierra/scene/Options.h>
+#include <sierra/scene/Terrain.h>
 #include <sierra/zones/BorderField.h>
 #include <sierra/zones/Borderlines.h>
 
@@ -57,7 +57,7 @@ void runZones(const ZonesOptions& o) {
     std::string source;
     if (z.map == "auto") {
         std::string description;
-        terrain::Heightfield field = loadRealTerrain(o.scene.terrain, &description);
+        terrain::Heightfield field = scene::loadTerrain(o.scene.terrain, &description, scene::Padding::None);
         // The thresholds as sierra-render applies them (render::applySceneSurface):
         // without water every sample is land, the sea below the lowest height.
         const float sea = scene::resolveSeaLevel(o.scene.terrain, field);
