@@ -2,6 +2,8 @@
 // most the bytes asked for; an output path that exists and is not a regular
 // file is refused, not replaced; output locations are checked before work.
 
+#include "temp_dir_test_util.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 
@@ -21,30 +23,8 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-class CoreFiles : public ::testing::Test {
+class CoreFiles : public test::TempDirTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("sierra_core_files_" + std::to_string(getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::string read(const std::string& file) const {
-        std::ifstream in(file, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), {});
-    }
-    template <typename F>
-    static std::string errorOf(F&& f) {
-        try {
-            f();
-        } catch (const Error& e) {
-            return e.what();
-        }
-        return "";
-    }
     // Names in the directory that look like leftover temporary files.
     int leftovers() const {
         int n = 0;
@@ -52,7 +32,6 @@ class CoreFiles : public ::testing::Test {
             n += entry.path().filename().string().find(".tmp-") != std::string::npos;
         return n;
     }
-    fs::path dir_;
 };
 
 TEST_F(CoreFiles, ReadsRegularFilesUpToALimit) {

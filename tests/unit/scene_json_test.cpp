@@ -11,6 +11,8 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
+#include "temp_dir_test_util.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/scene/SceneJson.h>
 
@@ -35,28 +37,8 @@ namespace fs = std::filesystem;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-class SceneJson : public ::testing::Test {
+class SceneJson : public test::TempDirTest {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               (std::string("sierra_scene_json_") + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path(name), std::ios::binary) << text;
-        return path(name);
-    }
-    static std::string read(const std::string& file) {
-        std::ifstream in(file, std::ios::binary);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
     // The message of the sierra::Error that loading `text` throws ("" if none).
     std::string loadError(const std::string& text) const {
         std::string file = write("bad.json", text);
@@ -68,7 +50,6 @@ protected:
         return "";
     }
 
-    fs::path dir_;
 };
 
 // Every field away from its default, optionals present, awkward floats.

@@ -10,6 +10,8 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
+#include "temp_dir_test_util.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/scene/Options.h>
 #include <sierra/scene/SceneJson.h>
@@ -54,23 +56,13 @@ std::string parseError(const std::vector<std::string>& args, const Scene& defaul
     return "";
 }
 
-class SceneOptionsTest : public ::testing::Test {
+class SceneOptionsTest : public test::TempDirTest {
 protected:
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               (std::string("sierra_scene_options_") + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        TempDirTest::SetUp();
         heightmap_ = write("hm.npy", "not read by the registrar");
     }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream((dir_ / name).string(), std::ios::binary) << text;
-        return (dir_ / name).string();
-    }
 
-    fs::path dir_;
     std::string heightmap_;
 };
 

@@ -4,6 +4,8 @@
 // ru_maxrss less the child's resident size at the start) and a hang is caught
 // by a time limit instead of stalling the suite. The files are built here.
 
+#include "temp_dir_test_util.h"
+
 #include <sierra/terrain/FileIO.h>
 #include <sierra/terrain/HeightfieldIO.h>
 #include <sierra/terrain/Maps.h>
@@ -193,24 +195,8 @@ Outcome loadInChild(const std::string& file, const LoadOptions& options) {
     return outcome;
 }
 
-class TerrainBadInput : public ::testing::Test {
+class TerrainBadInput : public test::TempDirTest {
   protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("sierra_bad_input_" + std::to_string(getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::string write(const std::string& name, const Bytes& bytes) const {
-        std::ofstream out(path(name), std::ios::binary);
-        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        return path(name);
-    }
-    std::string write(const std::string& name, const std::string& text) const {
-        return write(name, Bytes(text.begin(), text.end()));
-    }
 
     // One row of the table: the load fails with a sierra::Error containing
     // `expected`, within the time and memory limits.
@@ -228,7 +214,6 @@ class TerrainBadInput : public ::testing::Test {
         EXPECT_LT(o.peakKiB, kMaxPeakKiB);
     }
 
-    fs::path dir_;
 };
 
 TEST_F(TerrainBadInput, EveryRowFailsFastWithAClearMessage) {

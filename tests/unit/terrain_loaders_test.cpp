@@ -2,6 +2,8 @@
 // files (each refused with one clear sierra::Error, never a crash). Every file
 // is written by the test into a fresh temporary directory.
 
+#include "temp_dir_test_util.h"
+
 #include <sierra/terrain/FileIO.h>
 #include <sierra/terrain/HeightfieldIO.h>
 
@@ -27,27 +29,8 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using Bytes = std::vector<uint8_t>;
 
-class TerrainLoaders : public ::testing::Test {
+class TerrainLoaders : public test::TempDirTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / (std::string("sierra_terrain_io_") +
-                                            std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-    std::string write(const std::string& name, const Bytes& bytes) const {
-        std::ofstream out(path(name), std::ios::binary);
-        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        return path(name);
-    }
-    std::string write(const std::string& name, const std::string& text) const {
-        return write(name, Bytes(text.begin(), text.end()));
-    }
 
     // The message of the sierra::Error that loading `file` throws ("" if none).
     static std::string loadError(const std::string& file, const LoadOptions& options = {}) {
@@ -59,7 +42,6 @@ class TerrainLoaders : public ::testing::Test {
         return "";
     }
 
-    fs::path dir_;
 };
 
 void putLe16(Bytes& b, uint16_t v) {

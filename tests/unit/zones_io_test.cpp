@@ -1,5 +1,7 @@
 // Palettes, zone map files, auto-zoning and tiles: good files read back, bad
 // ones give one clear message.
+#include "temp_dir_test_util.h"
+
 #include <sierra/zones/Palette.h>
 #include <sierra/zones/Tiles.h>
 #include <sierra/zones/ZoneMap.h>
@@ -19,32 +21,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ZonesIo : public ::testing::Test {
+class ZonesIo : public sierra::test::TempDirTest {
   protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("sierra_zones_io_" + std::to_string(::getpid()));
+        TempDirTest::SetUp();
         fs::create_directories(dir_ / "tiles");
-        writeFileAtomic((dir_ / "tiles" / "a.png").string(), std::string_view("x"));
-        writeFileAtomic((dir_ / "tiles" / "b.png").string(), std::string_view("x"));
+        write("tiles/a.png", "x");
+        write("tiles/b.png", "x");
     }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string write(const std::string& name, const std::string& text) {
-        std::string path = (dir_ / name).string();
-        writeFileAtomic(path, std::string_view(text));
-        return path;
-    }
-    std::string errorOf(const std::function<void()>& f) {
-        try {
-            f();
-        } catch (const Error& e) {
-            return e.what();
-        }
-        return "(no error)";
-    }
+    static std::string errorOf(const std::function<void()>& f) { return TempDirTest::errorOf(f, "(no error)"); }
     const std::string kGood = R"({"zones": [
         {"name": "a", "colour": "#ff0000", "tile": "tiles/a.png", "tileSize": 8},
         {"name": "b", "colour": "#00FF00", "tile": "tiles/b.png", "heightBlend": 0.25}]})";
-    fs::path dir_;
 };
 
 TEST_F(ZonesIo, PaletteReadsFieldsAndResolvesTiles) {
