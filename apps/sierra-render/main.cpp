@@ -98,13 +98,16 @@ int run(const scene::Scene& s) {
     // beside it, or the UI alone on a plain background.
     std::vector<render::DrawStats> history;
     std::unique_ptr<render::DebugOverlay> overlay;
+    std::vector<render::Camera> snapshotCameras;
     auto snapshot = [&](int k, const std::string& path, bool uiOnly = false) {
         if (!overlay) overlay = std::make_unique<render::DebugOverlay>();
         const int column = render::debugColumnWidth(width);
         const int frameWidth = render::snapshotFrameWidth(width, column);
+        if (snapshotCameras.empty()) snapshotCameras = render::snapshotCameras(s, terrain.bounds(), frameWidth);
+        const render::Camera& camera = snapshotCameras[size_t(k)];
         render::SnapshotFacts facts{.scene = &s, .field = &field, .glRenderer = context.renderer(),
                                     .glVersion = context.version(), .eglPlatform = context.platform(),
-                                    .renderer = &terrain, .camera = cameras[size_t(k)], .frameWidth = frameWidth,
+                                    .renderer = &terrain, .camera = camera, .frameWidth = frameWidth,
                                     .height = height, .draw = draw, .frames = history, .frameMs = frameMs};
         render::DebugPanel panel = render::buildDebugPanel(facts, s.output.snapshotDeterministic);
         gpu::Image shot;
@@ -120,7 +123,7 @@ int run(const scene::Scene& s) {
             panel.columnWidth = width - frameWidth;
             target.begin(clear);
             glViewport(0, 0, frameWidth, height);
-            terrain.draw(cameras[size_t(k)], frameWidth, height, draw);
+            terrain.draw(camera, frameWidth, height, draw);
             target.resolve();
             overlay->draw(panel, width, height);
             shot = gpu::readFramebuffer(width, height);

@@ -12,6 +12,7 @@
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/MeshInspector.h>
 #include <sierra/render/Scene.h>
+#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Terrain.h>
 
@@ -112,6 +113,38 @@ TEST_F(DebugSnapshot, PanelsBesideTheFrameLeaveTheTerrainUncovered) {
     for (int y = 0; y < kHeight; ++y)
         for (int x = frameWidth; x < kWidth; ++x, ++total) differing += samePixel(shot, full, x, y) ? 0 : 1;
     EXPECT_GT(differing, total * 9 / 10);
+}
+
+// Pixels on the border of the left `frameWidth` columns that are not sky.
+int terrainOnFrameBorder(const gpu::Image& image, int frameWidth) {
+    const glm::vec3 sky = render::Lighting{}.sky * 255.0f;
+    auto terrain = [&](int x, int y) {
+        const uint8_t* p = px(image, x, y);
+        return glm::length(glm::vec3(p[0], p[1], p[2]) - sky) > 3.0f;
+    };
+    int n = 0;
+    for (int y = 0; y < kHeight; ++y) n += terrain(0, y) + terrain(frameWidth - 1, y);
+    for (int x = 0; x < frameWidth; ++x) n += terrain(x, 0) + terrain(x, kHeight - 1);
+    return n;
+}
+
+TEST_F(DebugSnapshot, SnapshotCamerasKeepTheWholeTerrainInTheNarrowFrame) {
+    const int frameWidth = render::snapshotFrameWidth(kWidth, render::debugColumnWidth(kWidth));
+    auto drawNarrow = [&](const render::Camera& camera) {
+        target_->begin(render::TerrainRenderer::clearColour({}));
+        glViewport(0, 0, frameWidth, kHeight);
+        terrain_->draw(camera, frameWidth, kHeight, draw_);
+        target_->resolve();
+        return gpu::readFramebuffer(kWidth, kHeight);
+    };
+    const gpu::Image fitted = drawNarrow(render::snapshotCameras(scene_, terrain_->bounds(), frameWidth).at(0));
+    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/debug_narrow_frame.png", fitted);
+    EXPECT_EQ(terrainOnFrameBorder(fitted, frameWidth), 0) << "the terrain touches the snapshot frame's border";
+    const uint8_t* centre = px(fitted, frameWidth / 2, kHeight / 2);
+    EXPECT_GT(glm::length(glm::vec3(centre[0], centre[1], centre[2]) - render::Lighting{}.sky * 255.0f), 30.0f);
+    // The full frame's camera, drawn narrower, cuts the terrain at the sides.
+    const gpu::Image cut = drawNarrow(render::sceneCameras(scene_, terrain_->bounds()).at(0));
+    EXPECT_GT(terrainOnFrameBorder(cut, frameWidth), 0);
 }
 
 TEST_F(DebugSnapshot, UiAloneMatchesGoldenWithPlaceholders) {

@@ -138,6 +138,12 @@ TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& 
             .cpt = s.style.cpt};
 }
 
+std::vector<Camera> snapshotCameras(const scene::Scene& s, const SceneBounds& bounds, int frameWidth) {
+    scene::Scene narrow = s;
+    narrow.output.width = frameWidth;
+    return sceneCameras(narrow, bounds);
+}
+
 DrawOptions sceneDrawOptions(const scene::Scene& s) {
     return {.lod = !s.lod.mesh.empty()                  ? Lod::Mesh
                    : s.lod.mode == scene::LodMode::Full ? Lod::Full

@@ -22,6 +22,11 @@ namespace sierra::render {
 //   - keyframes: the scene's keyframes, interpolated.
 std::vector<Camera> sceneCameras(const scene::Scene& scene, const SceneBounds& bounds);
 
+// The cameras of a debug snapshot, whose frame is `frameWidth` pixels wide
+// beside the panel column: sceneCameras for that narrower frame, so a camera
+// framed automatically keeps the whole terrain in view; a fixed one is unchanged.
+std::vector<Camera> snapshotCameras(const scene::Scene& scene, const SceneBounds& bounds, int frameWidth);
+
 DrawOptions sceneDrawOptions(const scene::Scene& scene);
 
 // The renderer's description of the scene's terrain: `field` as loaded by
