@@ -308,7 +308,8 @@ void addFramesCommand(CLI::App& app) {
     o->registrar = std::make_unique<scene::SceneOptions>(
         *cmd, o->scene,
         scene::kTerrainOptions | scene::kCameraOptions | scene::kPathOptions | scene::kLightingOptions |
-            scene::kLodOptions | scene::kStyleOptions | scene::kFrameOptions | scene::kZoneOptions);
+            scene::kLodOptions | scene::kStyleOptions | scene::kFrameOptions | scene::kZoneOptions |
+            scene::kZoneShadingOptions);
     cmd->add_flag("--compare-full", o->compareFull,
                   "Also render the full grid from each camera: frame-time ratio, PSNR, differing pixels");
     cmd->add_flag("--overlay-costs", o->overlayCosts,

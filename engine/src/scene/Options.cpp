@@ -307,14 +307,6 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             [](Scene& s, Words w) { s.zones.band = parseFloat(w[0], "--band"); });
         add("--zone-epsilon", "Borderline simplification distance, zone-map pixels", g, "E", show(d.zones.epsilon), 1,
             [](Scene& s, Words w) { s.zones.epsilon = parseFloat(w[0], "--zone-epsilon"); });
-        add("--blend", "Blend across a band: linear (by distance) or height (tile heights move it)", g,
-            "linear|height", d.zones.blend, 1, [](Scene& s, Words w) { s.zones.blend = w[0]; });
-        addFlag("--triplanar", "Project tiles along the normal's axes on steep slopes", g,
-                [](Scene& s, Words) { s.zones.triplanar = true; });
-        addFlag("--no-tile-variation", "No second, rotated tile sample against visible repetition", g,
-                [](Scene& s, Words) { s.zones.variation = false; });
-        add("--debug-view", "Flat zone colours (zones) or the band blend weight (bands)", g, "none|zones|bands",
-            d.zones.debugView, 1, [](Scene& s, Words w) { s.zones.debugView = w[0]; });
         // Auto-zoning thresholds (--zones auto).
         add("--deep-water", "Auto-zones: deep water below this fraction of the depth range, 0..1", g, "F",
             show(d.zones.deepWater), 1, [](Scene& s, Words w) { s.zones.deepWater = parseFloat(w[0], "--deep-water"); });
@@ -325,6 +317,18 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             [](Scene& s, Words w) { s.zones.snowLine = parseFloat(w[0], "--zone-snow-line"); });
         add("--rock-slope", "Auto-zones: rock steeper than this, degrees (0, 90)", g, "DEG", show(d.zones.rockSlope), 1,
             [](Scene& s, Words w) { s.zones.rockSlope = parseFloat(w[0], "--rock-slope"); });
+    }
+
+    if (groups & kZoneShadingOptions) {
+        const std::string g = "Zones";
+        add("--blend", "Blend across a band: linear (by distance) or height (tile heights move it)", g,
+            "linear|height", d.zones.blend, 1, [](Scene& s, Words w) { s.zones.blend = w[0]; });
+        addFlag("--triplanar", "Project tiles along the normal's axes on steep slopes", g,
+                [](Scene& s, Words) { s.zones.triplanar = true; });
+        addFlag("--no-tile-variation", "No second, rotated tile sample against visible repetition", g,
+                [](Scene& s, Words) { s.zones.variation = false; });
+        add("--debug-view", "Flat zone colours (zones) or the band blend weight (bands)", g, "none|zones|bands",
+            d.zones.debugView, 1, [](Scene& s, Words w) { s.zones.debugView = w[0]; });
     }
 
     if (groups & kStyleOptions) {

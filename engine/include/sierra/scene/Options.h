@@ -54,10 +54,13 @@ enum OptionGroup : unsigned {
     kStyleOptions = 1u << 7,
     // --size WxH, --msaa 0|2|4|8
     kFrameOptions = 1u << 8,
-    // --zones auto|MAP.png, --palette P.json, --band W, --zone-epsilon E, --blend linear|height,
-    // --triplanar, --no-tile-variation, --debug-view none|zones|bands
+    // --zones auto|MAP.png, --palette P.json, --band W, --zone-epsilon E, and the auto-zoning
+    // thresholds --deep-water F, --sand-top F, --zone-snow-line F, --rock-slope DEG
     kZoneOptions = 1u << 9,
-    kAllOptions = (1u << 10) - 1,
+    // How a renderer shades zones: --blend linear|height, --triplanar, --no-tile-variation,
+    // --debug-view none|zones|bands
+    kZoneShadingOptions = 1u << 10,
+    kAllOptions = (1u << 11) - 1,
 };
 
 class SceneOptions {
