@@ -113,18 +113,29 @@ TEST_F(SceneJson, EveryFieldRoundTripsByteForByte) {
 TEST_F(SceneJson, FloatsComeBackBitForBit) {
     std::mt19937 rng(12345);
     std::uniform_int_distribution<uint32_t> bits;
-    int tested = 0;
-    while (tested < 5000) {
-        float f = std::bit_cast<float>(bits(rng));
-        if (!std::isfinite(f)) continue;
-        ++tested;
+    auto finite = [&] {
+        for (;;)
+            if (float f = std::bit_cast<float>(bits(rng)); std::isfinite(f)) return f;
+    };
+    // 5000 random floats, eight to a scene (each with its negation and its
+    // neighbour towards zero).
+    for (int round = 0; round < 625; ++round) {
         Scene s;
+        const float f = finite();
         s.lighting.ambient = f;
         s.camera.position = Vec3{f, -f, std::nextafter(f, 0.0f)};
+        s.camera.target = Vec3{finite(), finite(), finite()};
+        s.lighting.sunAzimuth = finite();
+        s.lighting.sunAltitude = finite();
+        s.lod.tau = finite();
         Json parsed = Json::parse(sceneToText(s));
         Scene back = sceneFromJson(parsed, "mem");
         ASSERT_EQ(std::bit_cast<uint32_t>(back.lighting.ambient), std::bit_cast<uint32_t>(f)) << f;
         ASSERT_EQ(back.camera.position, s.camera.position) << f;
+        ASSERT_EQ(back.camera.target, s.camera.target);
+        ASSERT_EQ(std::bit_cast<uint32_t>(back.lighting.sunAzimuth), std::bit_cast<uint32_t>(s.lighting.sunAzimuth));
+        ASSERT_EQ(std::bit_cast<uint32_t>(back.lighting.sunAltitude), std::bit_cast<uint32_t>(s.lighting.sunAltitude));
+        ASSERT_EQ(std::bit_cast<uint32_t>(back.lod.tau), std::bit_cast<uint32_t>(s.lod.tau));
     }
     // Written short: the shortest decimal that reads back as the same float.
     Scene s;
