@@ -48,6 +48,7 @@ struct Options {
     int64_t maxPoints = 0;
     std::string delaunay = "plain";
     double uvPeriod = 64.0;
+    bool uvPeriodGiven = false;  // with --zones, replaces the tiles' own periods
     std::string out;
     std::string json;
 };
@@ -138,8 +139,14 @@ int run(const Options& o) {
     clock.restart();
     tin::ObjOptions objOptions{.uvPeriod = o.uvPeriod};
     if (zoned && ext == ".obj") {
-        objOptions = tin::zoneMaterials(o.out, result.mesh, z.palette);
+        // Each material repeats with its tile's period, as the renderer draws it;
+        // --uv-period given: one period for every material instead.
+        objOptions = tin::zoneMaterials(o.out, result.mesh, z.palette, z.map.width, z.map.height);
         objOptions.uvPeriod = o.uvPeriod;
+        if (o.uvPeriodGiven) {
+            objOptions.surfacePeriods.clear();
+            objOptions.uvOffset = {0.0, 0.0};
+        }
     }
     tin::writeMesh(o.out, result.mesh, objOptions);
     const double writeMs = clock.ms();
@@ -228,8 +235,7 @@ int main(int argc, char** argv) {
     std::string zoneMap, palette;
     float band = zoneDefaults.band, epsilon = zoneDefaults.epsilon;
     const std::string zg = "Zones";
-    auto* zonesOpt =
-        app.add_option(
+    app.add_option(
                "--zones", zoneMap,
                "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
                "its borderlines become constrained edges")
@@ -237,19 +243,16 @@ int main(int argc, char** argv) {
             ->group(zg);
     app.add_option("--palette", palette, "Palette JSON (default: assets/palettes/default.json)")
         ->type_name("P.json")
-        ->group(zg)
-        ->needs(zonesOpt);
+        ->group(zg);
     app.add_option("--band", band,
                    "Transition band width in zone-map pixels (default: the palette's bandWidth)")
         ->type_name("W")
         ->group(zg)
-        ->needs(zonesOpt)
         ->check(CLI::NonNegativeNumber);
     // --epsilon, or --zone-epsilon as in every other program.
     app.add_option("--epsilon,--zone-epsilon", epsilon, "Borderline simplification (rule 3) in zone-map pixels")
         ->type_name("PX")
         ->group(zg)
-        ->needs(zonesOpt)
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     const std::string sg = "Mesh";
@@ -277,33 +280,44 @@ int main(int argc, char** argv) {
         ->group(sg)
         ->check(CLI::IsMember({"plain", "data"}))
         ->capture_default_str();
-    app.add_option("--uv-period", o.uvPeriod, "OBJ planar UVs: grid samples per texture repeat")
+    app.add_option("--uv-period", o.uvPeriod, "OBJ planar UVs: grid samples per texture repeat (with --zones: each tile's own "
+                   "period, as the renderer's, unless given)")
         ->type_name("P")
         ->group(sg)
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
-    app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl")
+    // Required, except with --print-config (checked after parsing).
+    app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl (required)")
         ->type_name("MESH")
-        ->group(sg)
-        ->required();
+        ->group(sg);
     app.add_option("--json", o.json, "Write the statistics to this JSON file")
         ->type_name("STATS.json")
         ->group(sg);
     return apps::runMain(
         app, argc, argv,
         [&] {
-            sceneOptions.apply();
-            // The zone options given override the scene's (from --config, or the defaults).
-            scene::ZonesDesc& z = o.scene.zones;
-            if (!zoneMap.empty()) z.map = zoneMap;
-            if (!palette.empty()) z.palette = palette;
-            if (app.count("--band")) z.band = band;
-            if (app.count("--epsilon")) z.epsilon = epsilon;
-            if (!std::isfinite(z.epsilon) || z.epsilon < 0.0f)
-                throw Error(
-                    msg("--epsilon must be a finite number of pixels >= 0, got ", z.epsilon));
-            if (!std::isfinite(z.band))
-                throw Error(msg("--band must be a finite number of pixels, got ", z.band));
+            // The zone options are the scene's zones: applied over --config (or the
+            // defaults) before the scene is checked and --print-config prints it, so a
+            // printed config gives the same mesh with --config.
+            sceneOptions.apply([&](scene::Scene& scene) {
+                scene::ZonesDesc& z = scene.zones;
+                if (!zoneMap.empty()) z.map = zoneMap;
+                if (!palette.empty()) z.palette = palette;
+                if (app.count("--band")) z.band = band;
+                if (app.count("--epsilon")) z.epsilon = epsilon;
+                if (z.map.empty() && (app.count("--palette") || app.count("--band") ||
+                                      app.count("--epsilon")))
+                    throw Error(
+                        "--palette, --band and --epsilon need --zones (or zones.map in --config)");
+                if (!std::isfinite(z.epsilon) || z.epsilon < 0.0f)
+                    throw Error(
+                        msg("--epsilon must be a finite number of pixels >= 0, got ", z.epsilon));
+                if (!std::isfinite(z.band))
+                    throw Error(msg("--band must be a finite number of pixels, got ", z.band));
+            });
+            o.uvPeriodGiven = app.count("--uv-period") > 0;
+            if (o.out.empty() && !sceneOptions.printConfigRequested())
+                throw Error("--out is required (a .obj, .ply or .stl file)");
         },
         [&] {
             if (sceneOptions.printConfigRequested()) return 0;

@@ -108,8 +108,10 @@ json_get(zone_bands ${WORK_DIR}/zones.json zones bands)
 json_get(zone_segments ${WORK_DIR}/zones.json zones borderline_segments)
 json_get(zone_grid ${WORK_DIR}/zones.json grid 0)
 json_get(zone_tris ${WORK_DIR}/zones.json triangles)
-if(zone_agreement LESS 0.995 OR zone_bands LESS 1 OR NOT zone_grid EQUAL 1025)
-  message(FATAL_ERROR "zones: agreement ${zone_agreement}, ${zone_bands} bands, grid ${zone_grid}")
+json_get(zone_conflicts ${WORK_DIR}/zones.json zones conflicts)
+if(zone_agreement LESS 0.995 OR zone_bands LESS 1 OR NOT zone_grid EQUAL 1025 OR NOT zone_conflicts EQUAL 0)
+  message(FATAL_ERROR "zones: agreement ${zone_agreement}, ${zone_bands} bands, grid ${zone_grid}, "
+                      "${zone_conflicts} triangles claimed by two zones")
 endif()
 # Every material names an image that exists (relative to the MTL), band images included.
 file(STRINGS ${WORK_DIR}/zones/mesh.mtl maps REGEX "^map_Kd ")
@@ -151,6 +153,39 @@ json_get(auto_agreement ${WORK_DIR}/auto.json zones agreement)
 if(auto_agreement LESS 0.995)
   message(FATAL_ERROR "--zones auto: agreement ${auto_agreement}")
 endif()
+
+# --print-config shows the zone options (no --out needed) and --config reads them
+# back: the same mesh as the command line; options given beside --config win.
+execute_process(COMMAND ${TIN} --generate 129 --zones auto --palette ${ASSETS_DIR}/palettes/default.json
+                --band 2 --zone-epsilon 1.5 --print-config
+                WORKING_DIRECTORY ${WORK_DIR} OUTPUT_FILE ${WORK_DIR}/tin_config.json RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "--print-config exited ${rc}")
+endif()
+json_get(cfg_map ${WORK_DIR}/tin_config.json zones map)
+json_get(cfg_palette ${WORK_DIR}/tin_config.json zones palette)
+json_get(cfg_band ${WORK_DIR}/tin_config.json zones band)
+json_get(cfg_epsilon ${WORK_DIR}/tin_config.json zones epsilon)
+if(NOT cfg_map STREQUAL "auto" OR NOT cfg_palette MATCHES "default.json$" OR NOT cfg_band EQUAL 2
+   OR NOT cfg_epsilon EQUAL 1.5)
+  message(FATAL_ERROR "--print-config: zones map '${cfg_map}', palette '${cfg_palette}', band ${cfg_band}, epsilon ${cfg_epsilon}")
+endif()
+run_app(config_direct EXPECT_OK COMMAND ${TIN} --generate 129 --zones auto --band 2 --epsilon 1.5
+        --max-error-rel 0.01 --out direct.stl --json direct.json)
+run_app(config_read EXPECT_OK COMMAND ${TIN} --config tin_config.json --max-error-rel 0.01 --out config.stl --json config.json)
+file(SHA256 ${WORK_DIR}/direct.stl direct_hash)
+file(SHA256 ${WORK_DIR}/config.stl config_hash)
+json_get(config_band ${WORK_DIR}/config.json zones band)
+json_get(config_epsilon ${WORK_DIR}/config.json zones epsilon)
+if(NOT direct_hash STREQUAL config_hash OR NOT config_band EQUAL 2 OR NOT config_epsilon EQUAL 1.5)
+  message(FATAL_ERROR "--config of the printed config: band ${config_band}, epsilon ${config_epsilon}, same STL: ${direct_hash} ${config_hash}")
+endif()
+run_app(config_override EXPECT_OK COMMAND ${TIN} --config tin_config.json --band 0 --max-error-rel 0.01 --out over.stl --json over.json)
+json_get(over_bands ${WORK_DIR}/over.json zones bands)
+if(NOT over_bands EQUAL 0)
+  message(FATAL_ERROR "--band 0 beside --config left ${over_bands} bands")
+endif()
+run_app(no_out EXPECT_FAIL EXIT 2 MESSAGE "--out" COMMAND ${TIN} --generate 65)
 
 # Bad input.
 run_app(missing EXPECT_FAIL MESSAGE "nope.png" COMMAND ${TIN} --heightmap nope.png --out m.obj)
