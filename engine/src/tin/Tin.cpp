@@ -694,25 +694,39 @@ void Mesher::floodZones(const Constraints& constraints, TinResult& result) {
     std::vector<int32_t>& zone = mesh.zone;
     zone.assign(size_t(triangles), -1);
     std::vector<int> queue;
-    for (int e = 0; e < int(origin_.size()); ++e) {
-        if (!constrained_[e] || zone_[e] < 0) continue;
-        const int t = e / 3;
-        if (zone[t] >= 0) {
-            if (zone[t] != zone_[e]) ++result.stats.zoneConflicts;
-            continue;
-        }
-        zone[t] = zone_[e];
-        queue.assign(1, t);
-        while (!queue.empty()) {
-            const int u = queue.back();
-            queue.pop_back();
-            for (int k = 0; k < 3; ++k) {
-                const int h = 3 * u + k;
-                if (constrained_[h] || twin_[h] < 0) continue;
-                const int n = twin_[h] / 3;
-                if (zone[n] < 0) {
-                    zone[n] = zone[u];
-                    queue.push_back(n);
+    // Seeds from the borderlines inside the grid first, then from the edges on its
+    // border (the frame's, and borderlines snapped onto it). A frame edge carries the
+    // zone of the map's outermost pixels, which a borderline one pixel from the
+    // frame leaves on the wrong side of it once snapped; so a border edge only seeds
+    // triangles no inner borderline reaches, and takes the zone of its triangle
+    // otherwise. Conflicts are counted between inner borderlines only.
+    for (const bool border : {false, true}) {
+        for (int e = 0; e < int(origin_.size()); ++e) {
+            if (!constrained_[e] || zone_[e] < 0 || (twin_[e] < 0) != border) continue;
+            const int t = e / 3;
+            if (zone[t] >= 0) {
+                if (zone[t] == zone_[e]) continue;
+                if (border) {
+                    zone_[e] = zone[t];
+                    mesh.edgeZones[size_t(t)][size_t(e % 3)] = zone[t];
+                } else {
+                    ++result.stats.zoneConflicts;
+                }
+                continue;
+            }
+            zone[t] = zone_[e];
+            queue.assign(1, t);
+            while (!queue.empty()) {
+                const int u = queue.back();
+                queue.pop_back();
+                for (int k = 0; k < 3; ++k) {
+                    const int h = 3 * u + k;
+                    if (constrained_[h] || twin_[h] < 0) continue;
+                    const int n = twin_[h] / 3;
+                    if (zone[n] < 0) {
+                        zone[n] = zone[u];
+                        queue.push_back(n);
+                    }
                 }
             }
         }
