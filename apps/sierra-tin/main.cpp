@@ -105,13 +105,12 @@ void makeBorderlines(ZoneInput& z, double epsilon, const terrain::Heightfield& f
 // budget the borderlines take few of its vertices, and never below `least`.
 // Measured on the default scene with the sample map (README): 3.3 px at 20,000
 // triangles, 1.5 at 100,000, 0.84 at 300,000.
-double budgetEpsilon(int64_t triangles, const terrain::Heightfield& field, const zones::ZoneMap& map,
-                     double least) {
+double budgetEpsilon(int64_t triangles, const terrain::Heightfield& field,
+                     const zones::ZoneMap& map, double least) {
     const double area = double(field.width() - 1) * double(field.height() - 1);
     const double samples = 0.45 * std::sqrt(area / double(std::max<int64_t>(triangles, 1)));
-    const double pixelsPerSample =
-        0.5 * (double(map.width - 1) / double(field.width() - 1) +
-               double(map.height - 1) / double(field.height() - 1));
+    const double pixelsPerSample = 0.5 * (double(map.width - 1) / double(field.width() - 1) +
+                                          double(map.height - 1) / double(field.height() - 1));
     return std::max(least, samples * pixelsPerSample);
 }
 
@@ -152,7 +151,8 @@ int run(const Options& o) {
     double epsilon = s.zones.epsilon;
     if (autoEpsilon) {
         int64_t triangles = o.maxTriangles > 0 ? o.maxTriangles : 2 * o.maxPoints;
-        if (o.maxTriangles > 0 && o.maxPoints > 0) triangles = std::min(o.maxTriangles, 2 * o.maxPoints);
+        if (o.maxTriangles > 0 && o.maxPoints > 0)
+            triangles = std::min(o.maxTriangles, 2 * o.maxPoints);
         epsilon = budgetEpsilon(triangles, field, z.map, epsilon);
     }
     // A progress line rewritten in place on a terminal, plain lines (fewer) when redirected.
@@ -177,9 +177,9 @@ int run(const Options& o) {
         if (!autoEpsilon || agreement.fraction() >= kLeastAgreement ||
             epsilon <= double(s.zones.epsilon))
             break;
-        std::fprintf(stderr, "sierra-tin: zone agreement %.3f%% at epsilon %.3g px; again at %.3g\n",
-                     100.0 * agreement.fraction(), epsilon,
-                     std::max(double(s.zones.epsilon), epsilon / 2));
+        std::fprintf(
+            stderr, "sierra-tin: zone agreement %.3f%% at epsilon %.3g px; again at %.3g\n",
+            100.0 * agreement.fraction(), epsilon, std::max(double(s.zones.epsilon), epsilon / 2));
         epsilon = std::max(double(s.zones.epsilon), epsilon / 2);
     }
     error = tin::measureError(result.mesh, field);
@@ -212,8 +212,8 @@ int run(const Options& o) {
             "zones: %s, %dx%d, %zu surface types, %zu zones (%zu bands), %zu borderline segments, "
             "epsilon %.3g px%s, band %.3g px\n",
             s.zones.map.c_str(), z.map.width, z.map.height, z.palette.surfaces.size(),
-            z.lines.zones.size(), z.constraints.bands.size(), borderSegments,
-            z.epsilon, autoEpsilon ? " (automatic, from the budget)" : "", z.band);
+            z.lines.zones.size(), z.constraints.bands.size(), borderSegments, z.epsilon,
+            autoEpsilon ? " (automatic, from the budget)" : "", z.band);
     }
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
                 result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
@@ -285,12 +285,11 @@ int main(int argc, char** argv) {
     std::string zoneMap, palette;
     float band = zoneDefaults.band, epsilon = zoneDefaults.epsilon;
     const std::string zg = "Zones";
-    app.add_option(
-               "--zones", zoneMap,
-               "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
-               "its borderlines become constrained edges")
-            ->type_name("MAP.png|auto")
-            ->group(zg);
+    app.add_option("--zones", zoneMap,
+                   "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
+                   "its borderlines become constrained edges")
+        ->type_name("MAP.png|auto")
+        ->group(zg);
     app.add_option("--palette", palette, "Palette JSON (default: assets/palettes/default.json)")
         ->type_name("P.json")
         ->group(zg);
@@ -300,8 +299,9 @@ int main(int argc, char** argv) {
         ->group(zg)
         ->check(CLI::NonNegativeNumber);
     // --epsilon, or --zone-epsilon as in every other program.
-    app.add_option("--epsilon,--zone-epsilon", epsilon, "Borderline simplification (rule 3) in zone-map pixels (default with a triangle or point "
-                   "budget alone: from the budget)")
+    app.add_option("--epsilon,--zone-epsilon", epsilon,
+                   "Borderline simplification (rule 3) in zone-map pixels (default with a "
+                   "triangle or point budget alone: from the budget)")
         ->type_name("PX")
         ->group(zg)
         ->check(CLI::NonNegativeNumber)
@@ -331,14 +331,16 @@ int main(int argc, char** argv) {
         ->group(sg)
         ->check(CLI::IsMember({"plain", "data"}))
         ->capture_default_str();
-    app.add_option("--uv-period", o.uvPeriod, "OBJ planar UVs: grid samples per texture repeat (with --zones: each tile's own "
-                   "period, as the renderer's, unless given)")
+    app.add_option("--uv-period", o.uvPeriod,
+                   "OBJ planar UVs: grid samples per texture repeat (with --zones: each tile's "
+                   "own period, as the renderer's, unless given)")
         ->type_name("P")
         ->group(sg)
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     // Required, except with --print-config (checked after parsing).
-    app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl (required)")
+    app.add_option("--out", o.out,
+                   "Output mesh: .obj (with .mtl beside it), .ply or .stl (required)")
         ->type_name("MESH")
         ->group(sg);
     app.add_option("--json", o.json, "Write the statistics to this JSON file")
@@ -356,8 +358,8 @@ int main(int argc, char** argv) {
                 if (!palette.empty()) z.palette = palette;
                 if (app.count("--band")) z.band = band;
                 if (app.count("--epsilon")) z.epsilon = epsilon;
-                if (z.map.empty() && (app.count("--palette") || app.count("--band") ||
-                                      app.count("--epsilon")))
+                if (z.map.empty() &&
+                    (app.count("--palette") || app.count("--band") || app.count("--epsilon")))
                     throw Error(
                         "--palette, --band and --epsilon need --zones (or zones.map in --config)");
                 if (!std::isfinite(z.epsilon) || z.epsilon < 0.0f)

@@ -147,10 +147,14 @@ PlyFile readPly(const std::vector<uint8_t>& bytes) {
             at += sizeof(x);
             return double(x);
         };
-        if (type == "uchar") v = get(uint8_t());
-        else if (type == "int") v = get(int32_t());
-        else if (type == "float") v = get(float());
-        else ADD_FAILURE() << "PLY type " << type;
+        if (type == "uchar")
+            v = get(uint8_t());
+        else if (type == "int")
+            v = get(int32_t());
+        else if (type == "float")
+            v = get(float());
+        else
+            ADD_FAILURE() << "PLY type " << type;
         return v;
     };
     PlyFile ply;

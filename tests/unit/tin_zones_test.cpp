@@ -220,7 +220,8 @@ TEST(TinZones, EveryTriangleHasOneZone) {
     });
     for (const zones::ZoneMap* m : std::array<const zones::ZoneMap*, 2>{&map, &frame}) {
         for (int grid : {65, 129}) {
-            SCOPED_TRACE(testing::Message() << (m == &map ? "islands" : "frame") << ", grid " << grid);
+            SCOPED_TRACE(testing::Message()
+                         << (m == &map ? "islands" : "frame") << ", grid " << grid);
             const zones::Borderlines lines =
                 tin::gridBorderlines(*m, palette, {.epsilon = 0.5, .bandWidth = 3.0}, grid, grid);
             const tin::Constraints c = tin::constraintsFromBorderlines(lines, grid, grid);
@@ -232,7 +233,8 @@ TEST(TinZones, EveryTriangleHasOneZone) {
             for (size_t t = 0; t < r.mesh.triangles.size(); ++t) {
                 for (int k = 0; k < 3; ++k) {
                     if (r.mesh.constrainedEdges[t] & (1u << k)) {
-                        EXPECT_EQ(r.mesh.edgeZones[t][size_t(k)], r.mesh.zone[t]) << "triangle " << t;
+                        EXPECT_EQ(r.mesh.edgeZones[t][size_t(k)], r.mesh.zone[t])
+                            << "triangle " << t;
                     }
                 }
                 auto it = bands.find(r.mesh.zone[t]);
@@ -283,8 +285,8 @@ TEST(TinZones, ObjUvsRepeatWithEachTilesPeriod) {
     field.setSpacing(3.0f, 3.0f);
     const zones::Borderlines lines =
         tin::gridBorderlines(map, palette, {.epsilon = 0.5, .bandWidth = 2.0}, 65, 65);
-    const tin::TinResult r = tin::buildTin(field, tin::constraintsFromBorderlines(lines, 65, 65),
-                                           {.maxErrorRel = 0.01});
+    const tin::TinResult r =
+        tin::buildTin(field, tin::constraintsFromBorderlines(lines, 65, 65), {.maxErrorRel = 0.01});
     const std::string obj = dir + "/mesh.obj";
     tin::writeObj(obj, r.mesh, tin::zoneMaterials(obj, r.mesh, palette, 33, 33));
     const tin::ObjFile back = tin::readObj(obj);
@@ -306,7 +308,8 @@ TEST(TinZones, ObjUvsRepeatWithEachTilesPeriod) {
             const int32_t v = back.faces[f][size_t(k)], t = back.faceUvs[f][size_t(k)];
             ASSERT_GE(t, 0);
             uvsOfVertex.insert({v, t});
-            const double x = back.positions[size_t(v)][0] / 3.0, y = back.positions[size_t(v)][2] / 3.0;
+            const double x = back.positions[size_t(v)][0] / 3.0,
+                         y = back.positions[size_t(v)][2] / 3.0;
             const double u = (x * 32.0 / 64.0 + 0.5) / size, w = (y * 32.0 / 64.0 + 0.5) / size;
             EXPECT_NEAR(back.uvs[size_t(t)][0], u, 1e-5 * std::max(1.0, u)) << name;
             EXPECT_NEAR(back.uvs[size_t(t)][1], w, 1e-5 * std::max(1.0, w)) << name;

@@ -163,7 +163,8 @@ void writeObj(const std::string& path, const TinMesh& mesh, const ObjOptions& op
                 if (uv.empty()) uv.assign(mesh.vertices.size(), -1);
                 for (size_t t : tris)
                     for (int32_t v : mesh.triangles[t])
-                        if (uv[size_t(v)] < 0) uv[size_t(v)] = putUv(mesh.vertices[size_t(v)], period);
+                        if (uv[size_t(v)] < 0)
+                            uv[size_t(v)] = putUv(mesh.vertices[size_t(v)], period);
             }
             put(f, "usemtl " + materialName(surfaces) + "\n");
             for (size_t t : tris) {
