@@ -48,6 +48,8 @@ struct Options {
     int64_t maxPoints = 0;
     std::string delaunay = "plain";
     double uvPeriod = 64.0;
+    bool uvPeriodGiven = false;  // with --zones, replaces the tiles' own periods
+    bool epsilonGiven = false;   // --epsilon on the command line: no automatic epsilon
     std::string out;
     std::string json;
 };
@@ -58,6 +60,7 @@ struct ZoneInput {
     zones::Borderlines lines;
     tin::Constraints constraints;
     double band = 0.0;
+    double epsilon = 0.0;  // the borderlines' simplification, zone-map pixels
     double ms = 0.0;
 };
 
@@ -83,11 +86,32 @@ ZoneInput loadZones(const scene::Scene& s, const terrain::Heightfield& field) {
     SIERRA_CHECK(z.map.width >= 2 && z.map.height >= 2, "zone map ", d.map, " is ", z.map.width,
                  "x", z.map.height, "; a TIN needs at least 2x2 pixels");
     z.band = d.band >= 0.0f ? double(d.band) : double(z.palette.bandWidth);
-    z.lines = tin::gridBorderlines(z.map, z.palette, {.epsilon = d.epsilon, .bandWidth = z.band},
-                                   field.width(), field.height());
-    z.constraints = tin::constraintsFromBorderlines(z.lines, field.width(), field.height());
     z.ms = clock.ms();
     return z;
+}
+
+// The map's borderlines simplified at `epsilon` zone-map pixels, as constraints.
+void makeBorderlines(ZoneInput& z, double epsilon, const terrain::Heightfield& field) {
+    Stopwatch clock;
+    z.epsilon = epsilon;
+    z.lines = tin::gridBorderlines(z.map, z.palette, {.epsilon = epsilon, .bandWidth = z.band},
+                                   field.width(), field.height());
+    z.constraints = tin::constraintsFromBorderlines(z.lines, field.width(), field.height());
+    z.ms += clock.ms();
+}
+
+// The automatic epsilon of a triangle budget (zone-map pixels): 0.45 x the side
+// of the mean triangle's square, sqrt(grid area / triangles), so that at a small
+// budget the borderlines take few of its vertices, and never below `least`.
+// Measured on the default scene with the sample map (README): 3.3 px at 20,000
+// triangles, 1.5 at 100,000, 0.84 at 300,000.
+double budgetEpsilon(int64_t triangles, const terrain::Heightfield& field,
+                     const zones::ZoneMap& map, double least) {
+    const double area = double(field.width() - 1) * double(field.height() - 1);
+    const double samples = 0.45 * std::sqrt(area / double(std::max<int64_t>(triangles, 1)));
+    const double pixelsPerSample = 0.5 * (double(map.width - 1) / double(field.width() - 1) +
+                                          double(map.height - 1) / double(field.height() - 1));
+    return std::max(least, samples * pixelsPerSample);
 }
 
 int run(const Options& o) {
@@ -116,8 +140,21 @@ int run(const Options& o) {
                       .maxPoints = o.maxPoints,
                       .triangulation = o.delaunay == "data" ? tin::Triangulation::DataDependent
                                                             : tin::Triangulation::Delaunay};
-    if (o.maxError == 0.0 && o.maxErrorRel == 0.0 && o.maxTriangles == 0 && o.maxPoints == 0)
-        desc.maxErrorRel = 0.001;
+    const bool errorTarget = o.maxError > 0.0 || o.maxErrorRel > 0.0;
+    const bool budget = o.maxTriangles > 0 || o.maxPoints > 0;
+    if (!errorTarget && !budget) desc.maxErrorRel = 0.001;
+    // A budget alone and the default epsilon: the borderlines are simplified to
+    // the budget's scale (their vertices come out of the budget), and back
+    // towards the default while the zone agreement is below 99.5%.
+    const bool autoEpsilon = zoned && budget && !errorTarget && !o.epsilonGiven &&
+                             s.zones.epsilon == scene::ZonesDesc{}.epsilon;
+    double epsilon = s.zones.epsilon;
+    if (autoEpsilon) {
+        int64_t triangles = o.maxTriangles > 0 ? o.maxTriangles : 2 * o.maxPoints;
+        if (o.maxTriangles > 0 && o.maxPoints > 0)
+            triangles = std::min(o.maxTriangles, 2 * o.maxPoints);
+        epsilon = budgetEpsilon(triangles, field, z.map, epsilon);
+    }
     // A progress line rewritten in place on a terminal, plain lines (fewer) when redirected.
     const bool terminal = ::isatty(fileno(stderr));
     desc.progressEvery = terminal ? 20000 : 200000;
@@ -127,19 +164,37 @@ int run(const Options& o) {
                      terminal ? "\r" : "", (long long)p.points, (long long)p.triangles,
                      p.worstError, p.targetError, terminal ? "   " : "\n");
     };
-    tin::TinResult result = tin::buildTin(field, z.constraints, desc);
-    if (terminal) std::fprintf(stderr, "\n");
-
-    clock.restart();
-    const tin::ErrorStats error = tin::measureError(result.mesh, field);
-    const tin::ZoneAgreement agreement =
-        zoned ? tin::zoneAgreement(result.mesh, z.map) : tin::ZoneAgreement{};
+    tin::TinResult result;
+    tin::ErrorStats error;
+    tin::ZoneAgreement agreement;
+    constexpr double kLeastAgreement = 0.995;
+    while (true) {
+        if (zoned) makeBorderlines(z, epsilon, field);
+        result = tin::buildTin(field, z.constraints, desc);
+        if (terminal) std::fprintf(stderr, "\n");
+        clock.restart();
+        if (zoned) agreement = tin::zoneAgreement(result.mesh, z.map);
+        if (!autoEpsilon || agreement.fraction() >= kLeastAgreement ||
+            epsilon <= double(s.zones.epsilon))
+            break;
+        std::fprintf(
+            stderr, "sierra-tin: zone agreement %.3f%% at epsilon %.3g px; again at %.3g\n",
+            100.0 * agreement.fraction(), epsilon, std::max(double(s.zones.epsilon), epsilon / 2));
+        epsilon = std::max(double(s.zones.epsilon), epsilon / 2);
+    }
+    error = tin::measureError(result.mesh, field);
     const double measureMs = clock.ms();
     clock.restart();
     tin::ObjOptions objOptions{.uvPeriod = o.uvPeriod};
     if (zoned && ext == ".obj") {
-        objOptions = tin::zoneMaterials(o.out, result.mesh, z.palette);
+        // Each material repeats with its tile's period, as the renderer draws it;
+        // --uv-period given: one period for every material instead.
+        objOptions = tin::zoneMaterials(o.out, result.mesh, z.palette, z.map.width, z.map.height);
         objOptions.uvPeriod = o.uvPeriod;
+        if (o.uvPeriodGiven) {
+            objOptions.surfacePeriods.clear();
+            objOptions.uvOffset = {0.0, 0.0};
+        }
     }
     tin::writeMesh(o.out, result.mesh, objOptions);
     const double writeMs = clock.ms();
@@ -155,10 +210,10 @@ int run(const Options& o) {
         for (const auto& e : z.lines.edges) borderSegments += e.left >= 0 && e.right >= 0;
         std::printf(
             "zones: %s, %dx%d, %zu surface types, %zu zones (%zu bands), %zu borderline segments, "
-            "epsilon %.3g px, band %.3g px\n",
+            "epsilon %.3g px%s, band %.3g px\n",
             s.zones.map.c_str(), z.map.width, z.map.height, z.palette.surfaces.size(),
-            z.lines.zones.size(), z.constraints.bands.size(), borderSegments,
-            double(s.zones.epsilon), z.band);
+            z.lines.zones.size(), z.constraints.bands.size(), borderSegments, z.epsilon,
+            autoEpsilon ? " (automatic, from the budget)" : "", z.band);
     }
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
                 result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
@@ -187,6 +242,7 @@ int run(const Options& o) {
         report["snap_splits"] = st.snapSplits;
         report["stop"] = tin::toString(st.stop);
         report["target_error"] = st.targetError;
+        report["worst_error_left"] = st.worstError;
         report["max_error"] = error.maxError;
         report["rms_error"] = error.rmsError;
         report["samples"] = error.samples;
@@ -198,7 +254,8 @@ int run(const Options& o) {
                                {"zones", z.lines.zones.size()},
                                {"bands", z.constraints.bands.size()},
                                {"borderline_segments", borderSegments},
-                               {"epsilon", s.zones.epsilon},
+                               {"epsilon", z.epsilon},
+                               {"epsilon_auto", autoEpsilon},
                                {"band", z.band},
                                {"agreement", agreement.fraction()},
                                {"agreement_pixels", agreement.pixels},
@@ -228,28 +285,25 @@ int main(int argc, char** argv) {
     std::string zoneMap, palette;
     float band = zoneDefaults.band, epsilon = zoneDefaults.epsilon;
     const std::string zg = "Zones";
-    auto* zonesOpt =
-        app.add_option(
-               "--zones", zoneMap,
-               "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
-               "its borderlines become constrained edges")
-            ->type_name("MAP.png|auto")
-            ->group(zg);
+    app.add_option("--zones", zoneMap,
+                   "Zone map PNG (colours from the palette) or 'auto' (height and slope bands); "
+                   "its borderlines become constrained edges")
+        ->type_name("MAP.png|auto")
+        ->group(zg);
     app.add_option("--palette", palette, "Palette JSON (default: assets/palettes/default.json)")
         ->type_name("P.json")
-        ->group(zg)
-        ->needs(zonesOpt);
+        ->group(zg);
     app.add_option("--band", band,
                    "Transition band width in zone-map pixels (default: the palette's bandWidth)")
         ->type_name("W")
         ->group(zg)
-        ->needs(zonesOpt)
         ->check(CLI::NonNegativeNumber);
     // --epsilon, or --zone-epsilon as in every other program.
-    app.add_option("--epsilon,--zone-epsilon", epsilon, "Borderline simplification (rule 3) in zone-map pixels")
+    app.add_option("--epsilon,--zone-epsilon", epsilon,
+                   "Borderline simplification (rule 3) in zone-map pixels (default with a "
+                   "triangle or point budget alone: from the budget)")
         ->type_name("PX")
         ->group(zg)
-        ->needs(zonesOpt)
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     const std::string sg = "Mesh";
@@ -277,33 +331,47 @@ int main(int argc, char** argv) {
         ->group(sg)
         ->check(CLI::IsMember({"plain", "data"}))
         ->capture_default_str();
-    app.add_option("--uv-period", o.uvPeriod, "OBJ planar UVs: grid samples per texture repeat")
+    app.add_option("--uv-period", o.uvPeriod,
+                   "OBJ planar UVs: grid samples per texture repeat (with --zones: each tile's "
+                   "own period, as the renderer's, unless given)")
         ->type_name("P")
         ->group(sg)
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
-    app.add_option("--out", o.out, "Output mesh: .obj (with .mtl beside it), .ply or .stl")
+    // Required, except with --print-config (checked after parsing).
+    app.add_option("--out", o.out,
+                   "Output mesh: .obj (with .mtl beside it), .ply or .stl (required)")
         ->type_name("MESH")
-        ->group(sg)
-        ->required();
+        ->group(sg);
     app.add_option("--json", o.json, "Write the statistics to this JSON file")
         ->type_name("STATS.json")
         ->group(sg);
     return apps::runMain(
         app, argc, argv,
         [&] {
-            sceneOptions.apply();
-            // The zone options given override the scene's (from --config, or the defaults).
-            scene::ZonesDesc& z = o.scene.zones;
-            if (!zoneMap.empty()) z.map = zoneMap;
-            if (!palette.empty()) z.palette = palette;
-            if (app.count("--band")) z.band = band;
-            if (app.count("--epsilon")) z.epsilon = epsilon;
-            if (!std::isfinite(z.epsilon) || z.epsilon < 0.0f)
-                throw Error(
-                    msg("--epsilon must be a finite number of pixels >= 0, got ", z.epsilon));
-            if (!std::isfinite(z.band))
-                throw Error(msg("--band must be a finite number of pixels, got ", z.band));
+            // The zone options are the scene's zones: applied over --config (or the
+            // defaults) before the scene is checked and --print-config prints it, so a
+            // printed config gives the same mesh with --config.
+            sceneOptions.apply([&](scene::Scene& scene) {
+                scene::ZonesDesc& z = scene.zones;
+                if (!zoneMap.empty()) z.map = zoneMap;
+                if (!palette.empty()) z.palette = palette;
+                if (app.count("--band")) z.band = band;
+                if (app.count("--epsilon")) z.epsilon = epsilon;
+                if (z.map.empty() &&
+                    (app.count("--palette") || app.count("--band") || app.count("--epsilon")))
+                    throw Error(
+                        "--palette, --band and --epsilon need --zones (or zones.map in --config)");
+                if (!std::isfinite(z.epsilon) || z.epsilon < 0.0f)
+                    throw Error(
+                        msg("--epsilon must be a finite number of pixels >= 0, got ", z.epsilon));
+                if (!std::isfinite(z.band))
+                    throw Error(msg("--band must be a finite number of pixels, got ", z.band));
+            });
+            o.uvPeriodGiven = app.count("--uv-period") > 0;
+            o.epsilonGiven = app.count("--epsilon") > 0;
+            if (o.out.empty() && !sceneOptions.printConfigRequested())
+                throw Error("--out is required (a .obj, .ply or .stl file)");
         },
         [&] {
             if (sceneOptions.printConfigRequested()) return 0;

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -244,6 +245,37 @@ TEST_F(SceneOptionsTest, PrintConfigFedBackGivesTheSameScene) {
     EXPECT_FALSE(printed);
     EXPECT_EQ(back, s);
     EXPECT_EQ(sceneToText(back), text);
+}
+
+// A program's own scene options (apply(program)): applied after --config and the
+// registrar's options, checked with the scene and printed by --print-config.
+TEST_F(SceneOptionsTest, ProgramOptionsAreCheckedAndPrinted) {
+    auto run = [](const std::vector<std::string>& args, const std::function<void(Scene&)>& program) {
+        CLI::App app{"test"};
+        Scene scene;
+        SceneOptions options(app, scene, kTerrainOptions);
+        std::vector<const char*> argv{"test"};
+        for (const std::string& a : args) argv.push_back(a.c_str());
+        app.parse(int(argv.size()), argv.data());
+        options.apply(program);
+        return scene;
+    };
+    std::string config = write("zones.json", R"({"zones": {"map": "auto", "band": 2}, "terrain": {"generate": 65}})");
+    ::testing::internal::CaptureStdout();
+    Scene seen;
+    Scene s = run({"--config", config, "--generate", "129", "--print-config"}, [&](Scene& scene) {
+        seen = scene;  // what the program sees: the config under the command line
+        scene.zones.epsilon = 1.5f;
+    });
+    const std::string text = ::testing::internal::GetCapturedStdout();
+    EXPECT_EQ(seen.zones.map, "auto");
+    EXPECT_EQ(seen.zones.band, 2.0f);
+    EXPECT_EQ(seen.terrain.generateSize, 129);
+    EXPECT_EQ(s.zones.epsilon, 1.5f);
+    EXPECT_EQ(text, sceneToText(s));
+    EXPECT_THAT(text, HasSubstr("\"epsilon\": 1.5"));
+    // The program's values are checked like the rest.
+    EXPECT_THROW(run({}, [](Scene& scene) { scene.zones.epsilon = -1.0f; }), Error);
 }
 
 TEST_F(SceneOptionsTest, HelpShowsTheAppDefaults) {

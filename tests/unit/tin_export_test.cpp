@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <sstream>
 
 namespace {
 
@@ -98,25 +99,135 @@ TEST(TinExport, ObjParsesBackToTheSameMesh) {
     EXPECT_EQ(tin::readObj(dir / "b.obj").mtllib, "other.mtl");
 }
 
-TEST(TinExport, PlyCarriesZonesAndStlEveryFacet) {
+// A binary little-endian PLY as read by its header: every element's rows of
+// properties, each property as a double (lists: the count, then the items).
+struct PlyFile {
+    std::map<std::string, std::vector<std::string>> properties;  // element -> names
+    std::map<std::string, std::vector<std::vector<double>>> rows;
+};
+
+PlyFile readPly(const std::vector<uint8_t>& bytes) {
+    const std::string text(bytes.begin(), bytes.end());
+    const size_t end = text.find("end_header\n");
+    EXPECT_NE(end, std::string::npos);
+    std::istringstream header(text.substr(0, end));
+    struct Property {
+        std::string name, type, countType;  // countType set for a list
+    };
+    std::vector<std::pair<std::string, size_t>> elements;
+    std::map<std::string, std::vector<Property>> props;
+    std::string line;
+    std::getline(header, line);
+    EXPECT_EQ(line, "ply");
+    while (std::getline(header, line)) {
+        std::istringstream in(line);
+        std::string word;
+        in >> word;
+        if (word == "format") {
+            in >> word;
+            EXPECT_EQ(word, "binary_little_endian");
+        } else if (word == "element") {
+            size_t count = 0;
+            in >> word >> count;
+            elements.push_back({word, count});
+        } else if (word == "property") {
+            Property p;
+            in >> p.type;
+            if (p.type == "list") in >> p.countType >> p.type;
+            in >> p.name;
+            props[elements.back().first].push_back(p);
+        }
+    }
+    size_t at = end + 11;
+    auto value = [&](const std::string& type) {
+        double v = 0.0;
+        auto get = [&](auto x) {
+            EXPECT_LE(at + sizeof(x), bytes.size());
+            std::memcpy(&x, &bytes[at], sizeof(x));
+            at += sizeof(x);
+            return double(x);
+        };
+        if (type == "uchar")
+            v = get(uint8_t());
+        else if (type == "int")
+            v = get(int32_t());
+        else if (type == "float")
+            v = get(float());
+        else
+            ADD_FAILURE() << "PLY type " << type;
+        return v;
+    };
+    PlyFile ply;
+    for (const auto& [name, count] : elements) {
+        for (const Property& p : props[name]) ply.properties[name].push_back(p.name);
+        for (size_t r = 0; r < count; ++r) {
+            std::vector<double> row;
+            for (const Property& p : props[name]) {
+                if (!p.countType.empty()) {
+                    const double n = value(p.countType);
+                    row.push_back(n);
+                    for (int k = 0; k < int(n); ++k) row.push_back(value(p.type));
+                } else {
+                    row.push_back(value(p.type));
+                }
+            }
+            ply.rows[name].push_back(row);
+        }
+    }
+    EXPECT_EQ(at, bytes.size()) << "bytes after the last element";
+    return ply;
+}
+
+// The PLY read back by its own header: the vertices, the faces (up-facing) and
+// per face the zone and the two surfaces. A band face's zone is the band's own
+// zone number (3 here) and surface0, surface1 are the two zones it blends (1, 2);
+// a face of one zone has zone = surface0 = surface1.
+TEST(TinExport, PlyCarriesEachFacesZoneAndStlEveryFacet) {
     TempDir dir;
     const tin::TinMesh mesh = zonedMesh().mesh;
     tin::writeMesh(dir / "m.PLY", mesh);
-    const std::vector<uint8_t> ply = readFileBytes(dir / "m.PLY");
-    const std::string text(ply.begin(), ply.end());
-    const size_t end = text.find("end_header\n");
-    ASSERT_NE(end, std::string::npos);
-    const std::string header = text.substr(0, end);
-    EXPECT_NE(header.find("element face " + std::to_string(mesh.triangles.size())),
-              std::string::npos);
-    EXPECT_NE(header.find("property int zone"), std::string::npos);
-    size_t at = end + 11 + mesh.vertices.size() * 12;
-    ASSERT_EQ(ply.size(), at + mesh.triangles.size() * 25);
-    for (size_t t = 0; t < mesh.triangles.size(); ++t, at += 25) {
-        int32_t zone = 0;
-        std::memcpy(&zone, &ply[at + 13], 4);
-        EXPECT_EQ(zone, mesh.zone[t]);
+    const PlyFile ply = readPly(readFileBytes(dir / "m.PLY"));
+    EXPECT_EQ(ply.properties.at("vertex"), (std::vector<std::string>{"x", "y", "z"}));
+    EXPECT_EQ(ply.properties.at("face"),
+              (std::vector<std::string>{"vertex_indices", "zone", "surface0", "surface1"}));
+    const auto& vertices = ply.rows.at("vertex");
+    const auto& faces = ply.rows.at("face");
+    ASSERT_EQ(vertices.size(), mesh.vertices.size());
+    ASSERT_EQ(faces.size(), mesh.triangles.size());
+    for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+        EXPECT_EQ(vertices[v][0], double(float(mesh.vertices[v].x) * 2.0f));
+        EXPECT_EQ(vertices[v][1], double(mesh.heights[v]));
+        EXPECT_EQ(vertices[v][2], double(float(mesh.vertices[v].y) * 0.5f));
     }
+    std::map<int, int> zones;
+    int bandFaces = 0;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& f = faces[t];
+        ASSERT_EQ(f.size(), 7u);
+        ASSERT_EQ(f[0], 3.0);
+        const auto& tri = mesh.triangles[t];
+        EXPECT_EQ((std::array<double, 3>{f[1], f[2], f[3]}),
+                  (std::array<double, 3>{double(tri[0]), double(tri[2]), double(tri[1])}));
+        EXPECT_EQ(f[4], double(mesh.zone[t]));
+        EXPECT_EQ(f[5], double(mesh.surfaces[t][0]));
+        EXPECT_EQ(f[6], double(mesh.surfaces[t][1]));
+        ++zones[int(f[4])];
+        // The zone follows the triangle's side of the lines x = 10 and x = 14.
+        double cx = 0.0;
+        for (int k = 1; k <= 3; ++k) cx += vertices[size_t(f[size_t(k)])][0] / 2.0 / 3.0;
+        const int expected = cx < 10.0 ? 1 : cx < 14.0 ? 3 : 2;
+        EXPECT_EQ(int(f[4]), expected) << "face " << t << " centroid x " << cx;
+        if (f[4] == 3.0) {
+            ++bandFaces;
+            EXPECT_EQ(f[5], 1.0);
+            EXPECT_EQ(f[6], 2.0);
+        } else {
+            EXPECT_EQ(f[5], f[4]);
+            EXPECT_EQ(f[6], f[4]);
+        }
+    }
+    EXPECT_EQ(zones.size(), 3u);
+    EXPECT_GT(bandFaces, 4);
     tin::writeMesh(dir / "m.stl", mesh);
     EXPECT_EQ(fs::file_size(dir / "m.stl"), 84 + 50 * mesh.triangles.size());
     EXPECT_THROW(tin::writeMesh(dir / "m.xyz", mesh), Error);

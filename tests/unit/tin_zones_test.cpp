@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -175,6 +176,78 @@ TEST(TinZones, TriangleZonesAgreeWithTheMap) {
         }
 }
 
+// Every triangle has one zone (or one band pair): no triangle is claimed by two
+// zones, and every constrained edge carries its triangle's zone on the
+// triangle's side. Islands of 3 to 7 pixels ringed by borderline pixels (Figure
+// 1 layout, shapes from the sample zone map) with a 3-pixel band: the inner
+// copy of a loop smaller than the band turned inside out after snapping (its
+// zones on the wrong sides, 140-191 triangles of the sample map claimed twice);
+// such a loop's band is now narrowed, then left single.
+TEST(TinZones, EveryTriangleHasOneZone) {
+    const zones::Palette palette = zones::test::testPalette(3);
+    // '#' borderline pixel, '1' island, '.' the zone around it.
+    const std::vector<std::vector<std::string>> islands = {
+        {"...#....", "...####.", "..###1#.", "..#######"},
+        {"....#....", "...###...", "....#####", "....#111##", "....##111#", ".....####."},
+        {"...##.", "..#1#.", ".#11#.", "##11#.", ".###.."},
+        {"...#...", "..###..", ".#11#..", "#111#..", "#11#...", "###...."}};
+    zones::ZoneMap map = zones::test::makeMap(65, 65, [&](int x, int y) {
+        for (size_t k = 0; k < islands.size(); ++k)
+            for (int dy : {0, 28}) {
+                const int x0 = 4 + 15 * int(k), y0 = 6 + dy;
+                const auto& rows = islands[k];
+                if (y >= y0 && y < y0 + int(rows.size()) && x >= x0 &&
+                    x < x0 + int(rows[size_t(y - y0)].size())) {
+                    const char c = rows[size_t(y - y0)][size_t(x - x0)];
+                    if (c == '#') return int(zones::kBorderlinePixel);
+                    if (c == '1') return 1;
+                    return dy == 0 ? 0 : 2;
+                }
+            }
+        if (y == 24) return int(zones::kBorderlinePixel);
+        return y > 24 ? 2 : 0;
+    });
+    map.layout = zones::ZoneLayout::Borderlines;
+    // Touching layout: strips of one pixel along the frame, so that their
+    // borderlines snap onto the grid's border, where the frame edge carries the
+    // outermost pixels' zone and the triangle inside belongs to the next one.
+    const zones::ZoneMap frame = zones::test::makeMap(65, 65, [](int x, int y) {
+        if (x == 64 && y >= 10 && y < 14) return 1;  // zone 1 strip on zone 0's edge
+        if (y == 0 && x >= 20 && x < 26) return 2;
+        if (x == 0 && y >= 40 && y < 47) return 0;   // zone 0 strip on zone 2's edge
+        if (x >= 40 && y >= 12 && y < 20) return 1;  // a region meeting the frame beside it
+        return y >= 30 ? 2 : 0;
+    });
+    for (const zones::ZoneMap* m : std::array<const zones::ZoneMap*, 2>{&map, &frame}) {
+        for (int grid : {65, 129}) {
+            SCOPED_TRACE(testing::Message()
+                         << (m == &map ? "islands" : "frame") << ", grid " << grid);
+            const zones::Borderlines lines =
+                tin::gridBorderlines(*m, palette, {.epsilon = 0.5, .bandWidth = 3.0}, grid, grid);
+            const tin::Constraints c = tin::constraintsFromBorderlines(lines, grid, grid);
+            EXPECT_FALSE(c.bands.empty());
+            const tin::TinResult r = tin::buildTin(fractal(grid), c, {.maxErrorRel = 0.005});
+            EXPECT_EQ(r.stats.zoneConflicts, 0);
+            std::map<int32_t, std::array<int32_t, 2>> bands;
+            for (const auto& b : c.bands) bands[b.zone] = {b.first, b.second};
+            for (size_t t = 0; t < r.mesh.triangles.size(); ++t) {
+                for (int k = 0; k < 3; ++k) {
+                    if (r.mesh.constrainedEdges[t] & (1u << k)) {
+                        EXPECT_EQ(r.mesh.edgeZones[t][size_t(k)], r.mesh.zone[t])
+                            << "triangle " << t;
+                    }
+                }
+                auto it = bands.find(r.mesh.zone[t]);
+                const std::array<int32_t, 2> expected =
+                    it != bands.end() ? it->second
+                                      : std::array<int32_t, 2>{r.mesh.zone[t], r.mesh.zone[t]};
+                EXPECT_EQ(r.mesh.surfaces[t], expected);
+            }
+            EXPECT_GE(tin::zoneAgreement(r.mesh, *m).fraction(), 0.99);
+        }
+    }
+}
+
 TEST(TinZones, AgreementFailsWithoutBorderlines) {
     // The same check on a mesh that ignores the zones (everything zone 0) must fail.
     const zones::ZoneMap map = threeZones(65);
@@ -194,6 +267,59 @@ TEST(TinZones, MapToGridPutsPixelCentresOnSamples) {
     tiny.mapWidth = 1;
     tiny.mapHeight = 5;
     EXPECT_THROW(tin::constraintsFromBorderlines(tiny, 65, 65), Error);
+}
+
+// The OBJ's UVs are the renderer's zone tiles: a triangle of surface s at grid
+// (x, y) has u = (x (mapW - 1) / (gridW - 1) + 0.5) / tileSize(s) (the terrain
+// shader's zone-map position over the tile's size), each material its own
+// period; a band the mean of its two surfaces' periods.
+TEST(TinZones, ObjUvsRepeatWithEachTilesPeriod) {
+    const std::string dir = ::testing::TempDir() + "/tin_zones_uvs";
+    std::filesystem::create_directories(dir);
+    zones::Palette palette = zones::test::testPalette(3);
+    const float sizes[3] = {8.0f, 12.0f, 20.0f};
+    for (int k = 0; k < 3; ++k) palette.surfaces[size_t(k)].tileSize = sizes[k];
+    // A map of 33 x 33 pixels on a 65 x 65 grid: two samples per pixel.
+    const zones::ZoneMap map = threeZones(33);
+    terrain::Heightfield field = fractal(65);
+    field.setSpacing(3.0f, 3.0f);
+    const zones::Borderlines lines =
+        tin::gridBorderlines(map, palette, {.epsilon = 0.5, .bandWidth = 2.0}, 65, 65);
+    const tin::TinResult r =
+        tin::buildTin(field, tin::constraintsFromBorderlines(lines, 65, 65), {.maxErrorRel = 0.01});
+    const std::string obj = dir + "/mesh.obj";
+    tin::writeObj(obj, r.mesh, tin::zoneMaterials(obj, r.mesh, palette, 33, 33));
+    const tin::ObjFile back = tin::readObj(obj);
+    ASSERT_EQ(back.faces.size(), r.mesh.triangles.size());
+    std::map<std::string, int> faces;
+    std::set<std::pair<int32_t, int32_t>> uvsOfVertex;  // (vertex, vt) pairs
+    for (size_t f = 0; f < back.faces.size(); ++f) {
+        const std::string& name = back.faceMaterials[f];
+        ++faces[name];
+        // zone_<s> or band_<a>_<b>: the tile size of the material.
+        double size = 0.0;
+        int a = -1, b = -1;
+        if (std::sscanf(name.c_str(), "band_%d_%d", &a, &b) == 2)
+            size = 0.5 * (sizes[a] + sizes[b]);
+        else if (std::sscanf(name.c_str(), "zone_%d", &a) == 1)
+            size = sizes[a];
+        ASSERT_GT(size, 0.0) << name;
+        for (int k = 0; k < 3; ++k) {
+            const int32_t v = back.faces[f][size_t(k)], t = back.faceUvs[f][size_t(k)];
+            ASSERT_GE(t, 0);
+            uvsOfVertex.insert({v, t});
+            const double x = back.positions[size_t(v)][0] / 3.0,
+                         y = back.positions[size_t(v)][2] / 3.0;
+            const double u = (x * 32.0 / 64.0 + 0.5) / size, w = (y * 32.0 / 64.0 + 0.5) / size;
+            EXPECT_NEAR(back.uvs[size_t(t)][0], u, 1e-5 * std::max(1.0, u)) << name;
+            EXPECT_NEAR(back.uvs[size_t(t)][1], w, 1e-5 * std::max(1.0, w)) << name;
+        }
+    }
+    // Every surface and at least one band has triangles, so three or more periods
+    // were checked, and vertices on borderlines carry one UV per period around them.
+    EXPECT_GE(faces.size(), 4u);
+    EXPECT_GT(uvsOfVertex.size(), r.mesh.vertices.size());
+    EXPECT_GT(back.uvs.size(), r.mesh.vertices.size());
 }
 
 TEST(TinZones, BlendedTilesAndMaterials) {
@@ -234,7 +360,7 @@ TEST(TinZones, BlendedTilesAndMaterials) {
         fractal(65), tin::constraintsFromBorderlines(lines, 65, 65), {.maxErrorRel = 0.01});
     const std::string obj = dir + "/out/mesh.obj";
     std::filesystem::create_directories(dir + "/out");
-    tin::writeObj(obj, r.mesh, tin::zoneMaterials(obj, r.mesh, palette));
+    tin::writeObj(obj, r.mesh, tin::zoneMaterials(obj, r.mesh, palette, 65, 65));
     const tin::ObjFile parsed = tin::readObj(obj);
     EXPECT_EQ(parsed.faces.size(), r.mesh.triangles.size());
     const auto textures = tin::readMtlTextures(dir + "/out/" + parsed.mtllib);

@@ -428,12 +428,15 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
     }
 }
 
-void SceneOptions::apply() {
+void SceneOptions::apply() { apply({}); }
+
+void SceneOptions::apply(const std::function<void(Scene&)>& program) {
     Scene scene = defaults_;
     if (configOption_->count() > 0) scene = sceneFromJson(readJsonFile(config_), config_, scene);
     const std::vector<std::string> noWords;
     for (const Entry& e : entries_)
         if (e.option->count() > 0) e.set(scene, e.words ? *e.words : noWords);
+    if (program) program(scene);
     if (frameCountOption_ && frameCountOption_->count() > 0 && !scene.path.range)
         throw Error("--frame-count goes with --frames A:B (a part of a sequence); --frames N alone gives the count");
     try {

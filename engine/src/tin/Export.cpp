@@ -55,10 +55,28 @@ std::string materialName(const std::array<int32_t, 2>& s) {
     return s[0] == s[1] ? msg("zone_", s[0]) : msg("band_", s[0], "_", s[1]);
 }
 
+std::array<double, 2> uvPeriodOf(const ObjOptions& options, const std::array<int32_t, 2>& s) {
+    auto period = [&](int32_t surface) {
+        auto it = options.surfacePeriods.find(surface);
+        return it == options.surfacePeriods.end()
+                   ? std::array<double, 2>{options.uvPeriod, options.uvPeriod}
+                   : it->second;
+    };
+    const std::array<double, 2> a = period(s[0]), b = period(s[1]);
+    return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+}
+
 void writeObj(const std::string& path, const TinMesh& mesh, const ObjOptions& options) {
     checkMesh(mesh);
     SIERRA_CHECK(options.uvPeriod > 0.0, "sierra::tin::writeObj: uvPeriod must be positive, got ",
                  options.uvPeriod);
+    for (const auto& [surface, period] : options.surfacePeriods)
+        SIERRA_CHECK(period[0] > 0.0 && period[1] > 0.0 && std::isfinite(period[0]) &&
+                         std::isfinite(period[1]),
+                     "sierra::tin::writeObj: the UV period of surface ", surface,
+                     " must be positive, got ", period[0], " x ", period[1]);
+    SIERRA_CHECK(std::isfinite(options.uvOffset[0]) && std::isfinite(options.uvOffset[1]),
+                 "sierra::tin::writeObj: the UV offset must be finite");
     const std::filesystem::path objPath(path);
     const std::string mtlPath =
         options.mtlPath.empty() ? std::filesystem::path(objPath).replace_extension(".mtl").string()
@@ -121,17 +139,40 @@ void writeObj(const std::string& path, const TinMesh& mesh, const ObjOptions& op
                           double(p[2]));
             put(f, line);
         }
-        for (const GridPoint& g : mesh.vertices) {
-            std::snprintf(line, sizeof line, "vt %.9g %.9g\n", g.x / options.uvPeriod,
-                          g.y / options.uvPeriod);
+        // One period for every material: one vt per vertex, same index. Otherwise
+        // each material's vt lines come before its faces, one per (vertex, period).
+        std::map<std::array<double, 2>, std::vector<int32_t>> uvIndex;
+        for (const auto& [surfaces, tris] : groups) uvIndex[uvPeriodOf(options, surfaces)];
+        const bool shared = uvIndex.size() <= 1;
+        int32_t uvCount = 0;
+        auto putUv = [&](const GridPoint& g, const std::array<double, 2>& period) {
+            std::snprintf(line, sizeof line, "vt %.9g %.9g\n",
+                          (g.x + options.uvOffset[0]) / period[0],
+                          (g.y + options.uvOffset[1]) / period[1]);
             put(f, line);
-        }
+            return uvCount++;
+        };
+        if (shared)
+            for (const GridPoint& g : mesh.vertices)
+                putUv(g, uvPeriodOf(options, groups.empty() ? std::array<int32_t, 2>{0, 0}
+                                                            : groups.begin()->first));
         for (const auto& [surfaces, tris] : groups) {
+            const std::array<double, 2> period = uvPeriodOf(options, surfaces);
+            std::vector<int32_t>& uv = uvIndex[period];
+            if (!shared) {
+                if (uv.empty()) uv.assign(mesh.vertices.size(), -1);
+                for (size_t t : tris)
+                    for (int32_t v : mesh.triangles[t])
+                        if (uv[size_t(v)] < 0)
+                            uv[size_t(v)] = putUv(mesh.vertices[size_t(v)], period);
+            }
             put(f, "usemtl " + materialName(surfaces) + "\n");
             for (size_t t : tris) {
                 const auto tri = upward(mesh.triangles[t]);
-                std::snprintf(line, sizeof line, "f %d/%d %d/%d %d/%d\n", tri[0] + 1, tri[0] + 1,
-                              tri[1] + 1, tri[1] + 1, tri[2] + 1, tri[2] + 1);
+                int32_t vt[3];
+                for (int k = 0; k < 3; ++k) vt[k] = shared ? tri[k] : uv[size_t(tri[k])];
+                std::snprintf(line, sizeof line, "f %d/%d %d/%d %d/%d\n", tri[0] + 1, vt[0] + 1,
+                              tri[1] + 1, vt[1] + 1, tri[2] + 1, vt[2] + 1);
                 put(f, line);
             }
         }

@@ -286,41 +286,33 @@ void Mesher::splitEdge(int e, int v) {
         rotateTriangle(u, twin_[e] % 3);
     }
     const int o = twin_[e];
-    const int a = origin_[e], b = origin_[e + 1], c = origin_[e + 2];
-    const EdgeData ab = save(e), bc = save(e + 1), ca = save(e + 2);
-    const int tn = addTriangle();
-    // t = (c, a, p), tn = (b, c, p)
-    setTriangle(t, c, a, v);
-    setTriangle(tn, b, c, v);
-    twin_[3 * t] = twin_[3 * t + 1] = twin_[3 * t + 2] = -1;
-    restore(3 * t, ca);
-    restore(3 * tn, bc);
-    link(3 * t + 2, 3 * tn + 1);
-    constrainLike(3 * t + 1, ab);
-    constrainLike(3 * tn + 2, ab);
-    unconstrain(3 * t + 2);
-    unconstrain(3 * tn + 1);
-    touch(t);
-    touch(tn);
+    // Triangle (x0, x1, x2) with the split edge x0 -> x1 becomes (x2, x0, p) and a new
+    // (x1, x2, p): the outer edges keep their twins and flags, the halves x0-p and p-x1
+    // keep the split edge's constraint and zone, the new inner edge is plain. Serves t
+    // = (a, b, c) and its twin's u = (b, a, d) alike. Returns the new triangle.
+    const auto splitHalf = [&](int tri) {
+        const int x0 = origin_[3 * tri], x1 = origin_[3 * tri + 1], x2 = origin_[3 * tri + 2];
+        const EdgeData e01 = save(3 * tri), e12 = save(3 * tri + 1), e20 = save(3 * tri + 2);
+        const int nt = addTriangle();
+        setTriangle(tri, x2, x0, v);
+        setTriangle(nt, x1, x2, v);
+        twin_[3 * tri] = twin_[3 * tri + 1] = twin_[3 * tri + 2] = -1;
+        restore(3 * tri, e20);
+        restore(3 * nt, e12);
+        link(3 * tri + 2, 3 * nt + 1);
+        constrainLike(3 * tri + 1, e01);
+        constrainLike(3 * nt + 2, e01);
+        unconstrain(3 * tri + 2);
+        unconstrain(3 * nt + 1);
+        touch(tri);
+        touch(nt);
+        return nt;
+    };
+    const int tn = splitHalf(t);  // t = (c, a, p), tn = (b, c, p)
     if (o >= 0) {
-        const int d = origin_[3 * u + 2];
-        const EdgeData ba = save(3 * u), ad = save(3 * u + 1), db = save(3 * u + 2);
-        un = addTriangle();
-        // u = (d, b, p), un = (a, d, p)
-        setTriangle(u, d, b, v);
-        setTriangle(un, a, d, v);
-        twin_[3 * u] = twin_[3 * u + 1] = twin_[3 * u + 2] = -1;
-        restore(3 * u, db);
-        restore(3 * un, ad);
-        link(3 * u + 2, 3 * un + 1);
-        constrainLike(3 * u + 1, ba);
-        constrainLike(3 * un + 2, ba);
-        unconstrain(3 * u + 2);
-        unconstrain(3 * un + 1);
+        un = splitHalf(u);  // u = (d, b, p), un = (a, d, p)
         link(3 * t + 1, 3 * un + 2);
         link(3 * tn + 2, 3 * u + 1);
-        touch(u);
-        touch(un);
     } else {
         twin_[3 * t + 1] = twin_[3 * tn + 2] = -1;
     }
@@ -702,25 +694,39 @@ void Mesher::floodZones(const Constraints& constraints, TinResult& result) {
     std::vector<int32_t>& zone = mesh.zone;
     zone.assign(size_t(triangles), -1);
     std::vector<int> queue;
-    for (int e = 0; e < int(origin_.size()); ++e) {
-        if (!constrained_[e] || zone_[e] < 0) continue;
-        const int t = e / 3;
-        if (zone[t] >= 0) {
-            if (zone[t] != zone_[e]) ++result.stats.zoneConflicts;
-            continue;
-        }
-        zone[t] = zone_[e];
-        queue.assign(1, t);
-        while (!queue.empty()) {
-            const int u = queue.back();
-            queue.pop_back();
-            for (int k = 0; k < 3; ++k) {
-                const int h = 3 * u + k;
-                if (constrained_[h] || twin_[h] < 0) continue;
-                const int n = twin_[h] / 3;
-                if (zone[n] < 0) {
-                    zone[n] = zone[u];
-                    queue.push_back(n);
+    // Seeds from the borderlines inside the grid first, then from the edges on its
+    // border (the frame's, and borderlines snapped onto it). A frame edge carries the
+    // zone of the map's outermost pixels, which a borderline one pixel from the
+    // frame leaves on the wrong side of it once snapped; so a border edge only seeds
+    // triangles no inner borderline reaches, and takes the zone of its triangle
+    // otherwise. Conflicts are counted between inner borderlines only.
+    for (const bool border : {false, true}) {
+        for (int e = 0; e < int(origin_.size()); ++e) {
+            if (!constrained_[e] || zone_[e] < 0 || (twin_[e] < 0) != border) continue;
+            const int t = e / 3;
+            if (zone[t] >= 0) {
+                if (zone[t] == zone_[e]) continue;
+                if (border) {
+                    zone_[e] = zone[t];
+                    mesh.edgeZones[size_t(t)][size_t(e % 3)] = zone[t];
+                } else {
+                    ++result.stats.zoneConflicts;
+                }
+                continue;
+            }
+            zone[t] = zone_[e];
+            queue.assign(1, t);
+            while (!queue.empty()) {
+                const int u = queue.back();
+                queue.pop_back();
+                for (int k = 0; k < 3; ++k) {
+                    const int h = 3 * u + k;
+                    if (constrained_[h] || twin_[h] < 0) continue;
+                    const int n = twin_[h] / 3;
+                    if (zone[n] < 0) {
+                        zone[n] = zone[u];
+                        queue.push_back(n);
+                    }
                 }
             }
         }

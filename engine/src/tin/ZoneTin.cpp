@@ -133,7 +133,10 @@ ZoneAgreement zoneAgreement(const TinMesh& mesh, const zones::ZoneMap& map) {
 }
 
 ObjOptions zoneMaterials(const std::string& objPath, const TinMesh& mesh,
-                         const zones::Palette& palette) {
+                         const zones::Palette& palette, int mapWidth, int mapHeight) {
+    SIERRA_CHECK(mapWidth >= 2 && mapHeight >= 2 && mesh.gridWidth >= 2 && mesh.gridHeight >= 2,
+                 "zone materials need a map and a grid of at least 2x2, got ", mapWidth, "x",
+                 mapHeight, " and ", mesh.gridWidth, "x", mesh.gridHeight);
     namespace fs = std::filesystem;
     const fs::path obj(objPath);
     const fs::path folder = obj.parent_path().empty() ? fs::path(".") : obj.parent_path();
@@ -143,8 +146,14 @@ ObjOptions zoneMaterials(const std::string& objPath, const TinMesh& mesh,
         fs::path rel = fs::proximate(fs::path(file), folder, ec);
         return ec || rel.empty() ? fs::absolute(file).string() : rel.generic_string();
     };
+    // Grid samples per zone-map pixel on each axis.
+    const double gx = double(mesh.gridWidth - 1) / double(mapWidth - 1);
+    const double gy = double(mesh.gridHeight - 1) / double(mapHeight - 1);
+    options.uvOffset = {0.5 * gx, 0.5 * gy};
     for (size_t s = 0; s < palette.surfaces.size(); ++s) {
         options.surfaceColours[int32_t(s)] = palette.surfaces[s].colour;
+        const double size = double(palette.surfaces[s].tileSize);
+        options.surfacePeriods[int32_t(s)] = {size * gx, size * gy};
         if (!palette.surfaces[s].tile.empty())
             options.tileImages[int32_t(s)] = reference(palette.surfaces[s].tile);
     }

@@ -635,6 +635,22 @@ void doubleBorderlines(Borderlines& lines, double width, const std::function<Ver
         std::vector<std::vector<uint32_t>> chains;
         for (const Arc& arc : out) chains.push_back(arc.chain);
         std::vector<bool> conflict = findConflicts(candidate, out, chains);
+        // A closed copy inside a loop smaller than the band (a small island, after
+        // snapping too) turns inside out without crossing anything: its area
+        // changes sign or vanishes. It counts as a conflict like a crossing.
+        auto area = [](const std::vector<Vertex>& v, const std::vector<uint32_t>& chain) {
+            double sum = 0.0;
+            for (size_t k = 0; k + 1 < chain.size(); ++k)
+                sum += v[chain[k]].x * v[chain[k + 1]].y - v[chain[k + 1]].x * v[chain[k]].y;
+            return 0.5 * sum;
+        };
+        for (size_t k = 0; k < out.size(); ++k) {
+            const Arc& original = arcs[source[k]];
+            if (!original.closed || band[source[k]] < 0 || level[source[k]] >= kSingle) continue;
+            const double before = area(lines.vertices, original.chain);
+            const double after = area(candidate.vertices, out[k].chain);
+            if (out[k].chain.size() < 4 || !(after * before > 0.0)) conflict[k] = true;
+        }
         std::vector<bool> narrow(arcs.size(), false);
         for (size_t k = 0; k < out.size(); ++k)
             if (conflict[k] && band[source[k]] >= 0 && level[source[k]] < kSingle) narrow[source[k]] = true;

@@ -76,6 +76,11 @@ public:
     // returns): builds the scene as described above and stores it in `scene`.
     // Throws sierra::Error naming the option (or the config file and key).
     void apply();
+    // As apply(), with `program` run on the scene after the registrar's options
+    // and before the check and --print-config: a program's own options that are
+    // part of the scene (sierra-tin's zone options) are then printed by
+    // --print-config, and read back by --config, like the registrar's.
+    void apply(const std::function<void(Scene&)>& program);
 
     // --print-config was given: apply() printed the scene; the app exits 0.
     bool printConfigRequested() const;

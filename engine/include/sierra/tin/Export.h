@@ -28,10 +28,20 @@ struct ObjOptions {
     // Kd colour (0xRRGGBB) of each surface type; a band gets the mean of its
     // two. A surface with none gets a stable made-up colour.
     std::map<int32_t, uint32_t> surfaceColours;
-    // Planar UVs: u = x / uvPeriod, v = y / uvPeriod (grid samples per tile
-    // repeat, default 64).
+    // Planar UVs: u = (x + uvOffset[0]) / period x, v = (y + uvOffset[1]) / period y,
+    // in grid samples. A surface type's period is its surfacePeriods entry (x, y),
+    // a band's the mean of its two surfaces' (its blended image is drawn once),
+    // any other uvPeriod on both axes (default 64). Materials with different
+    // periods get their own vt lines, so a vertex on a borderline has one UV per
+    // period around it.
     double uvPeriod = 64.0;
+    std::map<int32_t, std::array<double, 2>> surfacePeriods;
+    std::array<double, 2> uvOffset = {0.0, 0.0};
 };
+
+// The UV period (grid samples per repetition along x and y) that writeObj
+// gives a triangle of these surfaces.
+std::array<double, 2> uvPeriodOf(const ObjOptions& options, const std::array<int32_t, 2>& surfaces);
 
 // Material name of a triangle's surfaces: "zone_<a>" or, in a band, "band_<a>_<b>".
 std::string materialName(const std::array<int32_t, 2>& surfaces);

@@ -112,7 +112,8 @@ struct TinMesh {
     // Per triangle, bit k set: edge k (vertex k -> vertex k+1 mod 3) is constrained.
     std::vector<uint8_t> constrainedEdges;
     // Per triangle and edge k: the zone on that triangle's side of a constrained
-    // edge, -1 for an unconstrained edge.
+    // edge, -1 for an unconstrained edge. An edge on the grid's border carries its
+    // triangle's zone (the frame's zone only where no inner borderline reaches).
     std::vector<std::array<int32_t, 3>> edgeZones;
     // Per triangle: its zone from the flood fill, and its two surface types
     // (equal unless the zone is a band).
@@ -129,7 +130,9 @@ struct TinStats {
     // Insertions that bent a constrained edge through the point (the snap rule).
     int64_t snapSplits = 0;
     int64_t flips = 0;          // edge flips in total
-    int64_t zoneConflicts = 0;  // triangles that two flood fills claimed with different zones
+    // Triangles that the flood fills from two inner constrained edges claimed with
+    // different zones (border edges only seed what no inner edge reaches).
+    int64_t zoneConflicts = 0;
     double targetError = 0.0;   // error threshold used (world units; 0 = none)
     double worstError = 0.0;    // largest error left when insertion stopped (world units)
     StopReason stop = StopReason::Exhausted;

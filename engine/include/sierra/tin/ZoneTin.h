@@ -67,8 +67,12 @@ ZoneAgreement zoneAgreement(const TinMesh& mesh, const zones::ZoneMap& map);
 // (zones::blendTiles, heightBlend the mean of the two surfaces') written as a
 // PNG beside the OBJ: <obj stem>_band_<a>_<b>.png. Throws sierra::Error when a
 // tile cannot be read, when two tiles of a band differ in size, or when a
-// file cannot be written.
+// file cannot be written. The UVs are the terrain shader's zone tiles (top
+// projection): a surface repeats every tileSize zone-map pixels, i.e. every
+// tileSize (gridSide - 1) / (mapSide - 1) grid samples on each axis, from
+// half a pixel before sample 0, so the OBJ textures like `sierra-render --mesh`
+// (a band: the mean of its two periods, see ObjOptions).
 ObjOptions zoneMaterials(const std::string& objPath, const TinMesh& mesh,
-                         const zones::Palette& palette);
+                         const zones::Palette& palette, int mapWidth, int mapHeight);
 
 }  // namespace sierra::tin
