@@ -1,7 +1,8 @@
 # Inlines #include "x.glsl" lines of SHADER (as the engine does at run time) and
 # runs glslangValidator on the result; fails the test on any error. A stage that
 # includes "surface.glsl" is validated once per surface_*.glsl file, the
-# surface functions the engine substitutes for it.
+# surface functions the engine substitutes for it. STAGE (optional, e.g. geom)
+# names the stage of a file whose extension does not (the *_geom.glsl files).
 get_filename_component(dir ${SHADER} DIRECTORY)
 get_filename_component(name ${SHADER} NAME)
 file(READ ${SHADER} source)
@@ -42,7 +43,11 @@ foreach(variant ${variants})
     set(out ${WORK_DIR}/${name})
   endif()
   file(WRITE ${out} "${text}")
-  execute_process(COMMAND ${VALIDATOR} ${out} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  set(stage_args "")
+  if(STAGE)
+    set(stage_args -S ${STAGE})
+  endif()
+  execute_process(COMMAND ${VALIDATOR} ${stage_args} ${out} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "glslangValidator rejected ${name} (${variant}):\n${o}${e}")
   endif()
