@@ -206,15 +206,42 @@ vec2 pick(vec2 w[9], ivec2 o) {
     return o.y == 0 ? r0 : (o.y == 1 ? r1 : r2);
 }
 
+vec2 pick3(vec2 a, vec2 b, vec2 c, int k) { return k == 0 ? a : (k == 1 ? b : c); }
+
 float directionValue(vec2 w[9], ivec2 ij, ivec2 cc, int d) {
     ivec2 s = kSteps[d];
     vec2 world = vec2(s) * uSpacing;
     float invLength = 1.0 / length(world);
     vec2 u = world * invLength;
-    ivec2 o = stencilCentre(ij, s) - cc + 1;
-    vec2 p = uMethod == 0 ? vec2(0.0) : pick(w, o - s);
+    vec2 p, v, n;
+    if (uMethod == 0) {
+        ivec2 o = stencilCentre(ij, s) - cc + 1;
+        p = vec2(0.0);
+        v = pick(w, o);
+        n = pick(w, o + s);
+    } else if (d == 0) {
+        // Three-point stencils: along the axes the direction moves on, the
+        // clamped centre is cc's own, so only the other axis's offset varies.
+        int r = ij.y - cc.y + 1;
+        p = pick3(w[0], w[3], w[6], r);
+        v = pick3(w[1], w[4], w[7], r);
+        n = pick3(w[2], w[5], w[8], r);
+    } else if (d == 1) {
+        int q = ij.x - cc.x + 1;
+        p = pick3(w[0], w[1], w[2], q);
+        v = pick3(w[3], w[4], w[5], q);
+        n = pick3(w[6], w[7], w[8], q);
+    } else if (d == 2) {
+        p = w[0];
+        v = w[4];
+        n = w[8];
+    } else {
+        p = w[6];
+        v = w[4];
+        n = w[2];
+    }
     float value, ypp;
-    if (!measureFrom(p, pick(w, o), pick(w, o + s), s, u, invLength, value, ypp)) return nanValue();
+    if (!measureFrom(p, v, n, s, u, invLength, value, ypp)) return nanValue();
     if (uSecond == 1) return ypp;
     return shaped(value * uScale, ypp);
 }
