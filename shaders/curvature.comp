@@ -39,7 +39,13 @@ float heightAt(ivec2 ij) { return texelFetch(uHeights, ij.y * uSize.x + ij.x).r;
 
 // (dy/dx, dy/dz) per sample, row-major; NaN = no data.
 layout(std430, binding = 1) writeonly buffer GradientOut { vec2 uGradientData[]; };
-uniform int uNormals;  // 0 edge, 1 triangle, 2 quad (analysis::NormalMethod)
+// The normals are compiled in (CURVATURE_NORMALS 0 edge, 1 triangle, 2 quad,
+// analysis::NormalMethod): a software rasteriser runs every branch of a
+// uniform switch otherwise.
+#ifndef CURVATURE_NORMALS
+#define CURVATURE_NORMALS 2
+#endif
+const int uNormals = CURVATURE_NORMALS;
 
 // The 8 neighbours counter-clockwise from above: E, NE, N, NW, W, SW, S, SE.
 const ivec2 kRing[8] = ivec2[8](ivec2(1, 0), ivec2(1, 1), ivec2(0, 1), ivec2(-1, 1), ivec2(-1, 0), ivec2(-1, -1),
@@ -103,7 +109,9 @@ layout(std430, binding = 1) writeonly buffer FieldOut { vec4 uFieldData[]; };
 const int uMethod = CURVATURE_METHOD;
 uniform int uDistance;   // reinforcement distance in steps, 1 = none
 uniform float uScale;    // multiplies every value
-uniform vec4 uLevels;    // x: 1 = level control on; y: black; z: white; w: gamma
+// Level control is compiled in (CURVATURE_LEVELS) rather than switched by a
+// uniform: a software rasteriser runs a uniform branch's body (pow) anyway.
+uniform vec4 uLevels;    // with CURVATURE_LEVELS: y black, z white, w gamma
 uniform int uSigned;     // 1 = keep the sign of y''
 uniform int uSecond;     // 1 = output y'' itself (CurvatureOutput::SecondDerivative)
 
@@ -185,10 +193,10 @@ ivec2 stencilCentre(ivec2 ij, ivec2 s) {
 
 // Scale is applied by the caller; then level control and the sign.
 float shaped(float value, float ypp) {
-    if (uLevels.x > 0.5) {
-        float t = clamp((value - uLevels.y) / (uLevels.z - uLevels.y), 0.0, 1.0);
-        value = t > 0.0 ? pow(t, 1.0 / uLevels.w) : 0.0;
-    }
+#ifdef CURVATURE_LEVELS
+    float t = clamp((value - uLevels.y) / (uLevels.z - uLevels.y), 0.0, 1.0);
+    value = t > 0.0 ? pow(t, 1.0 / uLevels.w) : 0.0;
+#endif
     return uSigned == 1 && ypp < 0.0 ? -value : value;
 }
 

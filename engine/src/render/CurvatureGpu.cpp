@@ -26,12 +26,19 @@ gpu::Texture bufferTexture(const gpu::Buffer& buffer, GLenum format) {
     return gpu::Texture(id, gpu::kAdopt);
 }
 
-std::string programDefines(int method, bool near) {
+// The gradient program for `normals`, or the field program of a method.
+std::string gradientDefines(analysis::NormalMethod normals) {
+    return "#define CURVATURE_GROUP_X " + std::to_string(kGroupX) + "\n#define CURVATURE_GROUP_Y " +
+           std::to_string(kGroupY) + "\n#define CURVATURE_GRADIENT 1\n#define CURVATURE_NORMALS " +
+           std::to_string(int(normals)) + "\n";
+}
+
+std::string fieldDefines(analysis::CurvatureMethod method, bool near, bool levels) {
     std::string d = "#define CURVATURE_GROUP_X " + std::to_string(kGroupX) + "\n#define CURVATURE_GROUP_Y " +
-                    std::to_string(kGroupY) + "\n";
-    if (method < 0) return d + "#define CURVATURE_GRADIENT 1\n";
-    d += "#define CURVATURE_METHOD " + std::to_string(method) + "\n";
-    return near ? d + "#define CURVATURE_NEAR 1\n" : d;
+                    std::to_string(kGroupY) + "\n#define CURVATURE_METHOD " + std::to_string(int(method)) + "\n";
+    if (levels) d += "#define CURVATURE_LEVELS 1\n";
+    if (near) d += "#define CURVATURE_NEAR 1\n";
+    return d;
 }
 
 }  // namespace
@@ -47,7 +54,6 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     SIERRA_CHECK(field.sampleCount() <= int64_t(maxTexels), "GPU curvature: a ", c.width_, "x", c.height_,
                  " grid has more samples than the driver's buffer textures hold (", maxTexels, ")");
-    c.gradientProgram_ = gpu::Program::create({.compute = "curvature.comp", .defines = programDefines(-1, false)});
 
     std::vector<float> heights(field.samples().begin(), field.samples().end());
     const float scale = field.verticalScale();
@@ -72,8 +78,11 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
                  " grid is too small for reinforcement distance ", o.distance, " (each side needs at least ",
                  minSide, " samples)");
     const bool near = o.distance == 1;
-    gpu::Program& p = fieldPrograms_[size_t(o.method)][near ? 1 : 0];
-    if (!p) p = gpu::Program::create({.compute = "curvature.comp", .defines = programDefines(int(o.method), near)});
+    gpu::Program& p = fieldPrograms_[size_t(o.method)][near ? 1 : 0][o.levels.enabled ? 1 : 0];
+    if (!p) {
+        p = gpu::Program::create(
+            {.compute = "curvature.comp", .defines = fieldDefines(o.method, near, o.levels.enabled)});
+    }
     gpu::GlStateScope scope;
     const GLuint groupsX = GLuint((width_ + kGroupX - 1) / kGroupX);
     const GLuint groupsY = GLuint((height_ + kGroupY - 1) / kGroupY);
@@ -81,10 +90,11 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     const bool normalBased =
         o.method == analysis::CurvatureMethod::TwoNormal || o.method == analysis::CurvatureMethod::ThreeNormal;
     if (normalBased || tangentPlanes) {
-        glUseProgram(gradientProgram_.id());
-        glUniform2i(gradientProgram_.uniform("uSize"), width_, height_);
-        glUniform2f(gradientProgram_.uniform("uSpacing"), spacingX_, spacingZ_);
-        glUniform1i(gradientProgram_.uniform("uNormals"), int(o.normals));
+        gpu::Program& g = gradientPrograms_[size_t(o.normals)];
+        if (!g) g = gpu::Program::create({.compute = "curvature.comp", .defines = gradientDefines(o.normals)});
+        glUseProgram(g.id());
+        glUniform2i(g.uniform("uSize"), width_, height_);
+        glUniform2f(g.uniform("uSpacing"), spacingX_, spacingZ_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gradient_.id());
         glDispatchCompute(groupsX, groupsY, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);

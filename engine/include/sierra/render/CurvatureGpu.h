@@ -25,7 +25,7 @@ namespace sierra::render {
 class CurvatureGpu {
 public:
     // Uploads the heightfield's world heights (stored height * vertical
-    // scale; NaN for no-data samples) and builds the programs. Throws
+    // scale; NaN for no-data samples); the programs are built on first use. Throws
     // sierra::Error for an empty heightfield.
     static CurvatureGpu create(const terrain::Heightfield& field);
 
@@ -54,9 +54,9 @@ public:
 private:
     int width_ = 0, height_ = 0;
     float spacingX_ = 1.0f, spacingZ_ = 1.0f;
-    gpu::Program gradientProgram_;
-    // Per CurvatureMethod: [0] any distance, [1] distance 1 (CURVATURE_NEAR); built on first use.
-    std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_;
+    std::array<gpu::Program, 3> gradientPrograms_;  // per NormalMethod, built on first use
+    // [CurvatureMethod][distance 1 (CURVATURE_NEAR)][level control (CURVATURE_LEVELS)], built on first use.
+    std::array<std::array<std::array<gpu::Program, 2>, 2>, 4> fieldPrograms_;
     gpu::Buffer heights_;   // world heights, float32 row-major, NaN = no data
     gpu::Buffer gradient_;  // 2 floats per sample, row-major
     gpu::Buffer field_;     // 4 floats per sample, row-major
