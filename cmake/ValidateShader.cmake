@@ -1,7 +1,10 @@
 # Inlines #include "x.glsl" lines of SHADER (as the engine does at run time) and
 # runs glslangValidator on the result; fails the test on any error. A stage that
 # includes "surface.glsl" is validated once per surface_*.glsl file, the
-# surface functions the engine substitutes for it.
+# surface functions the engine substitutes for it. STAGE (optional, e.g. geom)
+# names the stage of a file whose extension does not (the *_geom.glsl files).
+# DEFINE (optional) is a macro the engine defines for a variant of the stage
+# (#define DEFINE 1 after #version, as gpu::Program inserts it).
 get_filename_component(dir ${SHADER} DIRECTORY)
 get_filename_component(name ${SHADER} NAME)
 file(READ ${SHADER} source)
@@ -16,6 +19,9 @@ else()
   set(variants "-")
 endif()
 file(MAKE_DIRECTORY ${WORK_DIR})
+if(DEFINE)
+  string(REGEX REPLACE "(#version[^\n]*\n)" "\\1#define ${DEFINE} 1\n" source "${source}")
+endif()
 foreach(variant ${variants})
   set(text "${source}")
   # Included files may include others: expand until none is left (8 levels, as the engine allows).
@@ -41,10 +47,18 @@ foreach(variant ${variants})
   if(variant STREQUAL "-")
     set(out ${WORK_DIR}/${name})
   endif()
-  file(WRITE ${out} "${text}")
-  execute_process(COMMAND ${VALIDATOR} ${out} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "glslangValidator rejected ${name} (${variant}):\n${o}${e}")
+  if(DEFINE)
+    get_filename_component(outname ${out} NAME)
+    set(out ${WORK_DIR}/${DEFINE}.${outname})
   endif()
-  message(STATUS "${name} (${variant}): valid")
+  file(WRITE ${out} "${text}")
+  set(stage_args "")
+  if(STAGE)
+    set(stage_args -S ${STAGE})
+  endif()
+  execute_process(COMMAND ${VALIDATOR} ${stage_args} ${out} RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "glslangValidator rejected ${name} (${variant} ${DEFINE}):\n${o}${e}")
+  endif()
+  message(STATUS "${name} (${variant} ${DEFINE}): valid")
 endforeach()

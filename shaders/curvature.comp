@@ -3,13 +3,25 @@
 // reference (engine: analysis/Curvature.h, whose definitions, border rule and
 // order of operations this copies), in two dispatches of this file:
 //   CURVATURE_GRADIENT: the surface gradient (dy/dx, dy/dz) of every vertex
-//     from its normal (edge, triangle or quad), into uGradientOut (RG32F);
+//     from its normal (edge, triangle or quad), into uGradientData;
 //   otherwise: the four directions' values of every vertex from the heights
-//     and that gradient, into uFieldOut (RGBA32F, one texel per sample).
-// No data is NaN in the height texture. NaN is detected from its bits and
+//     and that gradient, into uFieldData (4 floats per sample).
+// No data is NaN in the heights. NaN is detected from its bits and
 // produced from bits, never through arithmetic, so fast-math in a driver
 // cannot drop it; a stencil with a no-data sample gives NaN explicitly.
-layout(local_size_x = 16, local_size_y = 16) in;
+//
+// Laid out for a software rasteriser (llvmpipe runs each invocation as a lane
+// of a SIMD loop): inputs are read through buffer textures (texelFetch from a
+// samplerBuffer: a vector gather) and results written to storage buffers,
+// which cost a quarter of an imageStore there; the heights or gradients
+// around a vertex are fetched once (a 3x3 window) and shared by the four
+// directions instead of being fetched per direction (see CURVATURE_NEAR).
+// Workgroup size, set by the engine (CurvatureGpu.cpp); 16x16 by default.
+#ifndef CURVATURE_GROUP_X
+#define CURVATURE_GROUP_X 16
+#define CURVATURE_GROUP_Y 16
+#endif
+layout(local_size_x = CURVATURE_GROUP_X, local_size_y = CURVATURE_GROUP_Y) in;
 
 uniform ivec2 uSize;     // samples along x and z
 uniform vec2 uSpacing;   // world distance between samples along x and z
@@ -19,16 +31,21 @@ bool noData(float v) {
     return (b & 0x7f800000u) == 0x7f800000u && (b & 0x007fffffu) != 0u;
 }
 float nanValue() { return uintBitsToFloat(0x7fc00000u); }
-// World heights (stored height * vertical scale), NaN = no data, row-major:
-// a storage buffer, whose loads cost a software rasteriser far less than
-// texel fetches.
-layout(std430, binding = 0) readonly buffer Heights { float uHeightData[]; };
-float heightAt(ivec2 ij) { return uHeightData[ij.y * uSize.x + ij.x]; }
+// World heights (stored height * vertical scale), NaN = no data, row-major.
+layout(binding = 2) uniform samplerBuffer uHeights;
+float heightAt(ivec2 ij) { return texelFetch(uHeights, ij.y * uSize.x + ij.x).r; }
 
 #ifdef CURVATURE_GRADIENT
 
-layout(rg32f, binding = 0) uniform writeonly image2D uGradientOut;
-uniform int uNormals;  // 0 edge, 1 triangle, 2 quad (analysis::NormalMethod)
+// (dy/dx, dy/dz) per sample, row-major; NaN = no data.
+layout(std430, binding = 1) writeonly buffer GradientOut { vec2 uGradientData[]; };
+// The normals are compiled in (CURVATURE_NORMALS 0 edge, 1 triangle, 2 quad,
+// analysis::NormalMethod): a software rasteriser runs every branch of a
+// uniform switch otherwise.
+#ifndef CURVATURE_NORMALS
+#define CURVATURE_NORMALS 2
+#endif
+const int uNormals = CURVATURE_NORMALS;
 
 // The 8 neighbours counter-clockwise from above: E, NE, N, NW, W, SW, S, SE.
 const ivec2 kRing[8] = ivec2[8](ivec2(1, 0), ivec2(1, 1), ivec2(0, 1), ivec2(-1, 1), ivec2(-1, 0), ivec2(-1, -1),
@@ -41,7 +58,7 @@ void main() {
     if (any(greaterThanEqual(ij, uSize))) return;
     float yc = heightAt(ij);
     if (noData(yc)) {
-        imageStore(uGradientOut, ij, vec4(nanValue(), nanValue(), 0.0, 0.0));
+        uGradientData[ij.y * uSize.x + ij.x] = vec2(nanValue());
         return;
     }
     vec3 e[8];
@@ -74,13 +91,15 @@ void main() {
         }
     }
     if (sum.y <= 0.0) sum = vec3(0.0, 1.0, 0.0);  // no usable neighbour
-    imageStore(uGradientOut, ij, vec4(-sum.x / sum.y, -sum.z / sum.y, 0.0, 0.0));
+    uGradientData[ij.y * uSize.x + ij.x] = vec2(-sum.x / sum.y, -sum.z / sum.y);
 }
 
 #else
 
-layout(binding = 1) uniform sampler2D uGradientTex;  // (dy/dx, dy/dz), NaN = no data
-layout(rgba32f, binding = 0) uniform writeonly image2D uFieldOut;
+layout(binding = 1) uniform samplerBuffer uGradient;  // (dy/dx, dy/dz) per sample, NaN = no data
+vec2 gradientAt(ivec2 ij) { return texelFetch(uGradient, ij.y * uSize.x + ij.x).rg; }
+// The 4 directions per sample, row-major.
+layout(std430, binding = 1) writeonly buffer FieldOut { vec4 uFieldData[]; };
 // The method is compiled in (CURVATURE_METHOD 0 two-normal, 1 three-normal,
 // 2 three-vertex, 3 edge-angle): a software rasteriser runs every branch of
 // a uniform switch otherwise.
@@ -90,7 +109,9 @@ layout(rgba32f, binding = 0) uniform writeonly image2D uFieldOut;
 const int uMethod = CURVATURE_METHOD;
 uniform int uDistance;   // reinforcement distance in steps, 1 = none
 uniform float uScale;    // multiplies every value
-uniform vec4 uLevels;    // x: 1 = level control on; y: black; z: white; w: gamma
+// Level control is compiled in (CURVATURE_LEVELS) rather than switched by a
+// uniform: a software rasteriser runs a uniform branch's body (pow) anyway.
+uniform vec4 uLevels;    // with CURVATURE_LEVELS: y black, z white, w gamma
 uniform int uSigned;     // 1 = keep the sign of y''
 uniform int uSecond;     // 1 = output y'' itself (CurvatureOutput::SecondDerivative)
 
@@ -101,33 +122,29 @@ float equation1(float ypp, float yp) {
     return abs(ypp) / (t * sqrt(t));
 }
 
-// One measure (m = 1 near, m = distance for reinforcement) centred on c along
-// step s with unit horizontal direction u and step length 1 / invLength.
-// Returns false when a stencil sample has no data.
-bool measure(ivec2 c, ivec2 s, vec2 u, float invLength, int m, out float value, out float ypp) {
-    ivec2 sm = s * m;
-    float invStep = invLength / float(m);
+// One measure from its stencil along a direction with unit horizontal
+// vector u, 1 / step length invStep: the gradients (normal methods) or the
+// heights (in .x; the others) of the previous vertex p, the vertex v and the
+// next one n (p unused by two-normal). False when one has no data.
+bool measureFrom(vec2 p, vec2 v, vec2 n, ivec2 sm, vec2 u, float invStep, out float value, out float ypp) {
     value = 0.0;
     ypp = 0.0;
     if (uMethod == 0 || uMethod == 1) {
-        vec2 gv = texelFetch(uGradientTex, c, 0).rg;
-        vec2 gn = texelFetch(uGradientTex, c + sm, 0).rg;
-        if (noData(gv.x) || noData(gn.x)) return false;
-        float sv = dot(gv, u), sn = dot(gn, u);
+        if (noData(v.x) || noData(n.x)) return false;
+        float sv = dot(v, u), sn = dot(n, u);
         if (uMethod == 0) {
             ypp = (sn - sv) * invStep;
             value = equation1(ypp, sv);
         } else {
-            vec2 gp = texelFetch(uGradientTex, c - sm, 0).rg;
-            if (noData(gp.x)) return false;
-            float sp = dot(gp, u);
+            if (noData(p.x)) return false;
+            float sp = dot(p, u);
             ypp = 0.5 * (sn - sp) * invStep;
             float t = 1.0 + sv * sv;
             value = 0.5 * (abs(sv - sp) + abs(sn - sv)) * invStep / (t * sqrt(t));
         }
         return true;
     }
-    float yp = heightAt(c - sm), yv = heightAt(c), yn = heightAt(c + sm);
+    float yp = p.x, yv = v.x, yn = n.x;
     if (noData(yp) || noData(yv) || noData(yn)) return false;
     if (uMethod == 2) {
         float s1 = (yv - yp) * invStep, s2 = (yn - yv) * invStep;
@@ -144,23 +161,125 @@ bool measure(ivec2 c, ivec2 s, vec2 u, float invLength, int m, out float value, 
     return true;
 }
 
+// What a measure reads at a sample: its gradient or its height (in .x).
+vec2 stencilValue(ivec2 ij) {
+    if (uMethod == 0 || uMethod == 1) return gradientAt(ij);
+    return vec2(heightAt(ij), 0.0);
+}
+
+// One measure (m = 1 near, m = distance for reinforcement) centred on c along
+// step s with unit horizontal direction u and step length 1 / invLength,
+// fetching its stencil.
+bool measure(ivec2 c, ivec2 s, vec2 u, float invLength, int m, out float value, out float ypp) {
+    ivec2 sm = s * m;
+    vec2 p = uMethod == 0 ? vec2(0.0) : stencilValue(c - sm);
+    return measureFrom(p, stencilValue(c), stencilValue(c + sm), sm, u, invLength / float(m), value, ypp);
+}
+
 // The clamp range of one axis (the stencil centre stays inside the grid).
 ivec2 axisRange(int c, int size, int back, int forward) {
     if (c == 0) return ivec2(0, size - 1);
     return c > 0 ? ivec2(back, size - 1 - forward) : ivec2(forward, size - 1 - back);
 }
 
-float directionValue(ivec2 ij, int d) {
-    ivec2 s = kSteps[d];
-    vec2 world = vec2(s) * uSpacing;
-    float len = length(world);
-    float invLength = 1.0 / len;
-    vec2 u = world * invLength;
+// The border rule: the stencil centre of direction step s for vertex ij.
+ivec2 stencilCentre(ivec2 ij, ivec2 s) {
     int back = uMethod == 0 ? 0 : uDistance;
     int forward = uMethod == 0 ? 1 : uDistance;
     ivec2 ri = axisRange(s.x, uSize.x, back, forward);
     ivec2 rj = axisRange(s.y, uSize.y, back, forward);
-    ivec2 c = ivec2(clamp(ij.x, ri.x, ri.y), clamp(ij.y, rj.x, rj.y));
+    return ivec2(clamp(ij.x, ri.x, ri.y), clamp(ij.y, rj.x, rj.y));
+}
+
+// Scale is applied by the caller; then level control and the sign.
+float shaped(float value, float ypp) {
+#ifdef CURVATURE_LEVELS
+    float t = clamp((value - uLevels.y) / (uLevels.z - uLevels.y), 0.0, 1.0);
+    value = t > 0.0 ? pow(t, 1.0 / uLevels.w) : 0.0;
+#endif
+    return uSigned == 1 && ypp < 0.0 ? -value : value;
+}
+
+#ifdef CURVATURE_NEAR
+
+// Without reinforcement (distance 1) every direction's stencil, border rule
+// included, lies in the 3x3 window of samples around
+// clamp(ij, 1, size - 2): it is fetched once, and a direction picks its
+// three values by selects (a software rasteriser turns indexing by a
+// varying value into memory traffic).
+vec2 pick(vec2 w[9], ivec2 o) {
+    vec2 r0 = o.x == 0 ? w[0] : (o.x == 1 ? w[1] : w[2]);
+    vec2 r1 = o.x == 0 ? w[3] : (o.x == 1 ? w[4] : w[5]);
+    vec2 r2 = o.x == 0 ? w[6] : (o.x == 1 ? w[7] : w[8]);
+    return o.y == 0 ? r0 : (o.y == 1 ? r1 : r2);
+}
+
+vec2 pick3(vec2 a, vec2 b, vec2 c, int k) { return k == 0 ? a : (k == 1 ? b : c); }
+
+float directionValue(vec2 w[9], ivec2 ij, ivec2 cc, int d) {
+    ivec2 s = kSteps[d];
+    vec2 world = vec2(s) * uSpacing;
+    float invLength = 1.0 / length(world);
+    vec2 u = world * invLength;
+    vec2 p, v, n;
+    if (uMethod == 0) {
+        ivec2 o = stencilCentre(ij, s) - cc + 1;
+        p = vec2(0.0);
+        v = pick(w, o);
+        n = pick(w, o + s);
+    } else if (d == 0) {
+        // Three-point stencils: along the axes the direction moves on, the
+        // clamped centre is cc's own, so only the other axis's offset varies.
+        int r = ij.y - cc.y + 1;
+        p = pick3(w[0], w[3], w[6], r);
+        v = pick3(w[1], w[4], w[7], r);
+        n = pick3(w[2], w[5], w[8], r);
+    } else if (d == 1) {
+        int q = ij.x - cc.x + 1;
+        p = pick3(w[0], w[1], w[2], q);
+        v = pick3(w[3], w[4], w[5], q);
+        n = pick3(w[6], w[7], w[8], q);
+    } else if (d == 2) {
+        p = w[0];
+        v = w[4];
+        n = w[8];
+    } else {
+        p = w[6];
+        v = w[4];
+        n = w[2];
+    }
+    float value, ypp;
+    if (!measureFrom(p, v, n, s, u, invLength, value, ypp)) return nanValue();
+    if (uSecond == 1) return ypp;
+    return shaped(value * uScale, ypp);
+}
+
+void main() {
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(ij, uSize))) return;
+    ivec2 cc = clamp(ij, ivec2(1), uSize - 2);
+    vec2 w[9];
+    for (int k = 0; k < 9; ++k) w[k] = stencilValue(cc + ivec2(k % 3 - 1, k / 3 - 1));
+    vec4 out4;
+    // A gradient has no data exactly where its height has none.
+    if (noData(pick(w, ij - cc + 1).x)) {
+        out4 = vec4(nanValue());
+    } else {
+        // Unrolled so each direction's step is a constant.
+        out4 = vec4(directionValue(w, ij, cc, 0), directionValue(w, ij, cc, 1), directionValue(w, ij, cc, 2),
+                    directionValue(w, ij, cc, 3));
+    }
+    uFieldData[ij.y * uSize.x + ij.x] = out4;
+}
+
+#else
+
+float directionValue(ivec2 ij, int d) {
+    ivec2 s = kSteps[d];
+    vec2 world = vec2(s) * uSpacing;
+    float invLength = 1.0 / length(world);
+    vec2 u = world * invLength;
+    ivec2 c = stencilCentre(ij, s);
     float value, ypp;
     if (!measure(c, s, u, invLength, 1, value, ypp)) return nanValue();
     if (uSecond == 1) return ypp;
@@ -170,11 +289,7 @@ float directionValue(ivec2 ij, int d) {
         if (!measure(c, s, u, invLength, uDistance, far, farYpp)) return nanValue();
         value *= far;
     }
-    if (uLevels.x > 0.5) {
-        float t = clamp((value - uLevels.y) / (uLevels.z - uLevels.y), 0.0, 1.0);
-        value = t > 0.0 ? pow(t, 1.0 / uLevels.w) : 0.0;
-    }
-    return uSigned == 1 && ypp < 0.0 ? -value : value;
+    return shaped(value, ypp);
 }
 
 void main() {
@@ -187,7 +302,9 @@ void main() {
         // Unrolled so each direction's step is a constant.
         out4 = vec4(directionValue(ij, 0), directionValue(ij, 1), directionValue(ij, 2), directionValue(ij, 3));
     }
-    imageStore(uFieldOut, ij, out4);
+    uFieldData[ij.y * uSize.x + ij.x] = out4;
 }
+
+#endif  // CURVATURE_NEAR
 
 #endif

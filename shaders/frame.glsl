@@ -10,3 +10,9 @@ layout(std140, binding = 0) uniform Frame {
     vec4 uFog;        // x: fog density per world unit (0 = off); y: 1 for orthographic
     vec4 uViewDir;    // xyz: camera forward, unit
 };
+
+// Unit vector from a world point towards the camera (the view direction
+// reversed for an orthographic camera).
+vec3 towardsEye(vec3 world) {
+    return uFog.y > 0.5 ? -uViewDir.xyz : normalize(uEye.xyz - world);
+}

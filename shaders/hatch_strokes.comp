@@ -8,8 +8,9 @@
 // right angle on that plane. No data: opacity 0.
 layout(local_size_x = 16, local_size_y = 16) in;
 
-layout(binding = 0) uniform sampler2D uCurvature;  // RGBA32F: the 4 directions
-layout(binding = 1) uniform sampler2D uGradient;   // RG32F: dy/dx, dy/dz
+// Buffer textures (render::CurvatureGpu), texel j * width + i.
+layout(binding = 0) uniform samplerBuffer uCurvature;  // RGBA32F: the 4 directions
+layout(binding = 1) uniform samplerBuffer uGradient;   // RG32F: dy/dx, dy/dz
 layout(rgba32f, binding = 0) uniform writeonly image2D uStrokesOut;  // xyz: direction, w: opacity
 uniform ivec2 uSize;
 uniform vec2 uSpacing;
@@ -22,8 +23,8 @@ bool finite(float v) { return (floatBitsToUint(v) & 0x7f800000u) != 0x7f800000u;
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(ij, uSize))) return;
-    vec4 k = texelFetch(uCurvature, ij, 0);
-    vec2 grad = texelFetch(uGradient, ij, 0).rg;
+    vec4 k = texelFetch(uCurvature, ij.y * uSize.x + ij.x);
+    vec2 grad = texelFetch(uGradient, ij.y * uSize.x + ij.x).rg;
     float sx = 0.0, sz = 0.0, largest = 0.0, bestAngle = 0.0;
     for (int d = 0; d < 4; ++d) {
         float w = abs(k[d]);

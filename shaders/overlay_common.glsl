@@ -10,11 +10,6 @@ float trueHeight(vec2 grid) {
     return texture(uHeights, (grid + 0.5) * texel).r;
 }
 
-// Unit vector from a world point towards the camera.
-vec3 towardsEye(vec3 world) {
-    return uFog.y > 0.5 ? -uViewDir.xyz : normalize(uEye.xyz - world);
-}
-
 // The point at grid position `grid` on the true surface, moved towards the
 // camera along its view ray (so it stays on the same pixel) by as much as the
 // SBT mesh can be off the true surface there, plus 0.2% of its distance for

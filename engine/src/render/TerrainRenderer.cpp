@@ -95,6 +95,10 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
         s.debugColour->setMode(options.colourBy == 2 ? ColourBy::Error : ColourBy::Level);
         s.debugColour->draw(frame);
     } else if (options.polygons) {
+        TerrainShading shading;
+        for (size_t k = 0; k < s.extra.size(); ++k)
+            if (k >= 64 || (options.addedPasses >> k & 1u) != 0) s.extra[k]->shadeTerrain(shading);
+        s.shaded->setShading(shading);
         s.shaded->draw(frame);
     }
     if (options.points) {
