@@ -1,5 +1,7 @@
 #include <sierra/render/passes/DebugColourPass.h>
 
+#include "render/passes/PassState.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 #include <sierra/render/TerrainGpu.h>
@@ -31,11 +33,7 @@ std::unique_ptr<DebugColourPass> DebugColourPass::create() {
 
 void DebugColourPass::draw(const FrameContext& frame) {
     gpu::GlStateScope scope;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
+    setOpaqueMeshState();
     glUseProgram(program_.id());
     glUniform1i(modeLocation_, mode_ == ColourBy::Error ? 1 : 0);
     frame.terrain.bind();

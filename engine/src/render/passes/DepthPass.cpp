@@ -1,5 +1,7 @@
 #include <sierra/render/passes/DepthPass.h>
 
+#include "render/passes/PassState.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 #include <sierra/render/TerrainGpu.h>
@@ -33,11 +35,8 @@ void DepthPass::draw(const FrameContext& frame) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float far = 1.0f;
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, &nan);
-    glDepthMask(GL_TRUE);
+    setOpaqueMeshState();  // depth writes on before the depth clear
     glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &far);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_BLEND);
     glUseProgram(program_.id());
     frame.terrain.bind();
     frame.mesh.draw();

@@ -2,7 +2,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
-#include "render/passes/OverlayState.h"
+#include "render/passes/PassState.h"
 #include "render/passes/QuadBatch.h"
 #include <sierra/render/TerrainGpu.h>
 

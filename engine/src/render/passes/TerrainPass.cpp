@@ -1,5 +1,7 @@
 #include <sierra/render/passes/TerrainPass.h>
 
+#include "render/passes/PassState.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 #include <sierra/render/TerrainGpu.h>
@@ -30,11 +32,7 @@ std::unique_ptr<TerrainPass> TerrainPass::create(std::unique_ptr<Surface> surfac
 
 void TerrainPass::draw(const FrameContext& frame) {
     gpu::GlStateScope scope;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
+    setOpaqueMeshState();
     const bool contours = shading_.contourWidth > 0.0f;
     if (contours && contourProgram_.id() == 0)
         contourProgram_ = buildProgram(surfaceFile_, defines_ + "#define SIERRA_CONTOURS 1\n");
