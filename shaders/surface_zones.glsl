@@ -26,10 +26,11 @@ float tileVariation(vec2 p) {
 // control flow is uniform, see surfaceAlbedo).
 vec4 tileSample(int zone, vec2 uv, vec4 grad) {
 #ifdef SIERRA_MANUAL_TILE_FILTER
-    // llvmpipe (Mesa 22.3): filtered texture() on a 2D array texture under
-    // magnification runs about a thousand times slower than texelFetch, so a
-    // close-up takes minutes. Here the mip level comes from the gradients and
-    // four texelFetch calls are blended bilinearly (no anisotropy).
+    // llvmpipe (Mesa 22.3): with anisotropic filtering on, texture() and
+    // textureGrad on the array took minutes a frame; without it they cost
+    // about as much as this (ZoneSurface turns anisotropy off there), and this
+    // filter is what the goldens were made with. The mip level comes from the
+    // gradients and four texelFetch calls are blended bilinearly.
     vec2 size0 = vec2(textureSize(uTiles, 0).xy);
     vec2 dx = grad.xy * size0, dy = grad.zw * size0;
     float lod = max(0.5 * log2(max(dot(dx, dx), dot(dy, dy))), 0.0);

@@ -138,7 +138,12 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
     if (levels > 1) surface->tiles_.generateMipmaps();
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     surface->manualFilter_ = renderer && std::strstr(renderer, "llvmpipe") != nullptr;
-    if (hasExtension("GL_EXT_texture_filter_anisotropic") || hasExtension("GL_ARB_texture_filter_anisotropic")) {
+    // No anisotropy on llvmpipe (Mesa 22.3): its software anisotropic filter
+    // makes one 1080p frame that samples the array with texture() or
+    // textureGrad take minutes; at anisotropy 1 the hardware path costs about
+    // what the shader's own filter does (docs/zones.md, "Frame cost").
+    if (!surface->manualFilter_ &&
+        (hasExtension("GL_EXT_texture_filter_anisotropic") || hasExtension("GL_ARB_texture_filter_anisotropic"))) {
         float limit = 1.0f;
         glGetFloatv(kMaxAnisotropyLimit, &limit);
         glTextureParameterf(surface->tiles_.id(), kMaxAnisotropy, std::min(8.0f, limit));
