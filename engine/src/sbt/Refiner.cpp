@@ -3,6 +3,9 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Parallel.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -34,6 +37,15 @@ struct Refiner::Chunk {
 namespace {
 
 constexpr unsigned kAllPlanes = 0x3f;
+
+// Thrown inside a walker whose chunk another run has finished (ChunkStop):
+// unwinds the recursion, caught by the chunk's body.
+struct Stopped {};
+
+// A walker with a stop request checks it every this many output indices
+// (about 40-100 microseconds of refinement): at the buffer check it makes
+// anyway, so the hot path pays nothing.
+constexpr int64_t kStopEvery = 4096;
 constexpr unsigned kCulled = 0x80;
 
 // Split keys: the top 16 bits of a non-negative float's bit pattern (sign 0,
@@ -90,31 +102,40 @@ struct Walker {
     Refiner::Chunk* chunk;
     uint32_t* base;
     uint32_t* out;
-    uint32_t* cap;
+    uint32_t* cap;   // where ensure() calls grow(): the buffer's end, or before it (stop)
+    uint32_t* end;   // the buffer's end
+    const sierra::ChunkStop* stop;  // this run's stop request; null: none
     int parity = -1;
     bool needStart = true;
     int64_t leaves = 0;
     int64_t culled = 0;  // culled subtrees, summed over the chunks at the end
 
-    void bind(Refiner::Chunk& c) {
+    void bind(Refiner::Chunk& c, const sierra::ChunkStop* s) {
         chunk = &c;
+        stop = s;
         c.starts.clear();
         if (c.buffer.size() < 4096) c.buffer.resize(4096);
         base = out = c.buffer.data();
-        cap = base + c.buffer.size();
+        end = base + c.buffer.size();
+        setCap();
     }
+    void setCap() { cap = stop && end - out > kStopEvery ? out + kStopEvery : end; }
     void finish() {
         chunk->used = out - base;
         chunk->leaves = leaves;
         chunk->culled = culled;
     }
     void grow(size_t need) {
-        size_t used = size_t(out - base);
-        auto& buf = chunk->buffer;
-        buf.resize(std::max(buf.size() * 2, used + need + 4096));
-        base = buf.data();
-        out = base + used;
-        cap = base + buf.size();
+        if (stop && stop->requested()) throw Stopped{};
+        if (size_t(end - out) < need) {
+            size_t used = size_t(out - base);
+            auto& buf = chunk->buffer;
+            buf.resize(std::max(buf.size() * 2, used + need + 4096));
+            base = buf.data();
+            out = base + used;
+            end = base + buf.size();
+        }
+        setCap();
     }
     inline void ensure(size_t k) {
         if (size_t(cap - out) < k) [[unlikely]]
@@ -551,6 +572,17 @@ int64_t firstTriangle(const uint32_t* s, int64_t count, uint32_t side, int64_t* 
 
 }  // namespace
 
+// One refinement's working data (see Refiner::frames_).
+struct Refiner::Frame {
+    std::vector<Op> ops;
+    std::vector<size_t> cuts;        // chunk c runs ops[cuts[c], cuts[c + 1])
+    std::vector<Chunk> chunks[2];    // per slot of parallelRescuedChunks: first runs, rescues
+    std::vector<uint8_t> winners;    // per chunk: the slot whose strip counts
+    std::vector<float> eyeTerms;     // view keys: squared eye distances along x, then z
+    // The walker set up for this refinement (a Walker<kView, kFast>, copied per chunk).
+    alignas(64) unsigned char walker[1024];
+};
+
 float projectionLambda(float viewportHeightPx, float fovyRadians) {
     SIERRA_CHECK(viewportHeightPx > 0 && fovyRadians > 0 && fovyRadians < 3.14159f,
                  "projectionLambda: need a positive viewport height and 0 < fovy < pi, got ",
@@ -576,6 +608,24 @@ std::array<Plane, 6> frustumPlanes(const float m[16]) {
         planes[k] = p;
     }
     return planes;
+}
+
+ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3>& target, float fovyRadians,
+                      float aspect, float viewportHeightPx, float nearPlane, float farPlane, float tau, bool cull) {
+    const glm::vec3 e{eye[0], eye[1], eye[2]}, t{target[0], target[1], target[2]};
+    const glm::vec3 forward = t - e;
+    SIERRA_CHECK(glm::length(forward) > 0 && std::abs(glm::normalize(forward).y) < 1.0f,
+                 "lookAtView: the camera must look somewhere other than straight up or down");
+    SIERRA_CHECK(aspect > 0 && nearPlane > 0 && farPlane > nearPlane,
+                 "lookAtView: need aspect > 0 and 0 < near < far, got ", aspect, ", ", nearPlane, ", ", farPlane);
+    const glm::mat4 vp = glm::perspective(fovyRadians, aspect, nearPlane, farPlane) * glm::lookAt(e, t, glm::vec3(0, 1, 0));
+    ViewParams view;
+    view.eye = eye;
+    view.lambda = projectionLambda(viewportHeightPx, fovyRadians);
+    view.tau = tau;
+    view.cull = cull;
+    view.planes = frustumPlanes(glm::value_ptr(vp));
+    return view;
 }
 
 Refiner::Refiner(const terrain::Heightfield& field, const VertexErrors& errors, RefinerDesc desc)
@@ -647,7 +697,10 @@ void Refiner::buildSplitKeys() {
 }
 
 
-Refiner::~Refiner() = default;
+Refiner::~Refiner() {
+    // A helper may still be inside a chunk of the last refinement.
+    if (busyFrame_ >= 0) waitParallelHelpers();
+}
 
 void Refiner::refineFixed(float epsilon, StripMesh& out) {
     // The keys serve only this mode: a refiner used for views never pays their
@@ -747,6 +800,13 @@ template <bool kView, bool kFast>
 void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     using W = Walker<kView, kFast>;
     using V = typename W::V;
+    static_assert(std::is_trivially_copyable_v<W> && sizeof(W) <= sizeof(Frame::walker));
+    // The frame a helper of the last refinement may still read is left alone.
+    int frameIndex = 0;
+    if (busyFrame_ >= 0 && !parallelHelpersIdle()) frameIndex = 1 - busyFrame_;
+    else busyFrame_ = -1;
+    if (!frames_[frameIndex]) frames_[frameIndex] = std::make_unique<Frame>();
+    Frame& frame = *frames_[frameIndex];
     W proto{};
     proto.err = errors_->error.data();
     proto.rad = errors_->radius.data();
@@ -795,14 +855,15 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
                 // within 2^-21 (d^2 + M^2): the slack is 4 times that and more.
                 proto.keySlack = float(0x1.0p-16 * M * M);
                 proto.keyGrow = float(1.0 + 0x1.0p-13);
-                eyeTerms_.resize(2 * size_t(side_));
+                std::vector<float>& eyeTerms = frame.eyeTerms;
+                eyeTerms.resize(2 * size_t(side_));
                 for (int k = 0; k < side_; ++k) {
                     const double dx = k * proto.sx - proto.ex, dz = k * proto.sz - proto.ez;
-                    eyeTerms_[size_t(k)] = float(dx * dx);
-                    eyeTerms_[size_t(side_ + k)] = float(dz * dz);
+                    eyeTerms[size_t(k)] = float(dx * dx);
+                    eyeTerms[size_t(side_ + k)] = float(dz * dz);
                 }
-                proto.dxx = eyeTerms_.data();
-                proto.dzz = eyeTerms_.data() + side_;
+                proto.dxx = eyeTerms.data();
+                proto.dzz = eyeTerms.data() + side_;
             }
         }
     }
@@ -818,22 +879,26 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     };
     const V v00 = vert(0, 0), v0S = vert(0, S), vSS = vert(S, S), vS0 = vert(S, 0);
 
-    ops_.clear();
-    TopWalker<W> top{&proto, chunkLevel_, &ops_};
+    std::vector<Op>& ops = frame.ops;
+    ops.clear();
+    TopWalker<W> top{&proto, chunkLevel_, &ops};
     top.refine(v00, v0S, vSS, 0, rootMask, 0);
     top.push(Op::kAppend, 0, 0, proto.index(vSS), 0, 0);
     top.refine(vSS, vS0, v00, 0, rootMask, 1);
     top.push(Op::kAppend, 0, 0, proto.index(v00), 0, 0);
 
     // Chunks: cut before every subtree op (the ops before the first form chunk 0).
-    std::vector<size_t> cuts;  // small: at most 2^(chunkLevel+1) + 1 entries
-    cuts.reserve(size_t(2) << chunkLevel_);
+    std::vector<size_t>& cuts = frame.cuts;  // small: at most 2^(chunkLevel+1) + 1 entries
+    cuts.clear();
     cuts.push_back(0);
-    for (size_t k = 1; k < ops_.size(); ++k)
-        if (ops_[k].kind == Op::kSubtree) cuts.push_back(k);
-    cuts.push_back(ops_.size());
+    for (size_t k = 1; k < ops.size(); ++k)
+        if (ops[k].kind == Op::kSubtree) cuts.push_back(k);
+    cuts.push_back(ops.size());
     const int chunkCount = int(cuts.size()) - 1;
-    if (chunks_.size() < size_t(chunkCount)) chunks_.resize(chunkCount);
+    for (std::vector<Chunk>& slot : frame.chunks)
+        if (slot.size() < size_t(chunkCount)) slot.resize(size_t(chunkCount));
+    frame.winners.resize(size_t(chunkCount));
+    std::memcpy(frame.walker, &proto, sizeof(W));
 
     // Threads earn their keep: a refinement that made fewer than
     // kParallelTriangles triangles last time in this mode runs serially. One
@@ -843,17 +908,25 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     int threads = threads_ > 0 ? threads_ : defaultThreadCount();
     int64_t& lastTriangles = kView ? lastViewTriangles_ : lastFixedTriangles_;
     if (lastTriangles >= 0 && lastTriangles < kParallelTriangles) threads = 1;
-    parallelChunks(
-        0, chunkCount, chunkCount,
-        [&](int64_t lo, int64_t hi, int) {
-            for (int64_t c = lo; c < hi; ++c) {
-                W w = proto;
-                w.bind(chunks_[c]);
-                w.execute(ops_.data() + cuts[c], ops_.data() + cuts[c + 1]);
+    // Chunks a preempted helper holds are run again by the caller
+    // (parallelRescuedChunks): the join never waits for a helper. The body
+    // reads only the frame, which outlives the call.
+    Frame* const f = &frame;
+    const bool pooled = parallelRescuedChunks(
+        chunkCount,
+        [f](int c, int slot, const ChunkStop& stop) {
+            W w;
+            std::memcpy(&w, f->walker, sizeof(W));
+            w.bind(f->chunks[slot][size_t(c)], &stop);
+            try {
+                w.execute(f->ops.data() + f->cuts[size_t(c)], f->ops.data() + f->cuts[size_t(c) + 1]);
                 w.finish();
+            } catch (const Stopped&) {
+                // the other run of this chunk finished first; this output is not used
             }
         },
-        threads);
+        threads, frame.winners.data());
+    if (pooled) busyFrame_ = frameIndex;
 
     // Join in chunk order. Every strip starts with its entry vertex twice (a, a);
     // dropping one copy flips the GL parity of the whole strip, which is how each
@@ -872,7 +945,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     int strips = 0;
     const uint32_t side = uint32_t(side_);
     for (int c = 0; c < chunkCount; ++c) {
-        Chunk& ch = chunks_[c];
+        Chunk& ch = frame.chunks[frame.winners[size_t(c)]][size_t(c)];
         leaves += ch.leaves;
         culled += ch.culled;
         const uint32_t* src = ch.buffer.data();
@@ -916,6 +989,9 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     out.indices.resize(size_t(pos));
     uint32_t* const first = out.indices.data();
     const int64_t copyCount = int64_t(copies_.size());
+    // A copy cannot be run twice (it writes the caller's output), so a helper
+    // preempted inside one holds the join: only copies of at least 2^22 indices
+    // (16 MB, 1-3 ms of one thread) are shared.
     parallelChunks(
         0, copyCount, int(std::min<int64_t>(copyCount, 256)),
         [&](int64_t lo, int64_t hi, int) {
@@ -925,7 +1001,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
                 std::memcpy(first + cp.dst, cp.src, size_t(cp.length) * sizeof(uint32_t));
             }
         },
-        threads);
+        pos >= (int64_t(1) << 22) ? threads : 1);
     out.triangleCount = leaves;
     out.stripCount = strips;
     out.culledSubtrees = culled;
