@@ -637,7 +637,9 @@ struct Refiner::Frame {
     std::vector<Op> ops;
     std::vector<size_t> cuts;        // chunk c runs ops[cuts[c], cuts[c + 1])
     std::vector<Chunk> chunks[2];    // per slot of parallelRescuedChunks: first runs, rescues
-    std::vector<uint8_t> winners;    // per chunk: the slot whose strip counts
+    std::vector<int> order;          // chunks in the order they are handed out
+    std::vector<uint8_t> winners;    // per place in `order`: the slot whose strip counts
+    std::vector<uint8_t> slotOf;     // per chunk: the slot whose strip counts
     std::vector<float> eyeTerms;     // view keys: squared eye distances along x, then z
     // The walker set up for this refinement (a Walker<kView, kFast>, copied per chunk).
     alignas(64) unsigned char walker[1024];
@@ -958,7 +960,28 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     for (std::vector<Chunk>& slot : frame.chunks)
         if (slot.size() < size_t(chunkCount)) slot.resize(size_t(chunkCount));
     frame.winners.resize(size_t(chunkCount));
+    frame.slotOf.resize(size_t(chunkCount));
     std::memcpy(frame.walker, &proto, sizeof(W));
+
+    // Largest chunks first, by the triangles each subtree made last time (its
+    // tree node at the chunk level identifies it): the chunks left at the end,
+    // which a preempted helper may hold or the caller run twice, are the
+    // small ones. The output does not depend on the order.
+    std::vector<int64_t>& work = kView ? viewChunkWork_ : fixedChunkWork_;
+    const uint64_t levelFirst = (uint64_t(2) << chunkLevel_) - 2;  // first tree node of the chunk level
+    auto workOf = [&](int c) -> int64_t {
+        for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
+            if (ops[k].kind == Op::kSubtree) {
+                const uint64_t slot = ops[k].node - levelFirst;
+                return slot < work.size() ? work[slot] : 0;
+            }
+        return 0;
+    };
+    frame.order.resize(size_t(chunkCount));
+    for (int c = 0; c < chunkCount; ++c) frame.order[size_t(c)] = c;
+    if (!work.empty())
+        std::stable_sort(frame.order.begin(), frame.order.end(),
+                         [&](int x, int y) { return workOf(x) > workOf(y); });
 
     // Threads earn their keep: a refinement that made fewer than
     // kParallelTriangles triangles last time in this mode runs serially. One
@@ -974,12 +997,13 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     Frame* const f = &frame;
     const bool pooled = parallelRescuedChunks(
         chunkCount,
-        [f](int c, int slot, const ChunkStop& stop) {
+        [f](int unit, int slot, const ChunkStop& stop) {
+            const size_t c = size_t(f->order[size_t(unit)]);
             W w;
             std::memcpy(&w, f->walker, sizeof(W));
-            w.bind(f->chunks[slot][size_t(c)], &stop);
+            w.bind(f->chunks[slot][c], &stop);
             try {
-                w.execute(f->ops.data() + f->cuts[size_t(c)], f->ops.data() + f->cuts[size_t(c) + 1]);
+                w.execute(f->ops.data() + f->cuts[c], f->ops.data() + f->cuts[c + 1]);
                 w.finish();
             } catch (const Stopped&) {
                 // the other run of this chunk finished first; this output is not used
@@ -987,6 +1011,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         },
         threads, frame.winners.data());
     if (pooled) busyFrame_ = frameIndex;
+    for (int u = 0; u < chunkCount; ++u) frame.slotOf[size_t(frame.order[size_t(u)])] = frame.winners[size_t(u)];
 
     // Join in chunk order. Every strip starts with its entry vertex twice (a, a);
     // dropping one copy flips the GL parity of the whole strip, which is how each
@@ -1005,7 +1030,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     int strips = 0;
     const uint32_t side = uint32_t(side_);
     for (int c = 0; c < chunkCount; ++c) {
-        Chunk& ch = frame.chunks[frame.winners[size_t(c)]][size_t(c)];
+        Chunk& ch = frame.chunks[frame.slotOf[size_t(c)]][size_t(c)];
         leaves += ch.leaves;
         culled += ch.culled;
         const uint32_t* src = ch.buffer.data();
@@ -1066,6 +1091,17 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     out.stripCount = strips;
     out.culledSubtrees = culled;
     lastTriangles = leaves;
+    // Each subtree's triangles, for the next refinement's chunk order (levels
+    // up to 12: at most 8192 subtrees).
+    if (chunkLevel_ <= 12) {
+        work.assign(size_t(2) << chunkLevel_, 0);
+        for (int c = 0; c < chunkCount; ++c)
+            for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
+                if (ops[k].kind == Op::kSubtree) {
+                    work[size_t(ops[k].node - levelFirst)] = frame.chunks[frame.slotOf[size_t(c)]][size_t(c)].leaves;
+                    break;
+                }
+    }
 }
 
 std::vector<std::array<uint32_t, 3>> decodeStrip(const std::vector<uint32_t>& indices) {

@@ -198,6 +198,10 @@ private:
     // estimate that keeps small refinements serial (see kParallelTriangles).
     int64_t lastViewTriangles_ = -1;
     int64_t lastFixedTriangles_ = -1;
+    // Per subtree at the chunk level (tree order), the triangles it made in the
+    // last refinement in each mode: chunks are handed out largest first.
+    std::vector<int64_t> viewChunkWork_;
+    std::vector<int64_t> fixedChunkWork_;
 };
 
 // Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate
