@@ -1001,7 +1001,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             const size_t c = size_t(f->order[size_t(unit)]);
             W w;
             std::memcpy(&w, f->walker, sizeof(W));
-            w.bind(f->chunks[slot][c], &stop);
+            w.bind(f->chunks[slot][c], stop.possible() ? &stop : nullptr);
             try {
                 w.execute(f->ops.data() + f->cuts[c], f->ops.data() + f->cuts[c + 1]);
                 w.finish();

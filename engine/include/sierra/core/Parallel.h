@@ -79,6 +79,8 @@ public:
     explicit ChunkStop(const std::atomic<uint8_t>* state) : state_(state) {}
     // True once the other run of this chunk has finished: this run's output will not be used.
     bool requested() const { return state_ && state_->load(std::memory_order_relaxed) >= 2; }
+    // False when the run cannot be stopped (a serial call): no need to check.
+    bool possible() const { return state_ != nullptr; }
 
 private:
     const std::atomic<uint8_t>* state_ = nullptr;
