@@ -995,21 +995,30 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     // (parallelRescuedChunks): the join never waits for a helper. The body
     // reads only the frame, which outlives the call.
     Frame* const f = &frame;
-    const bool pooled = parallelRescuedChunks(
-        chunkCount,
-        [f](int unit, int slot, const ChunkStop& stop) {
-            const size_t c = size_t(f->order[size_t(unit)]);
-            W w;
-            std::memcpy(&w, f->walker, sizeof(W));
-            w.bind(f->chunks[slot][c], stop.possible() ? &stop : nullptr);
-            try {
-                w.execute(f->ops.data() + f->cuts[c], f->ops.data() + f->cuts[c + 1]);
-                w.finish();
-            } catch (const Stopped&) {
-                // the other run of this chunk finished first; this output is not used
-            }
-        },
-        threads, frame.winners.data());
+    bool pooled = false;
+    try {
+        pooled = parallelRescuedChunks(
+            chunkCount,
+            [f](int unit, int slot, const ChunkStop& stop) {
+                const size_t c = size_t(f->order[size_t(unit)]);
+                W w;
+                std::memcpy(&w, f->walker, sizeof(W));
+                w.bind(f->chunks[slot][c], stop.possible() ? &stop : nullptr);
+                try {
+                    w.execute(f->ops.data() + f->cuts[c], f->ops.data() + f->cuts[c + 1]);
+                    w.finish();
+                } catch (const Stopped&) {
+                    // the other run of this chunk finished first; this output is not used
+                }
+            },
+            threads, frame.winners.data());
+    } catch (...) {
+        // Which frame a helper may still read is unknown here: wait (a body
+        // throws only when memory runs out).
+        waitParallelHelpers();
+        busyFrame_ = -1;
+        throw;
+    }
     if (pooled) busyFrame_ = frameIndex;
     for (int u = 0; u < chunkCount; ++u) frame.slotOf[size_t(frame.order[size_t(u)])] = frame.winners[size_t(u)];
 
