@@ -146,16 +146,8 @@ sbt::ViewParams orbitView(const Terrain& t, float tau, bool cull) {
     const glm::vec3 eye{centre.x + 0.9f * extent * std::cos(a), hi * vs + 0.3f * extent,
                         centre.z + 0.9f * extent * std::sin(a)};
     const glm::vec3 target{centre.x, lo * vs + 0.25f * (hi - lo) * vs, centre.z};
-    const float fovy = glm::radians(45.0f);
-    const glm::mat4 vp = glm::perspective(fovy, 1920.0f / 1080.0f, extent * 1e-3f, extent * 4.0f) *
-                         glm::lookAt(eye, target, glm::vec3(0, 1, 0));
-    sbt::ViewParams view;
-    view.eye = {eye.x, eye.y, eye.z};
-    view.lambda = sbt::projectionLambda(1080.0f, fovy);
-    view.tau = tau;
-    view.cull = cull;
-    view.planes = sbt::frustumPlanes(glm::value_ptr(vp));
-    return view;
+    return sbt::lookAtView({eye.x, eye.y, eye.z}, {target.x, target.y, target.z}, glm::radians(45.0f),
+                           1920.0f / 1080.0f, 1080.0f, extent * 1e-3f, extent * 4.0f, tau, cull);
 }
 
 // View-dependent refinement + strip of a rough 2049^2 fractal from the orbit

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -128,6 +129,100 @@ TEST(CoreParallel, NestedCallsRunSerially) {
         parallelFor(0, 64, [&](int64_t k) { ++hits[size_t(i * 64 + k)]; }, 2);
     }, 2);
     for (size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << i;
+}
+
+// Busy work of `ms` milliseconds of wall time.
+static void spinFor(double ms) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(ms);
+    while (std::chrono::steady_clock::now() < until) {}
+}
+
+TEST(CoreParallel, RescuedChunksNeverWaitForAStalledHelper) {
+    // 60 chunks of 1 ms busy work; the helper's first chunk sleeps 1.5 s before
+    // its body, as if preempted there. The caller runs that chunk again and
+    // returns long before the sleeper wakes; each chunk's result is the output
+    // of the slot it names. The outputs live on the heap, shared with the body:
+    // the sleeper writes its slot after the call has returned.
+    constexpr int kChunks = 60;
+    struct Outputs {
+        std::atomic<int> value[kChunks][2];
+        std::atomic<int> runs[kChunks][2];
+    };
+    auto out = std::make_shared<Outputs>();
+    for (int c = 0; c < kChunks; ++c)
+        for (int s = 0; s < 2; ++s) out->value[c][s] = -1, out->runs[c][s] = 0;
+    setHelperStallForTesting(1.5);
+    const int64_t rescuesBefore = parallelRescueCount();
+    std::vector<uint8_t> winners(kChunks, 9);
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool pooled = parallelRescuedChunks(
+        kChunks,
+        [out](int c, int slot, const ChunkStop&) {
+            spinFor(1.0);
+            out->value[c][slot] = c * c + 1;
+            ++out->runs[c][slot];
+        },
+        2, winners.data());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    setHelperStallForTesting(0.0);
+    EXPECT_TRUE(pooled);
+    EXPECT_LT(seconds, 0.75) << "the call waited for the sleeping helper";
+    EXPECT_EQ(parallelRescueCount() - rescuesBefore, 1) << "one chunk was held by the sleeper";
+    int rescued = 0;
+    for (int c = 0; c < kChunks; ++c) {
+        ASSERT_LE(winners[size_t(c)], 1) << c;
+        EXPECT_EQ(out->value[c][winners[size_t(c)]].load(), c * c + 1) << c;
+        // the sleeper has not run its body yet
+        EXPECT_EQ(out->runs[c][winners[size_t(c)]].load(), 1) << c;
+        EXPECT_EQ(out->runs[c][1 - winners[size_t(c)]].load(), 0) << c;
+        rescued += winners[size_t(c)];
+    }
+    EXPECT_EQ(rescued, 1);
+    // The sleeper still holds its chunk: a call now runs serially, in slot 0.
+    EXPECT_FALSE(parallelHelpersIdle());
+    std::vector<uint8_t> serialWinners(8, 9);
+    std::vector<int> serialRuns(8, 0);
+    EXPECT_FALSE(parallelRescuedChunks(8, [&](int c, int slot, const ChunkStop&) { serialRuns[size_t(c)] += 1 + slot; },
+                                       2, serialWinners.data()));
+    for (int c = 0; c < 8; ++c) {
+        EXPECT_EQ(serialRuns[size_t(c)], 1);
+        EXPECT_EQ(serialWinners[size_t(c)], 0);
+    }
+    waitParallelHelpers();
+    EXPECT_TRUE(parallelHelpersIdle());
+    // The sleeper ran its chunk late, into its own slot; the rescue's output stands.
+    for (int c = 0; c < kChunks; ++c) {
+        EXPECT_EQ(out->runs[c][0].load(), 1) << c;
+        EXPECT_EQ(out->value[c][winners[size_t(c)]].load(), c * c + 1) << c;
+    }
+}
+
+TEST(CoreParallel, OnlyARunThatFinishedIsTheChunksResult) {
+    // Without a stall the caller may rescue the helper's last chunk while the
+    // helper runs it; the run that loses sees its ChunkStop and returns early.
+    // The slot named for every chunk is one whose run went to the end.
+    constexpr int kChunks = 40;
+    struct Done {
+        std::atomic<bool> finished[kChunks][2];
+    };
+    auto done = std::make_shared<Done>();
+    for (auto& chunk : done->finished) chunk[0] = false, chunk[1] = false;
+    std::vector<uint8_t> winners(kChunks, 9);
+    parallelRescuedChunks(
+        kChunks,
+        [done](int c, int slot, const ChunkStop& stop) {
+            for (int k = 0; k < 40; ++k) {
+                if (stop.requested()) return;
+                spinFor(0.05);
+            }
+            done->finished[c][slot] = true;
+        },
+        2, winners.data());
+    for (int c = 0; c < kChunks; ++c) {
+        ASSERT_LE(winners[size_t(c)], 1);
+        EXPECT_TRUE(done->finished[c][winners[size_t(c)]].load()) << c;
+    }
+    waitParallelHelpers();
 }
 
 TEST(CoreTimer, QuantilesInterpolate) {

@@ -5,8 +5,7 @@
 #include <sierra/sbt/VertexErrors.h>
 #include <sierra/terrain/DiamondSquare.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
+#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -28,16 +27,8 @@ Heightfield terrain(int size, uint64_t seed) {
 // vertical field of view, 16:9 at 1080 pixels, far plane 4 extents.
 sbt::ViewParams view(const Heightfield& f, glm::vec3 eye, glm::vec3 target, bool cull) {
     const float extent = float(f.width() - 1) * f.spacingX();
-    const float fovy = glm::radians(45.0f);
-    const glm::mat4 vp = glm::perspective(fovy, 16.0f / 9.0f, extent * 1e-3f, extent * 4.0f) *
-                         glm::lookAt(eye, target, glm::vec3(0, 1, 0));
-    sbt::ViewParams v;
-    v.eye = {eye.x, eye.y, eye.z};
-    v.lambda = sbt::projectionLambda(1080.0f, fovy);
-    v.tau = 1.0f;
-    v.cull = cull;
-    v.planes = sbt::frustumPlanes(glm::value_ptr(vp));
-    return v;
+    return sbt::lookAtView({eye.x, eye.y, eye.z}, {target.x, target.y, target.z}, glm::radians(45.0f),
+                           16.0f / 9.0f, 1080.0f, extent * 1e-3f, extent * 4.0f, 1.0f, cull);
 }
 
 // Culled subtrees by a plain recursion in double: a triangle above the finest

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <memory>
 #include <cerrno>
 #include <cstdlib>
 #include <exception>
@@ -52,16 +54,32 @@ std::pair<int64_t, int64_t> chunkRange(int64_t begin, int64_t total, int64_t cou
     return {lo, lo + q + (c < r ? 1 : 0)};
 }
 
-// One parallelChunks call. Chunks are claimed in units of `unit` consecutive
-// chunks so the unit count fits the pool's 16-bit claim counter.
+// One parallelChunks call (on the caller's stack), or one parallelRescuedChunks
+// call (the pool's own rescueJob_, which outlives the call). Chunks are claimed
+// in units of `unit` consecutive chunks so the unit count fits the pool's
+// 16-bit claim counter; a rescued call has one chunk per unit.
 struct Job {
-    const std::function<void(int64_t, int64_t, int)>* body;
-    int64_t begin, total;
-    int chunkCount;
-    int unit;
+    const std::function<void(int64_t, int64_t, int)>* body = nullptr;
+    int64_t begin = 0, total = 0;
+    int chunkCount = 0;
+    int unit = 1;
     std::atomic<bool> failed{false};
     std::exception_ptr failure;
     std::mutex failureMutex;
+
+    // Rescued calls: the body (a copy: helpers may run it after the call has
+    // returned) and per chunk kPending, kStarted (slot 0 running), kDoneFirst or
+    // kDoneRescue (the slot whose output counts).
+    bool rescued = false;
+    RescuedBody rescuedBody;
+    std::unique_ptr<std::atomic<uint8_t>[]> states;
+    int stateCapacity = 0;
+
+    void fail() {
+        std::lock_guard lock(failureMutex);
+        if (!failure) failure = std::current_exception();
+        failed = true;
+    }
 
     void runUnit(int u) {
         const int c0 = u * unit, c1 = std::min(chunkCount, c0 + unit);
@@ -71,13 +89,35 @@ struct Job {
                 auto [lo, hi] = chunkRange(begin, total, chunkCount, c);
                 (*body)(lo, hi, c);
             } catch (...) {
-                std::lock_guard lock(failureMutex);
-                if (!failure) failure = std::current_exception();
-                failed = true;
+                fail();
             }
         }
     }
+
+    // Slot 0 of chunk c, unless the caller has taken it over or finished it.
+    void runFirst(int c, double stallSeconds) {
+        uint8_t expected = kPending;
+        if (!states[c].compare_exchange_strong(expected, kStarted, std::memory_order_acq_rel)) return;
+        if (stallSeconds > 0) std::this_thread::sleep_for(std::chrono::duration<double>(stallSeconds));
+        runSlot(c, 0);
+    }
+    // The first run of chunk c to finish publishes its slot.
+    void runSlot(int c, int slot) {
+        try {
+            rescuedBody(c, slot, ChunkStop(&states[c]));
+        } catch (...) {
+            fail();
+        }
+        uint8_t expected = kStarted;
+        states[c].compare_exchange_strong(expected, uint8_t(kDoneFirst + slot), std::memory_order_acq_rel);
+    }
+
+    static constexpr uint8_t kPending = 0, kStarted = 1, kDoneFirst = 2, kDoneRescue = 3;
 };
+
+// The helper stall of setHelperStallForTesting, seconds.
+std::atomic<double> gHelperStall{0.0};
+std::atomic<int64_t> gRescues{0};  // parallelRescueCount
 
 constexpr int kMaxUnits = 0xffff;
 
@@ -131,6 +171,63 @@ public:
         return true;
     }
 
+    // parallelRescuedChunks on the pool (see Parallel.h); false: run serially.
+    bool runRescued(int chunkCount, const RescuedBody& body, int helpers, uint8_t* winners) {
+        std::unique_lock lock(callMutex_, std::try_to_lock);
+        // Helpers still inside an earlier call's body: the pool's job is theirs
+        // until they leave, and they are busy anyway.
+        if (!lock.owns_lock() || inFlight_.load(std::memory_order_acquire) != 0) return false;
+        Job& job = rescueJob_;
+        if (job.stateCapacity < chunkCount) {
+            job.states = std::make_unique<std::atomic<uint8_t>[]>(size_t(chunkCount));
+            job.stateCapacity = chunkCount;
+        }
+        for (int c = 0; c < chunkCount; ++c) job.states[c].store(Job::kPending, std::memory_order_relaxed);
+        job.rescued = true;
+        job.rescuedBody = body;
+        job.chunkCount = chunkCount;
+        job.failed = false;
+        job.failure = nullptr;
+        tInsideParallel = true;
+        job_.store(&job, std::memory_order_relaxed);
+        helpers_.store(helpers, std::memory_order_relaxed);
+        generation_ = (generation_ + 1) & 0xffffffffu;
+        state_.store(generation_ << 32 | uint64_t(chunkCount) << 16, std::memory_order_release);
+
+        const double t0 = threadSeconds();
+        bool woken = false;
+        for (int c; (c = claim(nullptr)) >= 0;) {
+            job.runFirst(c, 0.0);
+            if (!woken && threadSeconds() - t0 > kForkAfterSeconds) {
+                woken = true;
+                wakeHelpers(helpers);
+            }
+        }
+        // Nothing left to claim. A chunk a helper claimed but has not started is
+        // taken over; one it is running is run again here, and whichever run
+        // finishes first counts. The caller never sleeps on a helper.
+        for (int c = 0; c < chunkCount; ++c) {
+            job.runFirst(c, 0.0);
+            if (job.states[c].load(std::memory_order_acquire) == Job::kStarted) {
+                gRescues.fetch_add(1, std::memory_order_relaxed);
+                job.runSlot(c, 1);
+            }
+            winners[c] = job.states[c].load(std::memory_order_acquire) == Job::kDoneRescue ? 1 : 0;
+        }
+        tInsideParallel = false;
+        if (job.failed.load(std::memory_order_acquire)) {
+            std::lock_guard failureLock(job.failureMutex);
+            if (job.failure) std::rethrow_exception(job.failure);
+        }
+        return true;
+    }
+
+    bool idle() const { return inFlight_.load(std::memory_order_acquire) == 0; }
+    void waitIdle() {
+        for (int n; (n = inFlight_.load(std::memory_order_acquire)) != 0;)
+            inFlight_.wait(n, std::memory_order_acquire);
+    }
+
 private:
     Pool() = default;
 
@@ -171,12 +268,22 @@ private:
             seen = wake_.load(std::memory_order_acquire);
             if (stop_) return;
             if (index >= helpers_.load(std::memory_order_relaxed)) continue;
+            // Counted from before the claim: a helper that has claimed a chunk of
+            // a rescued call may start it after that call has returned.
+            inFlight_.fetch_add(1, std::memory_order_acq_rel);
             Job* job = nullptr;
+            double stall = gHelperStall.load(std::memory_order_relaxed);
             for (int unit; (unit = claim(&job)) >= 0;) {
+                if (job->rescued) {
+                    job->runFirst(unit, stall);
+                    stall = 0.0;
+                    continue;
+                }
                 job->runUnit(unit);
                 const int count = int((state_.load(std::memory_order_relaxed) >> 16) & 0xffff);
                 if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == count) done_.notify_all();
             }
+            if (inFlight_.fetch_sub(1, std::memory_order_acq_rel) == 1) inFlight_.notify_all();
         }
     }
 
@@ -187,6 +294,8 @@ private:
     std::atomic<Job*> job_{nullptr};
     std::atomic<int> helpers_{0};
     std::atomic<int> done_{0};  // units finished in this call
+    std::atomic<int> inFlight_{0};  // helpers between waking for a call and running out of chunks
+    Job rescueJob_;                 // the job of parallelRescuedChunks
     std::atomic<uint32_t> wake_{0};
     std::atomic<bool> stop_{false};
 };
@@ -227,6 +336,25 @@ void parallelChunks(int64_t begin, int64_t end, int chunkCount,
         body(lo, hi, c);
     }
 }
+
+bool parallelRescuedChunks(int chunkCount, const RescuedBody& body, int threads, uint8_t* winners) {
+    if (chunkCount <= 0) return false;
+    if (threads <= 0) threads = defaultThreadCount();
+    threads = std::min({threads, kMaxThreads, chunkCount});
+    if (threads > 1 && chunkCount <= kMaxUnits && !tInsideParallel &&
+        Pool::instance().runRescued(chunkCount, body, threads - 1, winners))
+        return true;
+    for (int c = 0; c < chunkCount; ++c) {
+        body(c, 0, ChunkStop());
+        winners[c] = 0;
+    }
+    return false;
+}
+
+int64_t parallelRescueCount() { return gRescues.load(std::memory_order_relaxed); }
+bool parallelHelpersIdle() { return Pool::instance().idle(); }
+void waitParallelHelpers() { Pool::instance().waitIdle(); }
+void setHelperStallForTesting(double seconds) { gHelperStall = std::max(0.0, seconds); }
 
 void parallelFor(int64_t begin, int64_t end, const std::function<void(int64_t)>& body,
                  int threads) {

@@ -31,6 +31,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace sierra::sbt {
@@ -75,6 +76,15 @@ float projectionLambda(float viewportHeightPx, float fovyRadians);
 // The 6 normalised planes of the frustum of a column-major (OpenGL) 4x4
 // view-projection matrix (Gribb and Hartmann), clip space -w <= x, y, z <= w.
 std::array<Plane, 6> frustumPlanes(const float viewProjection[16]);
+
+// The view of a perspective look-at camera (+y up) at `eye` looking at
+// `target` (world units): vertical field of view `fovyRadians`, `aspect` =
+// width / height, a viewport `viewportHeightPx` pixels high, clip planes at
+// `nearPlane` and `farPlane` along the view (world units), tau in pixels. For
+// tools and tests; the renderer builds its view from its own camera.
+ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3>& target, float fovyRadians,
+                      float aspect, float viewportHeightPx, float nearPlane, float farPlane, float tau = 1.0f,
+                      bool cull = true);
 
 // A refinement whose previous call in the same mode made fewer triangles runs
 // on the calling thread alone, whatever the thread count (the output is the
@@ -125,6 +135,7 @@ public:
 
     struct Op;     // implementation detail (top-level recursion record)
     struct Chunk;  // implementation detail (one subtree's strip)
+    struct Frame;  // implementation detail (one refinement's working data)
     struct Copy {  // implementation detail (one strip's place in the output)
         const uint32_t* src;
         int64_t length;
@@ -147,8 +158,13 @@ private:
     int side_ = 0;
     int threads_ = 0;
     int chunkLevel_ = 0;
-    std::vector<Op> ops_;
-    std::vector<Chunk> chunks_;
+    // Two sets of per-refinement data (recursion records, chunk strips, the
+    // walker's set-up): a helper thread preempted inside a chunk may still be
+    // reading one after its refinement has returned (the caller ran that chunk
+    // again, see parallelRescuedChunks), so the next refinement takes the
+    // other. busyFrame_: the set such a helper may hold, -1 none.
+    std::unique_ptr<Frame> frames_[2];
+    int busyFrame_ = -1;
     std::vector<Copy> copies_;
     // Split keys for refineFixed: per triangle of levels 0..2n-1, the top 16 bits
     // of its split vertex's error (a monotone, conservative bfloat16), in tree
@@ -175,7 +191,6 @@ private:
     // finite or an error or radius is NaN or negative.
     std::vector<uint16_t> viewKeys_;
     float keyYBase_ = 0, keyYStep_ = 0, keyYError_ = 0;  // world units
-    std::vector<float> eyeTerms_;  // per refinement: squared eye distances along x, then z
     // Largest |world coordinate| or radius of the grid (world units), measured
     // by the first refineView(); -1 until then.
     double magnitude_ = -1.0;
@@ -183,6 +198,10 @@ private:
     // estimate that keeps small refinements serial (see kParallelTriangles).
     int64_t lastViewTriangles_ = -1;
     int64_t lastFixedTriangles_ = -1;
+    // Per subtree at the chunk level (tree order), the triangles it made in the
+    // last refinement in each mode: chunks are handed out largest first.
+    std::vector<int64_t> viewChunkWork_;
+    std::vector<int64_t> fixedChunkWork_;
 };
 
 // Triangles of a strip (kRestartIndex-separated), 3 indices each, degenerate
