@@ -3,8 +3,6 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Parallel.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -686,19 +684,47 @@ std::array<Plane, 6> frustumPlanes(const float m[16]) {
 
 ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3>& target, float fovyRadians,
                       float aspect, float viewportHeightPx, float nearPlane, float farPlane, float tau, bool cull) {
-    const glm::vec3 e{eye[0], eye[1], eye[2]}, t{target[0], target[1], target[2]};
-    const glm::vec3 forward = t - e;
-    SIERRA_CHECK(glm::length(forward) > 0 && std::abs(glm::normalize(forward).y) < 1.0f,
+    using V3 = std::array<double, 3>;
+    auto dot = [](const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+    auto cross = [](const V3& a, const V3& b) {
+        return V3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    };
+    auto normalised = [&](V3 a) {
+        const double length = std::sqrt(dot(a, a));
+        for (double& x : a) x /= length;
+        return a;
+    };
+    const V3 e{eye[0], eye[1], eye[2]};
+    const V3 forward{target[0] - e[0], target[1] - e[1], target[2] - e[2]};
+    SIERRA_CHECK(dot(forward, forward) > 0 && std::abs(normalised(forward)[1]) < 1.0,
                  "lookAtView: the camera must look somewhere other than straight up or down");
     SIERRA_CHECK(aspect > 0 && nearPlane > 0 && farPlane > nearPlane,
                  "lookAtView: need aspect > 0 and 0 < near < far, got ", aspect, ", ", nearPlane, ", ", farPlane);
-    const glm::mat4 vp = glm::perspective(fovyRadians, aspect, nearPlane, farPlane) * glm::lookAt(e, t, glm::vec3(0, 1, 0));
+    // The OpenGL look-at view (right-handed, +y up) and perspective projection
+    // (clip z in [-w, w]), column-major: m[column * 4 + row].
+    const V3 f = normalised(forward), side = normalised(cross(f, V3{0, 1, 0})), up = cross(side, f);
+    double viewM[16] = {side[0], up[0], -f[0], 0, side[1], up[1], -f[1], 0,
+                        side[2], up[2], -f[2], 0, -dot(side, e), -dot(up, e), dot(f, e), 1};
+    const double t = std::tan(0.5 * double(fovyRadians)), n = nearPlane, fa = farPlane;
+    double proj[16] = {};
+    proj[0] = 1.0 / (double(aspect) * t);
+    proj[5] = 1.0 / t;
+    proj[10] = -(fa + n) / (fa - n);
+    proj[11] = -1.0;
+    proj[14] = -2.0 * fa * n / (fa - n);
+    float vp[16];
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) {
+            double sum = 0;
+            for (int k = 0; k < 4; ++k) sum += proj[k * 4 + r] * viewM[c * 4 + k];
+            vp[c * 4 + r] = float(sum);
+        }
     ViewParams view;
     view.eye = eye;
     view.lambda = projectionLambda(viewportHeightPx, fovyRadians);
     view.tau = tau;
     view.cull = cull;
-    view.planes = frustumPlanes(glm::value_ptr(vp));
+    view.planes = frustumPlanes(vp);
     return view;
 }
 
