@@ -141,16 +141,22 @@ public:
         for (std::thread& t : workers_) t.join();
     }
 
-    // False when another call holds the pool (the caller then runs serially).
-    bool run(Job& job, int units, int helpers) {
-        std::unique_lock lock(callMutex_, std::try_to_lock);
-        if (!lock.owns_lock()) return false;
+    // Makes `job` the pool's call (its `units` open for claiming, `helpers` of the
+    // pool's threads allowed in); the caller holds callMutex_.
+    void publish(Job& job, int units, int helpers) {
         tInsideParallel = true;
-        done_.store(0, std::memory_order_relaxed);
         job_.store(&job, std::memory_order_relaxed);
         helpers_.store(helpers, std::memory_order_relaxed);
         generation_ = (generation_ + 1) & 0xffffffffu;
         state_.store(generation_ << 32 | uint64_t(units) << 16, std::memory_order_release);
+    }
+
+    // False when another call holds the pool (the caller then runs serially).
+    bool run(Job& job, int units, int helpers) {
+        std::unique_lock lock(callMutex_, std::try_to_lock);
+        if (!lock.owns_lock()) return false;
+        done_.store(0, std::memory_order_relaxed);
+        publish(job, units, helpers);
 
         // Work alone first; wake the helpers once this call has proved long.
         const double t0 = threadSeconds();
@@ -188,11 +194,7 @@ public:
         job.chunkCount = chunkCount;
         job.failed = false;
         job.failure = nullptr;
-        tInsideParallel = true;
-        job_.store(&job, std::memory_order_relaxed);
-        helpers_.store(helpers, std::memory_order_relaxed);
-        generation_ = (generation_ + 1) & 0xffffffffu;
-        state_.store(generation_ << 32 | uint64_t(chunkCount) << 16, std::memory_order_release);
+        publish(job, chunkCount, helpers);
 
         const double t0 = threadSeconds();
         bool woken = false;
