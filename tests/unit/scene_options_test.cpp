@@ -25,16 +25,20 @@ namespace fs = std::filesystem;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-// Parses `args` as a command line of an app with `defaults` and `groups`.
+// Parses `args` as a command line of an app with `defaults` and `groups`, and
+// the app's own scene options `program` (apply(program)), if any.
 Scene parse(const std::vector<std::string>& args, const Scene& defaults = {}, unsigned groups = kAllOptions,
-            bool* printed = nullptr) {
+            bool* printed = nullptr, const std::function<void(Scene&)>& program = {}) {
     CLI::App app{"test"};
     Scene scene = defaults;
     SceneOptions options(app, scene, groups);
     std::vector<const char*> argv{"test"};
     for (const std::string& a : args) argv.push_back(a.c_str());
     app.parse(int(argv.size()), argv.data());
-    options.apply();
+    if (program)
+        options.apply(program);
+    else
+        options.apply();
     if (printed) *printed = options.printConfigRequested();
     return scene;
 }
@@ -251,14 +255,7 @@ TEST_F(SceneOptionsTest, PrintConfigFedBackGivesTheSameScene) {
 // registrar's options, checked with the scene and printed by --print-config.
 TEST_F(SceneOptionsTest, ProgramOptionsAreCheckedAndPrinted) {
     auto run = [](const std::vector<std::string>& args, const std::function<void(Scene&)>& program) {
-        CLI::App app{"test"};
-        Scene scene;
-        SceneOptions options(app, scene, kTerrainOptions);
-        std::vector<const char*> argv{"test"};
-        for (const std::string& a : args) argv.push_back(a.c_str());
-        app.parse(int(argv.size()), argv.data());
-        options.apply(program);
-        return scene;
+        return parse(args, Scene{}, kTerrainOptions, nullptr, program);
     };
     std::string config = write("zones.json", R"({"zones": {"map": "auto", "band": 2}, "terrain": {"generate": 65}})");
     ::testing::internal::CaptureStdout();
