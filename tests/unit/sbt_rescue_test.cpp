@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace {
@@ -37,18 +38,24 @@ TEST(SbtRescue, AStalledHelperNeitherChangesTheOutputNorHoldsTheRefinement) {
     const sbt::ViewParams view = sbt::lookAtView({-60.0f, hi * vs + 80.0f, -40.0f}, {256.0f, lo * vs, 256.0f},
                                                  0.8f, 16.0f / 9.0f, 1080.0f, 0.5f, 2000.0f, 0.5f);
     sbt::StripMesh fixedSerial, viewSerial;
+    double serialSeconds = 0;
     {
         sbt::Refiner serial(f, ve, {.threads = 1});
         serial.refineFixed(-1.0f, fixedSerial);  // the full grid: 524 288 triangles, parallel
+        const auto t0 = std::chrono::steady_clock::now();
+        serial.refineFixed(-1.0f, fixedSerial);
         serial.refineView(view, viewSerial);
+        serialSeconds = secondsSince(t0);
     }
     ASSERT_EQ(fixedSerial.triangleCount, int64_t(2) * 512 * 512);
     ASSERT_GT(viewSerial.triangleCount, sbt::kParallelTriangles) << "the view refines in parallel";
 
-    // The helper sleeps 1 s in the first chunk it takes. Whether it takes one
-    // before the caller has taken them all depends on the scheduler: a few
-    // tries, until one refinement has had a chunk run again.
-    constexpr double kStall = 1.0;
+    // The helper sleeps in the first chunk it takes, at least 1 s and far longer
+    // than the refinements take on one thread (sanitizer builds are slow), so a
+    // caller that waited for it cannot stay under half the sleep. Whether it
+    // takes a chunk before the caller has taken them all depends on the
+    // scheduler: a few tries, until one refinement has had a chunk run again.
+    const double kStall = std::max(1.0, 10.0 * serialSeconds);
     sierra::setHelperStallForTesting(kStall);
     const int64_t rescuesBefore = sierra::parallelRescueCount();
     for (int attempt = 0; attempt < 8 && sierra::parallelRescueCount() == rescuesBefore; ++attempt) {
