@@ -17,14 +17,22 @@ Constraints::Vertex mapToGrid(double mapX, double mapY, int mapWidth, int mapHei
             (mapY - 0.5) * double(gridHeight - 1) / double(mapHeight - 1)};
 }
 
+namespace {
+
+// A zone map and a grid the TIN can relate: each at least 2x2.
+void checkSizes(int mapWidth, int mapHeight, int gridWidth, int gridHeight) {
+    SIERRA_CHECK(mapWidth >= 2 && mapHeight >= 2, "a zone map for a TIN needs at least 2x2 pixels, got ", mapWidth,
+                 "x", mapHeight);
+    SIERRA_CHECK(gridWidth >= 2 && gridHeight >= 2, "a TIN needs a grid of at least 2x2 samples, got ", gridWidth,
+                 "x", gridHeight);
+}
+
+}  // namespace
+
 zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palette& palette,
                                    const zones::BorderlineDesc& desc, int gridWidth,
                                    int gridHeight) {
-    SIERRA_CHECK(map.width >= 2 && map.height >= 2,
-                 "a zone map for a TIN needs at least 2x2 pixels, got ", map.width, "x",
-                 map.height);
-    SIERRA_CHECK(gridWidth >= 2 && gridHeight >= 2,
-                 "a TIN needs a grid of at least 2x2 samples, got ", gridWidth, "x", gridHeight);
+    checkSizes(map.width, map.height, gridWidth, gridHeight);
     zones::Borderlines lines =
         zones::buildBorderlines(map, palette, {.epsilon = desc.epsilon, .bandWidth = 0.0});
     const double sx = double(map.width - 1) / double(gridWidth - 1);
@@ -44,11 +52,7 @@ zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palet
 
 Constraints constraintsFromBorderlines(const zones::Borderlines& lines, int gridWidth,
                                        int gridHeight) {
-    SIERRA_CHECK(lines.mapWidth >= 2 && lines.mapHeight >= 2,
-                 "a zone map for a TIN needs at least 2x2 pixels, got ", lines.mapWidth, "x",
-                 lines.mapHeight);
-    SIERRA_CHECK(gridWidth >= 2 && gridHeight >= 2,
-                 "a TIN needs a grid of at least 2x2 samples, got ", gridWidth, "x", gridHeight);
+    checkSizes(lines.mapWidth, lines.mapHeight, gridWidth, gridHeight);
     Constraints c;
     c.vertices.reserve(lines.vertices.size());
     for (const zones::Vertex& v : lines.vertices)
