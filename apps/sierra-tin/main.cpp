@@ -47,6 +47,7 @@ struct Options {
     int64_t maxTriangles = 0;
     int64_t maxPoints = 0;
     std::string delaunay = "plain";
+    std::string budgetStop = "best-max";
     double uvPeriod = 64.0;
     bool uvPeriodGiven = false;  // with --zones, replaces the tiles' own periods
     bool epsilonGiven = false;   // --epsilon on the command line: no automatic epsilon
@@ -138,6 +139,8 @@ int run(const Options& o) {
                       .maxErrorRel = o.maxErrorRel,
                       .maxTriangles = o.maxTriangles,
                       .maxPoints = o.maxPoints,
+                      .budgetStop = o.budgetStop == "last" ? tin::BudgetStop::Last
+                                                           : tin::BudgetStop::BestMax,
                       .triangulation = o.delaunay == "data" ? tin::Triangulation::DataDependent
                                                             : tin::Triangulation::Delaunay};
     const bool errorTarget = o.maxError > 0.0 || o.maxErrorRel > 0.0;
@@ -218,6 +221,12 @@ int run(const Options& o) {
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
                 result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
                 pointsPerSecond, tin::toString(st.stop));
+    const bool budgetStopped = st.stop == tin::StopReason::Triangles || st.stop == tin::StopReason::Points;
+    if (budgetStopped)
+        std::printf("budget stop (%s): kept the mesh after %lld of %lld insertions, max error %.6g "
+                    "(%.6g at the last)\n",
+                    tin::toString(desc.budgetStop), (long long)st.inserted,
+                    (long long)st.budgetInserted, st.worstError, st.budgetWorstError);
     std::printf("vertical error: max %.6g, rms %.6g (target %.6g) over %lld samples\n",
                 error.maxError, error.rmsError, st.targetError, (long long)error.samples);
     if (zoned)
@@ -243,6 +252,11 @@ int run(const Options& o) {
         report["stop"] = tin::toString(st.stop);
         report["target_error"] = st.targetError;
         report["worst_error_left"] = st.worstError;
+        if (budgetStopped)
+            report["budget_stop"] = {{"rule", tin::toString(desc.budgetStop)},
+                                     {"kept_inserted", st.inserted},
+                                     {"inserted_at_stop", st.budgetInserted},
+                                     {"max_error_at_stop", st.budgetWorstError}};
         report["max_error"] = error.maxError;
         report["rms_error"] = error.rmsError;
         report["samples"] = error.samples;
@@ -326,6 +340,13 @@ int main(int argc, char** argv) {
         ->type_name("N")
         ->group(sg)
         ->check(CLI::NonNegativeNumber);
+    app.add_option("--budget-stop", o.budgetStop,
+                   "With --max-triangles/--max-points: best-max keeps the mesh of smallest max "
+                   "error within the budget; last keeps the last insertion's")
+        ->type_name("best-max|last")
+        ->group(sg)
+        ->check(CLI::IsMember({"best-max", "last"}))
+        ->capture_default_str();
     app.add_option("--delaunay", o.delaunay, "plain: Delaunay flips; data: data-dependent flips")
         ->type_name("plain|data")
         ->group(sg)
