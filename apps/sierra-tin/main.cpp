@@ -3,8 +3,13 @@
 //
 //   sierra-tin [terrain options] [--zones MAP.png|auto [--palette P.json] [--band W] [--epsilon
 //   PX]]
-//              [stop options] --out MESH.obj|.ply|.stl [--json STATS]
+//              [stop options] [--budget-stop best-max|last] --out MESH.obj|.ply|.stl
+//              [--json STATS]
 //
+// With a triangle or point budget, --budget-stop best-max (the default) keeps
+// the mesh of smallest max error the run went through within the budget (the
+// max error of a greedy mesh is not monotone in the insertions); last keeps
+// the last one.
 // The terrain options are the scene registrar's (the names and defaults of
 // every Sierra app; no terrain option = the default scene's 1025^2 fractal);
 // the grid is meshed as read, never padded. With --zones the zone map's

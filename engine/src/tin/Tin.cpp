@@ -171,12 +171,12 @@ class Mesher {
         int32_t segment;
         uint8_t constrained;
     };
+    // Called before every write to half-edge e: one test when not journaling.
     void keep(int e) {
-        if (!journaling_ || size_t(e) >= checkpointHalfEdges_ || savedEpoch_[size_t(e)] == epoch_)
-            return;
-        savedEpoch_[size_t(e)] = epoch_;
-        journal_.push_back({e, origin_[e], twin_[e], zone_[e], segment_[e], constrained_[e]});
+        if (journaling_ && size_t(e) < checkpointHalfEdges_ && savedEpoch_[size_t(e)] != epoch_)
+            saveEdge(e);
     }
+    void saveEdge(int e);
     void checkpoint();
     void rollback();
 
@@ -459,6 +459,11 @@ void Mesher::legalizeFrom(int e0) {
         stack_.push_back(3 * (e / 3) + 1);
         stack_.push_back(3 * (o / 3));
     }
+}
+
+void Mesher::saveEdge(int e) {
+    savedEpoch_[size_t(e)] = epoch_;
+    journal_.push_back({e, origin_[e], twin_[e], zone_[e], segment_[e], constrained_[e]});
 }
 
 void Mesher::checkpoint() {
