@@ -226,7 +226,8 @@ int run(const Options& o) {
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
                 result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
                 pointsPerSecond, tin::toString(st.stop));
-    const bool budgetStopped = st.stop == tin::StopReason::Triangles || st.stop == tin::StopReason::Points;
+    const bool budgetStopped =
+        st.stop == tin::StopReason::Triangles || st.stop == tin::StopReason::Points;
     if (budgetStopped)
         std::printf("budget stop (%s): kept the mesh after %lld of %lld insertions, max error %.6g "
                     "(%.6g at the last)\n",

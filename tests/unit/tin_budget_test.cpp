@@ -48,8 +48,8 @@ TEST(TinBudget, BestMaxKeepsTheSmallestMaxErrorSoFar) {
         std::vector<double> lastMax(kLast + 1, 0.0);
         std::vector<tin::TinResult> last(kLast + 1);
         for (int p = kFirst; p <= kLast; ++p) {
-            last[size_t(p)] = tin::buildTin(
-                field, {}, {.maxPoints = p, .budgetStop = tin::BudgetStop::Last});
+            last[size_t(p)] =
+                tin::buildTin(field, {}, {.maxPoints = p, .budgetStop = tin::BudgetStop::Last});
             ASSERT_EQ(last[size_t(p)].mesh.vertices.size(), size_t(p));
             lastMax[size_t(p)] = tin::measureError(last[size_t(p)].mesh, field).maxError;
         }
@@ -106,9 +106,10 @@ TEST(TinBudget, MaxErrorIsMonotoneOverBudgetsWithBorderlines) {
             snapSplits += r.stats.snapSplits;
             edgeSplits += r.stats.edgeSplits;
 
-            const tin::TinResult l = tin::buildTin(
-                field, c,
-                {.maxTriangles = n, .budgetStop = tin::BudgetStop::Last, .triangulation = triangulation});
+            const tin::TinResult l = tin::buildTin(field, c,
+                                                   {.maxTriangles = n,
+                                                    .budgetStop = tin::BudgetStop::Last,
+                                                    .triangulation = triangulation});
             const double lastMax = tin::measureError(l.mesh, field).maxError;
             EXPECT_LE(max, lastMax) << n << " triangles";
             lastGrew += lastMax > previousLast;
@@ -122,11 +123,11 @@ TEST(TinBudget, MaxErrorIsMonotoneOverBudgetsWithBorderlines) {
             EXPECT_EQ(r.stats.budgetInserted, l.stats.inserted);
             expectSameMesh(r.mesh, tin::buildTin(field, c, best).mesh, "the same run again");
             // Stopping at the kept number of points instead gives the same mesh.
-            const tin::TinResult atKept = tin::buildTin(
-                field, c,
-                {.maxPoints = int64_t(r.mesh.vertices.size()),
-                 .budgetStop = tin::BudgetStop::Last,
-                 .triangulation = triangulation});
+            const tin::TinResult atKept =
+                tin::buildTin(field, c,
+                              {.maxPoints = int64_t(r.mesh.vertices.size()),
+                               .budgetStop = tin::BudgetStop::Last,
+                               .triangulation = triangulation});
             expectSameMesh(r.mesh, atKept.mesh, "the Last run at the kept size");
         }
         EXPECT_GT(lastGrew, 0) << "the field never made the Last max error grow";
@@ -140,7 +141,8 @@ TEST(TinBudget, MaxErrorIsMonotoneOverBudgetsWithBorderlines) {
 TEST(TinBudget, ErrorTargetsAreUnchanged) {
     const terrain::Heightfield field = fractal(65, 4);
     for (double rel : {0.01, 0.05}) {
-        const auto best = tin::buildTin(field, borderlines(), {.maxErrorRel = rel, .maxTriangles = 100000});
+        const auto best =
+            tin::buildTin(field, borderlines(), {.maxErrorRel = rel, .maxTriangles = 100000});
         const auto last = tin::buildTin(
             field, borderlines(),
             {.maxErrorRel = rel, .maxTriangles = 100000, .budgetStop = tin::BudgetStop::Last});

@@ -149,12 +149,12 @@ struct TinStats {
     int64_t edgeSplits = 0;  // insertions that split an edge exactly through the point
     // Insertions that bent a constrained edge through the point (the snap rule).
     int64_t snapSplits = 0;
-    int64_t flips = 0;          // edge flips in total (of the kept mesh's insertions)
+    int64_t flips = 0;  // edge flips in total (of the kept mesh's insertions)
     // Triangles that the flood fills from two inner constrained edges claimed with
     // different zones (border edges only seed what no inner edge reaches).
     int64_t zoneConflicts = 0;
-    double targetError = 0.0;   // error threshold used (world units; 0 = none)
-    double worstError = 0.0;    // largest error left in the kept mesh (world units)
+    double targetError = 0.0;  // error threshold used (world units; 0 = none)
+    double worstError = 0.0;   // largest error left in the kept mesh (world units)
     StopReason stop = StopReason::Exhausted;
     // With a budget and BudgetStop::BestMax: the insertions made when the budget
     // stopped the run and the max error of that mesh (world units). The kept mesh
