@@ -3,8 +3,13 @@
 //
 //   sierra-tin [terrain options] [--zones MAP.png|auto [--palette P.json] [--band W] [--epsilon
 //   PX]]
-//              [stop options] --out MESH.obj|.ply|.stl [--json STATS]
+//              [stop options] [--budget-stop best-max|last] --out MESH.obj|.ply|.stl
+//              [--json STATS]
 //
+// With a triangle or point budget, --budget-stop best-max (the default) keeps
+// the mesh of smallest max error the run went through within the budget (the
+// max error of a greedy mesh is not monotone in the insertions); last keeps
+// the last one.
 // The terrain options are the scene registrar's (the names and defaults of
 // every Sierra app; no terrain option = the default scene's 1025^2 fractal);
 // the grid is meshed as read, never padded. With --zones the zone map's
@@ -47,6 +52,7 @@ struct Options {
     int64_t maxTriangles = 0;
     int64_t maxPoints = 0;
     std::string delaunay = "plain";
+    std::string budgetStop = "best-max";
     double uvPeriod = 64.0;
     bool uvPeriodGiven = false;  // with --zones, replaces the tiles' own periods
     bool epsilonGiven = false;   // --epsilon on the command line: no automatic epsilon
@@ -138,6 +144,8 @@ int run(const Options& o) {
                       .maxErrorRel = o.maxErrorRel,
                       .maxTriangles = o.maxTriangles,
                       .maxPoints = o.maxPoints,
+                      .budgetStop = o.budgetStop == "last" ? tin::BudgetStop::Last
+                                                           : tin::BudgetStop::BestMax,
                       .triangulation = o.delaunay == "data" ? tin::Triangulation::DataDependent
                                                             : tin::Triangulation::Delaunay};
     const bool errorTarget = o.maxError > 0.0 || o.maxErrorRel > 0.0;
@@ -218,6 +226,13 @@ int run(const Options& o) {
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
                 result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
                 pointsPerSecond, tin::toString(st.stop));
+    const bool budgetStopped =
+        st.stop == tin::StopReason::Triangles || st.stop == tin::StopReason::Points;
+    if (budgetStopped)
+        std::printf("budget stop (%s): kept the mesh after %lld of %lld insertions, max error %.6g "
+                    "(%.6g at the last)\n",
+                    tin::toString(desc.budgetStop), (long long)st.inserted,
+                    (long long)st.budgetInserted, st.worstError, st.budgetWorstError);
     std::printf("vertical error: max %.6g, rms %.6g (target %.6g) over %lld samples\n",
                 error.maxError, error.rmsError, st.targetError, (long long)error.samples);
     if (zoned)
@@ -243,6 +258,11 @@ int run(const Options& o) {
         report["stop"] = tin::toString(st.stop);
         report["target_error"] = st.targetError;
         report["worst_error_left"] = st.worstError;
+        if (budgetStopped)
+            report["budget_stop"] = {{"rule", tin::toString(desc.budgetStop)},
+                                     {"kept_inserted", st.inserted},
+                                     {"inserted_at_stop", st.budgetInserted},
+                                     {"max_error_at_stop", st.budgetWorstError}};
         report["max_error"] = error.maxError;
         report["rms_error"] = error.rmsError;
         report["samples"] = error.samples;
@@ -326,6 +346,13 @@ int main(int argc, char** argv) {
         ->type_name("N")
         ->group(sg)
         ->check(CLI::NonNegativeNumber);
+    app.add_option("--budget-stop", o.budgetStop,
+                   "With --max-triangles/--max-points: best-max keeps the mesh of smallest max "
+                   "error within the budget; last keeps the last insertion's")
+        ->type_name("best-max|last")
+        ->group(sg)
+        ->check(CLI::IsMember({"best-max", "last"}))
+        ->capture_default_str();
     app.add_option("--delaunay", o.delaunay, "plain: Delaunay flips; data: data-dependent flips")
         ->type_name("plain|data")
         ->group(sg)

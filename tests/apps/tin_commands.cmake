@@ -28,8 +28,8 @@ if(NOT fine_tris GREATER rel_tris)
   message(FATAL_ERROR "--max-error-rel 0.002 gave ${fine_tris} triangles, 0.01 gave ${rel_tris}")
 endif()
 
-# Triangle and point budgets.
-run_app(tris EXPECT_OK COMMAND ${TIN} --generate 129 --max-triangles 200 --out tris.stl --json tris.json)
+# Triangle and point budgets: the last mesh each allows (--budget-stop last).
+run_app(tris EXPECT_OK COMMAND ${TIN} --generate 129 --max-triangles 200 --budget-stop last --out tris.stl --json tris.json)
 expect_file(${WORK_DIR}/tris.stl)
 json_get(tris_count ${WORK_DIR}/tris.json triangles)
 json_get(tris_stop ${WORK_DIR}/tris.json stop)
@@ -41,11 +41,40 @@ math(EXPR stl_expected "84 + 50 * ${tris_count}")
 if(NOT stl_size EQUAL stl_expected)
   message(FATAL_ERROR "STL has ${stl_size} bytes, expected ${stl_expected}")
 endif()
-run_app(points EXPECT_OK COMMAND ${TIN} --generate 129 --max-points 100 --out points.obj --json points.json)
+run_app(points EXPECT_OK COMMAND ${TIN} --generate 129 --max-points 100 --budget-stop last --out points.obj --json points.json)
 json_get(points_count ${WORK_DIR}/points.json vertices)
 if(NOT points_count EQUAL 100)
   message(FATAL_ERROR "--max-points 100 gave ${points_count} vertices")
 endif()
+# The default, best-max: the mesh of smallest max error within the budget, no
+# worse than the last one, and the JSON says which insertion it kept (the
+# measured maxima against each other, the mesher's against the mesher's: they
+# differ in round-off).
+foreach(n 200 260 320)
+  run_app(best${n} EXPECT_OK MESSAGE "budget stop (best-max)" COMMAND ${TIN} --generate 129 --max-triangles ${n}
+          --out best${n}.stl --json best${n}.json)
+  run_app(last${n} EXPECT_OK COMMAND ${TIN} --generate 129 --max-triangles ${n} --budget-stop last
+          --out last${n}.stl --json last${n}.json)
+  json_get(best_tris ${WORK_DIR}/best${n}.json triangles)
+  json_get(best_max ${WORK_DIR}/best${n}.json max_error)
+  json_get(best_rule ${WORK_DIR}/best${n}.json budget_stop rule)
+  json_get(best_kept ${WORK_DIR}/best${n}.json budget_stop kept_inserted)
+  json_get(best_at_stop ${WORK_DIR}/best${n}.json budget_stop inserted_at_stop)
+  json_get(best_max_at_stop ${WORK_DIR}/best${n}.json budget_stop max_error_at_stop)
+  json_get(best_inserted ${WORK_DIR}/best${n}.json inserted)
+  json_get(best_worst ${WORK_DIR}/best${n}.json worst_error_left)
+  json_get(last_max ${WORK_DIR}/last${n}.json max_error)
+  json_get(last_inserted ${WORK_DIR}/last${n}.json inserted)
+  if(best_tris GREATER n OR NOT best_rule STREQUAL "best-max" OR NOT best_kept EQUAL best_inserted
+     OR best_kept GREATER best_at_stop OR NOT best_at_stop EQUAL last_inserted OR best_max GREATER last_max
+     OR best_worst GREATER best_max_at_stop)
+    message(FATAL_ERROR "--max-triangles ${n}: best-max kept ${best_tris} triangles, max ${best_max} after "
+                        "${best_kept} of ${best_at_stop} insertions (${best_max_at_stop} at the stop); "
+                        "last: max ${last_max} after ${last_inserted}")
+  endif()
+endforeach()
+run_app(bad_rule EXPECT_FAIL EXIT 2 MESSAGE "--budget-stop" COMMAND ${TIN} --generate 65 --max-triangles 50
+        --budget-stop first --out r.stl)
 # An absolute error.
 run_app(abs EXPECT_OK COMMAND ${TIN} --generate 129 --max-error 0.05 --out abs.obj --json abs.json)
 json_get(abs_max ${WORK_DIR}/abs.json max_error)

@@ -206,16 +206,19 @@ TEST(TinMesher, AbsoluteErrorAndNonSquareGrid) {
 
 TEST(TinMesher, TriangleAndPointLimits) {
     const terrain::Heightfield field = fractal(129, 4);
-    auto byTriangles = tin::buildTin(field, {}, {.maxTriangles = 500});
+    // The last mesh each budget allows (BudgetStop::BestMax may keep a smaller one:
+    // tin_budget_test.cpp).
+    constexpr auto kLast = tin::BudgetStop::Last;
+    auto byTriangles = tin::buildTin(field, {}, {.maxTriangles = 500, .budgetStop = kLast});
     EXPECT_EQ(byTriangles.stats.stop, tin::StopReason::Triangles);
     EXPECT_LE(byTriangles.mesh.triangles.size(), 500u);
     EXPECT_GE(byTriangles.mesh.triangles.size(), 498u);
-    auto byPoints = tin::buildTin(field, {}, {.maxPoints = 300});
+    auto byPoints = tin::buildTin(field, {}, {.maxPoints = 300, .budgetStop = kLast});
     EXPECT_EQ(byPoints.stats.stop, tin::StopReason::Points);
     EXPECT_EQ(byPoints.mesh.vertices.size(), 300u);
     expectValidMesh(byPoints.mesh, true);
     // Greedy: more points, smaller error.
-    auto more = tin::buildTin(field, {}, {.maxPoints = 1200});
+    auto more = tin::buildTin(field, {}, {.maxPoints = 1200, .budgetStop = kLast});
     EXPECT_LT(tin::measureError(more.mesh, field).maxError,
               tin::measureError(byPoints.mesh, field).maxError);
     EXPECT_NEAR(byPoints.stats.worstError, tin::measureError(byPoints.mesh, field).maxError, 1e-4);
@@ -351,9 +354,11 @@ TEST(TinMesher, SnapLeavesNoSlit) {
     c.segments = {{0, 1, 1, 2}};
     const GridPoint p{15, 7}, a{0, 3}, b{32, 13};
     ASSERT_NE(orient2(a, b, p), 0);
-    const int before = int(tin::buildTin(field, c, {.maxPoints = 6}).mesh.vertices.size());
+    constexpr auto kLast = tin::BudgetStop::Last;  // exactly 6, then 7 points
+    const int before =
+        int(tin::buildTin(field, c, {.maxPoints = 6, .budgetStop = kLast}).mesh.vertices.size());
     ASSERT_EQ(before, 6);
-    auto r = tin::buildTin(field, c, {.maxPoints = 7});
+    auto r = tin::buildTin(field, c, {.maxPoints = 7, .budgetStop = kLast});
     EXPECT_EQ(r.stats.snapSplits, 1);
     expectValidMesh(r.mesh, true);
     EXPECT_TRUE(constrainedPath(r.mesh, a, p, true));
@@ -372,7 +377,8 @@ TEST(TinMesher, SnapLeavesNoSlit) {
         EXPECT_EQ(r.mesh.zone[t], cy > yLine ? 1 : 2) << "triangle " << t;
     }
     // Without the rule the point goes in beside the edge: a thin triangle, still no slit.
-    auto plain = tin::buildTin(field, c, {.maxPoints = 7, .snapDistance = 0.0});
+    auto plain =
+        tin::buildTin(field, c, {.maxPoints = 7, .budgetStop = kLast, .snapDistance = 0.0});
     EXPECT_EQ(plain.stats.snapSplits, 0);
     expectValidMesh(plain.mesh, true);
     EXPECT_TRUE(constrainedPath(plain.mesh, a, b, true));

@@ -30,6 +30,10 @@ const char* toString(StopReason reason) {
     return "?";
 }
 
+const char* toString(BudgetStop rule) {
+    return rule == BudgetStop::BestMax ? "best-max" : "last";
+}
+
 namespace {
 
 inline int nextHe(int e) {
@@ -88,13 +92,20 @@ class Mesher {
         mark_.push_back(0);
         return t;
     }
+    // Every write to a half-edge goes through these (and keep()), so the
+    // budget's journal sees it.
     void setOrigin(int e, int v) {
+        keep(e);
         origin_[e] = v;
         vertexHe_[v] = e;
     }
-    void link(int e, int o) {
+    void setTwin(int e, int o) {
+        keep(e);
         twin_[e] = o;
-        if (o >= 0) twin_[o] = e;
+    }
+    void link(int e, int o) {
+        setTwin(e, o);
+        if (o >= 0) setTwin(o, e);
     }
     // Saved data of a half-edge about to move to another index.
     struct EdgeData {
@@ -106,22 +117,26 @@ class Mesher {
     EdgeData save(int e) const { return {twin_[e], constrained_[e], zone_[e], segment_[e]}; }
     void restore(int e, const EdgeData& d) {
         link(e, d.twin);
+        keep(e);
         constrained_[e] = d.constrained;
         zone_[e] = d.zone;
         segment_[e] = d.segment;
     }
     // Copies the constrained state of d (not its twin) to e.
     void constrainLike(int e, const EdgeData& d) {
+        keep(e);
         constrained_[e] = d.constrained;
         zone_[e] = d.zone;
         segment_[e] = d.segment;
     }
     void unconstrain(int e) {
+        keep(e);
         constrained_[e] = 0;
         zone_[e] = -1;
         segment_[e] = -1;
     }
     void constrain(int e, int32_t zone, int32_t segment) {
+        keep(e);
         constrained_[e] = 1;
         zone_[e] = zone;
         segment_[e] = segment;
@@ -139,6 +154,31 @@ class Mesher {
             dirty_.push_back(t);
         }
     }
+
+    // --- budget journal (BudgetStop::BestMax) ---------------------------------
+    // The mesh of smallest max error so far is the checkpoint: the half-edges
+    // and vertices that existed then, with the values they had. Each existing
+    // half-edge rewritten since is saved once (its value at the checkpoint);
+    // newer half-edges and vertices are simply cut off. rollback() returns the
+    // topology (origin_, twin_, constrained_, zone_, segment_, points_) to the
+    // checkpoint; the heap, the candidates and vertexHe_ are not restored, so
+    // no insertion may follow it (the run only writes the mesh out).
+    struct SavedEdge {
+        int32_t e;
+        int32_t origin;
+        int32_t twin;
+        int32_t zone;
+        int32_t segment;
+        uint8_t constrained;
+    };
+    // Called before every write to half-edge e: one test when not journaling.
+    void keep(int e) {
+        if (journaling_ && size_t(e) < checkpointHalfEdges_ && savedEpoch_[size_t(e)] != epoch_)
+            saveEdge(e);
+    }
+    void saveEdge(int e);
+    void checkpoint();
+    void rollback();
 
     void insertInTriangle(int t, int v);
     void splitEdge(int e, int v);
@@ -199,6 +239,13 @@ class Mesher {
     int64_t flips_ = 0;
     int lastTriangle_ = 0;
 
+    bool journaling_ = false;
+    uint32_t epoch_ = 0;
+    std::vector<uint32_t> savedEpoch_;  // per half-edge: the epoch it was saved in
+    std::vector<SavedEdge> journal_;
+    size_t checkpointHalfEdges_ = 0;
+    size_t checkpointPoints_ = 0;
+
     // A binary max-heap of triangles by candidate error (kept in the entry, so
     // sifting reads one array), indexed so that a rescanned triangle moves in
     // place (no stale entries).
@@ -240,7 +287,7 @@ void Mesher::rotateTriangle(int t, int k) {
         v[i] = origin_[3 * t + (i + k) % 3];
     }
     for (int i = 0; i < 3; ++i) {
-        twin_[3 * t + i] = -1;
+        setTwin(3 * t + i, -1);
     }
     for (int i = 0; i < 3; ++i) {
         setOrigin(3 * t + i, v[i]);
@@ -296,7 +343,7 @@ void Mesher::splitEdge(int e, int v) {
         const int nt = addTriangle();
         setTriangle(tri, x2, x0, v);
         setTriangle(nt, x1, x2, v);
-        twin_[3 * tri] = twin_[3 * tri + 1] = twin_[3 * tri + 2] = -1;
+        for (int k = 0; k < 3; ++k) setTwin(3 * tri + k, -1);
         restore(3 * tri, e20);
         restore(3 * nt, e12);
         link(3 * tri + 2, 3 * nt + 1);
@@ -314,7 +361,8 @@ void Mesher::splitEdge(int e, int v) {
         link(3 * t + 1, 3 * un + 2);
         link(3 * tn + 2, 3 * u + 1);
     } else {
-        twin_[3 * t + 1] = twin_[3 * tn + 2] = -1;
+        setTwin(3 * t + 1, -1);
+        setTwin(3 * tn + 2, -1);
     }
     legalizeFrom(3 * t);
     legalizeFrom(3 * tn);
@@ -366,8 +414,10 @@ void Mesher::flip(int e) {
               d = origin_[prevHe(o)];
     const EdgeData bp = save(nextHe(e)), pa = save(prevHe(e)), ad = save(nextHe(o)),
                    db = save(prevHe(o));
-    twin_[3 * t1] = twin_[3 * t1 + 1] = twin_[3 * t1 + 2] = -1;
-    twin_[3 * t2] = twin_[3 * t2 + 1] = twin_[3 * t2 + 2] = -1;
+    for (int k = 0; k < 3; ++k) {
+        setTwin(3 * t1 + k, -1);
+        setTwin(3 * t2 + k, -1);
+    }
     setTriangle(t1, p, a, d);
     setTriangle(t2, d, b, p);
     restore(3 * t1, pa);
@@ -409,6 +459,41 @@ void Mesher::legalizeFrom(int e0) {
         stack_.push_back(3 * (e / 3) + 1);
         stack_.push_back(3 * (o / 3));
     }
+}
+
+void Mesher::saveEdge(int e) {
+    savedEpoch_[size_t(e)] = epoch_;
+    journal_.push_back({e, origin_[e], twin_[e], zone_[e], segment_[e], constrained_[e]});
+}
+
+void Mesher::checkpoint() {
+    ++epoch_;
+    journal_.clear();
+    checkpointHalfEdges_ = origin_.size();
+    checkpointPoints_ = points_.size();
+    savedEpoch_.resize(origin_.size(), 0);
+}
+
+void Mesher::rollback() {
+    for (auto it = journal_.rbegin(); it != journal_.rend(); ++it) {
+        const size_t e = size_t(it->e);
+        origin_[e] = it->origin;
+        twin_[e] = it->twin;
+        zone_[e] = it->zone;
+        segment_[e] = it->segment;
+        constrained_[e] = it->constrained;
+    }
+    journal_.clear();
+    for (auto* v : {&origin_, &twin_, &zone_, &segment_}) v->resize(checkpointHalfEdges_);
+    constrained_.resize(checkpointHalfEdges_);
+    const size_t triangles = checkpointHalfEdges_ / 3;
+    heapPos_.resize(triangles);
+    candidate_.resize(triangles);
+    candidateError_.resize(triangles);
+    mark_.resize(triangles);
+    points_.resize(checkpointPoints_);
+    vertexHe_.resize(checkpointPoints_);
+    journaling_ = false;
 }
 
 // Walks from triangle `start` to a triangle containing p (inside or on its edges).
@@ -830,10 +915,24 @@ TinResult Mesher::run(const Constraints& constraints) {
     };
     const double snap2 = desc_.snapDistance * desc_.snapDistance;
     result.stats.stop = StopReason::Exhausted;
+    // With a budget and BudgetStop::BestMax, the mesh of smallest max error so
+    // far (the heap's top before each insertion is the current mesh's max error)
+    // is the checkpoint that a budget stop goes back to.
+    journaling_ = (desc_.maxTriangles > 0 || desc_.maxPoints > 0) &&
+                  desc_.budgetStop == BudgetStop::BestMax;
+    struct Kept {
+        double error = std::numeric_limits<double>::infinity();  // stored units
+        int64_t inserted = 0, edgeSplits = 0, snapSplits = 0, flips = 0;
+    } kept;
     while (!heap_.empty()) {
         const int t = heap_.front().triangle;
         const double topError = heap_.front().error;
         result.stats.worstError = topError * scale;
+        if (journaling_ && topError <= kept.error) {
+            checkpoint();
+            kept = {topError, result.stats.inserted, result.stats.edgeSplits,
+                    result.stats.snapSplits, flips_};
+        }
         if (!(topError > targetStored_)) {
             result.stats.stop = StopReason::Error;
             break;
@@ -868,13 +967,22 @@ TinResult Mesher::run(const Constraints& constraints) {
             }
         }
         const int64_t newTriangles = (onEdge >= 0 && twin_[onEdge] < 0) ? 1 : 2;
-        if (desc_.maxPoints > 0 && int64_t(points_.size()) + 1 > desc_.maxPoints) {
+        if (desc_.maxPoints > 0 && int64_t(points_.size()) + 1 > desc_.maxPoints)
             result.stats.stop = StopReason::Points;
-            break;
-        }
-        if (desc_.maxTriangles > 0 &&
-            int64_t(origin_.size() / 3) + newTriangles > desc_.maxTriangles) {
+        else if (desc_.maxTriangles > 0 &&
+                 int64_t(origin_.size() / 3) + newTriangles > desc_.maxTriangles)
             result.stats.stop = StopReason::Triangles;
+        if (result.stats.stop != StopReason::Exhausted) {
+            result.stats.budgetInserted = result.stats.inserted;
+            result.stats.budgetWorstError = result.stats.worstError;
+            if (journaling_) {
+                rollback();
+                result.stats.worstError = kept.error * scale;
+                result.stats.inserted = kept.inserted;
+                result.stats.edgeSplits = kept.edgeSplits;
+                result.stats.snapSplits = kept.snapSplits;
+                flips_ = kept.flips;
+            }
             break;
         }
         const int v = addVertex(p);
@@ -900,6 +1008,11 @@ TinResult Mesher::run(const Constraints& constraints) {
         }
     }
     if (heap_.empty()) result.stats.worstError = 0.0;
+    journaling_ = false;
+    if (result.stats.stop != StopReason::Triangles && result.stats.stop != StopReason::Points) {
+        result.stats.budgetInserted = result.stats.inserted;
+        result.stats.budgetWorstError = result.stats.worstError;
+    }
     result.stats.insertMs = clock.ms();
     report(result.stats.worstError / (scale > 0.0 ? scale : 1.0));
     clock.restart();

@@ -70,6 +70,22 @@ enum class Triangulation {
     DataDependent,  // flip an edge when the other diagonal fits the samples of the quad better
 };
 
+// Which mesh a triangle or point budget keeps. The max error of a greedy mesh
+// is not monotone in the number of insertions: an insertion and its flips can
+// leave a worse sample in a new triangle, which a later insertion removes. So
+// the mesh at the last insertion the budget allows may have a larger max error
+// than an earlier one within the same budget.
+enum class BudgetStop {
+    // Keep the mesh of smallest max error among all those the run went through
+    // within the budget (on a tie the later, larger one): the max error at a
+    // budget is then the running minimum, never larger at a larger budget.
+    BestMax,
+    // Keep the mesh at the last insertion the budget allows.
+    Last,
+};
+
+const char* toString(BudgetStop rule);  // "best-max", "last"
+
 struct TinProgress {
     int64_t points = 0;        // vertices so far
     int64_t triangles = 0;     // triangles so far
@@ -84,6 +100,10 @@ struct TinDesc {
     double maxErrorRel = 0.0;  // largest vertical error as a fraction of the height range
     int64_t maxTriangles = 0;  // no insertion that would make more triangles than this
     int64_t maxPoints = 0;     // no insertion that would make more vertices than this
+    // When maxTriangles or maxPoints stops insertion: which mesh is kept (see
+    // BudgetStop). An error target or an exhausted grid stops at a mesh whose max
+    // error is already the smallest so far, so this only matters for budgets.
+    BudgetStop budgetStop = BudgetStop::BestMax;
     Triangulation triangulation = Triangulation::Delaunay;
     // The snap() rule: a point inserted into a triangle next to one of the
     // triangle's constrained edges (its foot strictly inside that edge, and its
@@ -129,13 +149,20 @@ struct TinStats {
     int64_t edgeSplits = 0;  // insertions that split an edge exactly through the point
     // Insertions that bent a constrained edge through the point (the snap rule).
     int64_t snapSplits = 0;
-    int64_t flips = 0;          // edge flips in total
+    int64_t flips = 0;  // edge flips in total (of the kept mesh's insertions)
     // Triangles that the flood fills from two inner constrained edges claimed with
     // different zones (border edges only seed what no inner edge reaches).
     int64_t zoneConflicts = 0;
-    double targetError = 0.0;   // error threshold used (world units; 0 = none)
-    double worstError = 0.0;    // largest error left when insertion stopped (world units)
+    double targetError = 0.0;  // error threshold used (world units; 0 = none)
+    double worstError = 0.0;   // largest error left in the kept mesh (world units)
     StopReason stop = StopReason::Exhausted;
+    // With a budget and BudgetStop::BestMax: the insertions made when the budget
+    // stopped the run and the max error of that mesh (world units). The kept mesh
+    // is the one after `inserted` of them; inserted < budgetInserted when an
+    // earlier mesh had a smaller max error. Otherwise equal to inserted and
+    // worstError.
+    int64_t budgetInserted = 0;
+    double budgetWorstError = 0.0;
     double setupMs = 0.0;   // initial triangulation and constrained edges
     double insertMs = 0.0;  // greedy insertion
     double zonesMs = 0.0;   // flood fill
