@@ -45,6 +45,18 @@ using namespace sierra;
 
 namespace {
 
+// A finite number >= 0 (CLI11's NonNegativeNumber accepts NaN and names its upper
+// bound, the largest double, in full).
+const CLI::Validator kNonNegative(
+    [](std::string& text) -> std::string {
+        double v = 0.0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < 0.0)
+            return "must be a finite number >= 0, got " + text;
+        return {};
+    },
+    "");
+
+
 struct Options {
     scene::Scene scene;  // its terrain, and its zones' map, palette, band and epsilon
     double maxError = 0.0;
@@ -317,21 +329,21 @@ int main(int argc, char** argv) {
                    "Transition band width in zone-map pixels (default: the palette's bandWidth)")
         ->type_name("W")
         ->group(zg)
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     // --epsilon, or --zone-epsilon as in every other program.
     app.add_option("--epsilon,--zone-epsilon", epsilon,
                    "Borderline simplification (rule 3) in zone-map pixels (default with a "
                    "triangle or point budget alone: from the budget)")
         ->type_name("PX")
         ->group(zg)
-        ->check(CLI::NonNegativeNumber)
+        ->check(kNonNegative)
         ->capture_default_str();
     const std::string sg = "Mesh";
     app.add_option("--max-error", o.maxError,
                    "Stop when the largest vertical error is at most E (world height units)")
         ->type_name("E")
         ->group(sg)
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     app.add_option("--max-error-rel", o.maxErrorRel,
                    "Stop when the largest vertical error is at most F x the height range")
         ->type_name("F")
@@ -341,11 +353,11 @@ int main(int argc, char** argv) {
                    "Stop before exceeding N triangles (0 = no limit)")
         ->type_name("N")
         ->group(sg)
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     app.add_option("--max-points", o.maxPoints, "Stop before exceeding N vertices (0 = no limit)")
         ->type_name("N")
         ->group(sg)
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     app.add_option("--budget-stop", o.budgetStop,
                    "With --max-triangles/--max-points: best-max keeps the mesh of smallest max "
                    "error within the budget; last keeps the last insertion's")

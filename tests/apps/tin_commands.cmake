@@ -75,6 +75,14 @@ foreach(n 200 260 320)
 endforeach()
 run_app(bad_rule EXPECT_FAIL EXIT 2 MESSAGE "--budget-stop" COMMAND ${TIN} --generate 65 --max-triangles 50
         --budget-stop first --out r.stl)
+# Negative and non-finite limits name the option and the value, in one line.
+foreach(bad "--max-error;nan" "--max-triangles;-1" "--band;-3" "--epsilon;inf" "--max-points;-2")
+  list(GET bad 0 option)
+  list(GET bad 1 value)
+  run_app(bad_limit_${value} EXPECT_FAIL EXIT 2 MESSAGE "${option}: must be a finite number >= 0, got ${value}"
+          COMMAND ${TIN} --generate 65 ${option} ${value} --out limit.stl)
+  expect_no_file(${WORK_DIR}/limit.stl)
+endforeach()
 # An absolute error.
 run_app(abs EXPECT_OK COMMAND ${TIN} --generate 129 --max-error 0.05 --out abs.obj --json abs.json)
 json_get(abs_max ${WORK_DIR}/abs.json max_error)
