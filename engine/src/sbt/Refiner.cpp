@@ -405,8 +405,9 @@ struct Walker {
             int l;
             bool right;  // the right child (q, m, b) splits
         };
-        Pending stack[64];  // depth <= 2n <= 30
-        int sp = 0;
+        constexpr int kMaxPending = 64;  // depth <= 2n <= 30 (kMaxSbtSide)
+        Pending stack[kMaxPending];
+        Pending* top = stack;  // past the last pending entry
         const uint16_t* const vk = viewKeys;
         const float* const xx = dxx;
         const float* const zz = dzz;
@@ -512,7 +513,10 @@ struct Walker {
         };
         for (;;) {
             // split node (a, q, b) at level l, split vertex m, tree node k
-            room(6);
+            // room for this node's appends (6 at most) and for those of every
+            // pending entry the loop below may pop before it comes back (4
+            // each): the pop loop makes no check of its own
+            room(6 + 4 * kMaxPending);
             bool descended = false;
             if (k < innerNodes) {
                 // A prefetch never faults: the address past the keys' end
@@ -524,7 +528,7 @@ struct Walker {
                 const V left = (a + q) >> 1, right = (q + b) >> 1;
                 const unsigned act = activePair(left, right, k);
                 if (act & 1u) {
-                    stack[sp++] = Pending{q, m, b, k, l, (act & 2u) != 0};
+                    *top++ = Pending{q, m, b, k, l, (act & 2u) != 0};
                     b = q, q = m, m = left, k = 2 * k + 2, ++l;
                     continue;
                 }
@@ -544,9 +548,8 @@ struct Walker {
                 leafCount += 2;
             }
             // the subtree is done: the pending apexes and right children
-            while (sp > 0) {
-                const Pending& pd = stack[--sp];
-                room(4);
+            while (top != stack) {
+                const Pending& pd = *--top;
                 put(idx(pd.q), pd.l & 1);
                 if (pd.right) {
                     a = pd.q, q = pd.m, b = pd.b, m = (pd.q + pd.b) >> 1, k = 2 * pd.k + 3, l = pd.l + 1;
