@@ -447,9 +447,12 @@ struct Walker {
         // scalar test; the vertices in neither sure band go to activeExact.
 #if SIERRA_SBT_SSE2
         const __m128 vkE = _mm_set1_ps(kE), vErr = _mm_set1_ps(yErr), vSlack = _mm_set1_ps(slack),
-                     vStep = _mm_set1_ps(yStep), vDy0 = _mm_set1_ps(dy0), vGrow = _mm_set1_ps(grow2),
-                     vBand = _mm_set1_ps(0x1.0p-15f);
+                     vStep = _mm_set1_ps(yStep), vDy0 = _mm_set1_ps(dy0), vGrow = _mm_set1_ps(grow2);
+        __m128 vBand = _mm_set1_ps(0x1.0p-15f);
         const __m128i one = _mm_set1_epi32(0x10000);
+        // Opaque to the compiler: a constant it knows is rebuilt in the loop
+        // (a load and a shuffle per pair) instead of kept in a register.
+        asm("" : "+x"(vBand));
 #endif
         auto activePair = [&](V vl, V vr, uint64_t k) -> unsigned {
             const uint16_t* key = vk + 6 * (k + 1);
