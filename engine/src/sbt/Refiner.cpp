@@ -398,10 +398,10 @@ struct Walker {
     // child's decision: both children are decided together (activePair, two
     // SSE2 lanes over the sibling pair's 12 bytes of keys: 86.4 M instead of
     // 92.2 M instructions per refinement on the orbit case).
-    void walkKeyed(V a, V q, V b, int l, V m, uint64_t k) {
+    void walkKeyed(V a, V q, V b, int l, V m, uint64_t node) {
         struct Pending {
             V q, m, b;
-            uint64_t k;
+            uint64_t kb;  // the node's children's key pair, bytes from the keys' start
             int l;
             bool right;  // the right child (q, m, b) splits
         };
@@ -414,9 +414,12 @@ struct Walker {
         const float kE = fkE, yStep = keyYStep, dy0 = keyDy0, yErr = keyYError, grow2 = keyGrow,
                     slack = keySlack;
         const uint32_t sd = side;
-        // The children of node k can split (have keys) iff k < 2^finest - 2,
-        // i.e. its level l satisfies l + 1 < finest.
-        const uint64_t innerNodes = (uint64_t(1) << finest) - 2;
+        // The walk names tree node k by kb = 12 (k + 1), where its children's
+        // key pair starts (in bytes): the children's are 2 kb + 12 (left) and
+        // 2 kb + 24 (right). The children of node k can split (have keys) iff
+        // k < 2^finest - 2, i.e. its level l satisfies l + 1 < finest.
+        uint64_t kb = 12 * (node + 1);
+        const uint64_t innerBytes = 12 * ((uint64_t(1) << finest) - 1);
         const uintptr_t keyAddress = reinterpret_cast<uintptr_t>(vk);
         uint32_t* o = out;
         uint32_t* c = cap;
@@ -441,7 +444,7 @@ struct Walker {
                 c = cap;
             }
         };
-        // Both children of tree node k (nodes 2k + 2 and 2k + 3, key pair k + 1)
+        // Both children of tree node k (nodes 2k + 2 and 2k + 3, key pair k + 1 at byte kb)
         // at once: bit 0 left (split vertex vl), bit 1 right (vr). Each lane
         // computes the same float operations in the same order as one child's
         // scalar test; the vertices in neither sure band go to activeExact.
@@ -454,8 +457,8 @@ struct Walker {
         // (a load and a shuffle per pair) instead of kept in a register.
         asm("" : "+x"(vBand));
 #endif
-        auto activePair = [&](V vl, V vr, uint64_t k) -> unsigned {
-            const uint16_t* key = vk + 6 * (k + 1);
+        auto activePair = [&](V vl, V vr, uint64_t kb) -> unsigned {
+            const uint16_t* key = reinterpret_cast<const uint16_t*>(keyAddress + kb);
 #if SIERRA_SBT_SSE2
             __m128i her, rr;  // u16 lanes: y0 y1 e0 e1 | r0 r1
             {
@@ -515,31 +518,31 @@ struct Walker {
             return sure;
         };
         for (;;) {
-            // split node (a, q, b) at level l, split vertex m, tree node k
+            // split node (a, q, b) at level l, split vertex m, tree node k (kb)
             // room for this node's appends (6 at most) and for those of every
             // pending entry the loop below may pop before it comes back (4
             // each): the pop loop makes no check of its own
             room(6 + 4 * kMaxPending);
             bool descended = false;
-            if (k < innerNodes) {
+            if (kb < innerBytes) {
                 // A prefetch never faults: the address past the keys' end
                 // near the finest levels needs no check (integer arithmetic,
                 // no pointer is formed out of range).
-                const uintptr_t p = keyAddress + 6 * (((k + 2) << kPrefetchDepth) - 2);
+                const uintptr_t p = keyAddress + ((kb + 12) << (kPrefetchDepth - 1)) - 12;
                 __builtin_prefetch(reinterpret_cast<const void*>(p));
                 __builtin_prefetch(reinterpret_cast<const void*>(p + 6 * (uint64_t(1) << kPrefetchDepth) - 1));
                 const V left = (a + q) >> 1, right = (q + b) >> 1;
-                const unsigned act = activePair(left, right, k);
+                const unsigned act = activePair(left, right, kb);
                 if (act & 1u) {
-                    *top++ = Pending{q, m, b, k, l, (act & 2u) != 0};
-                    b = q, q = m, m = left, k = 2 * k + 2, ++l;
+                    *top++ = Pending{q, m, b, kb, l, (act & 2u) != 0};
+                    b = q, q = m, m = left, kb = 2 * kb + 12, ++l;
                     continue;
                 }
                 put(idx(m), (l + 1) & 1);
                 ++leafCount;
                 put(idx(q), l & 1);
                 if (act & 2u) {
-                    a = q, q = m, m = right, k = 2 * k + 3, ++l;
+                    a = q, q = m, m = right, kb = 2 * kb + 24, ++l;
                     continue;
                 }
                 put(idx(m), (l + 1) & 1);
@@ -555,7 +558,7 @@ struct Walker {
                 const Pending& pd = *--top;
                 put(idx(pd.q), pd.l & 1);
                 if (pd.right) {
-                    a = pd.q, q = pd.m, b = pd.b, m = (pd.q + pd.b) >> 1, k = 2 * pd.k + 3, l = pd.l + 1;
+                    a = pd.q, q = pd.m, b = pd.b, m = (pd.q + pd.b) >> 1, kb = 2 * pd.kb + 24, l = pd.l + 1;
                     descended = true;
                     break;
                 }
