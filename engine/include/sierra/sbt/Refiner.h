@@ -179,7 +179,9 @@ private:
     bool keysBuilt_ = false;  // built by the first refineFixed() with epsilon >= 0
     // View keys for refineView below spheres fully inside the frustum: per
     // triangle of levels 0..2n-1, in the tree order of splitKeys_, three 16-bit
-    // keys of its split vertex: the world height quantised over the grid's
+    // keys of its split vertex, stored per pair of siblings (nodes 2p, 2p + 1:
+    // heights, errors, radii, each left then right, 12 bytes) so that both
+    // children of a triangle are tested at once: the world height quantised over the grid's
     // height range (keyYBase_ + key * keyYStep_, within keyYError_ of the
     // exact one), and the top 16 bits of its error and of its radius (each
     // between the float of its key and that of the next key). They decide all
