@@ -74,9 +74,9 @@ vec4 tileSample(int zone, vec2 uv, vec4 grad) {
 // takes the tile along the normal on cliffs too.
 void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp, vec3 world, mat2x3 worldGrad,
                Ground g, out vec4 a, out vec4 b) {
+#ifdef SIERRA_ZONE_TRIPLANAR
     a = vec4(0.0);
     b = vec4(0.0);
-#ifdef SIERRA_ZONE_TRIPLANAR
     bool sides = g.slope >= 0.05;
     int projections = sides ? 3 : 1;
     vec3 wp = vec3(0.0, 1.0, 0.0);  // projection weights: x side (zy), top (xz), z side (xy)
@@ -86,9 +86,6 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp
     }
     // World in zone-map pixels (heights too), before the tile's size.
     float worldScale = (uZoneMap.x - 1.0) / max(uSpacingValid.z, 1e-6);
-#else
-    const int projections = 1;
-#endif
     int jobs = zones * projections;
     // Job j = zi * projections + projection, counted up without integer
     // division (which llvmpipe runs lane by lane).
@@ -98,9 +95,7 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp
         float scale = uZoneTile[zone].x;  // tile repetitions per zone-map pixel
         vec2 uv = mapXY;
         vec4 grad = mapGrad;
-        float weight = 1.0;
-#ifdef SIERRA_ZONE_TRIPLANAR
-        weight = wp.y;
+        float weight = wp.y;
         if (projection > 0) {
             vec3 p = world * worldScale;
             mat2x3 pg = worldGrad * worldScale;
@@ -108,7 +103,6 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp
             grad = projection == 1 ? vec4(pg[0].zy, pg[1].zy) : vec4(pg[0].xy, pg[1].xy);
             weight = projection == 1 ? wp.x : wp.z;
         }
-#endif
         vec4 c = tileSample(zone, uv * scale + warp, grad * scale) * weight;
         if (zi == 0) a += c;
         else b += c;
@@ -117,6 +111,16 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp
             ++zi;
         }
     }
+#else
+    // Planar: one job a zone. b takes every sample and a the first, so away
+    // from bands both hold the one zone's tile (and b's weight is 0 there).
+    for (int zi = 0; zi < zones; ++zi) {
+        int zone = zi == 0 ? low : high;
+        float scale = uZoneTile[zone].x;  // tile repetitions per zone-map pixel
+        b = tileSample(zone, mapXY * scale + warp, mapGrad * scale);
+        if (zi == 0) a = b;
+    }
+#endif
 }
 
 // The zone field around zone-map position m, from one textureGather of the
@@ -141,8 +145,9 @@ void zoneField(vec2 m, out int zone, out uvec2 pair, out float distance) {
     uvec4 t = textureGather(uZoneField, (i0 + 1.0) * uZoneFieldStep.xy);  // (0,1), (1,1), (1,0), (0,0)
     uvec4 lo = t & 255u, hi = (t >> 8u) & 255u;
     bvec4 negative = notEqual(t & 0x80000000u, uvec4(0u));
-    vec4 d = vec4(unpackHalf2x16(t.x >> 16u).x, unpackHalf2x16(t.y >> 16u).x, unpackHalf2x16(t.z >> 16u).x,
-                  unpackHalf2x16(t.w >> 16u).x);
+    // The four halves, two to a conversion.
+    vec4 d = vec4(unpackHalf2x16((t.x >> 16u) | (t.y & 0xffff0000u)),
+                  unpackHalf2x16((t.z >> 16u) | (t.w & 0xffff0000u)));
     uvec4 zk = mix(hi, lo, negative);
     // The nearest texel: (0, 0) + (f >= 0.5).
     bool right = f.x >= 0.5, down = f.y >= 0.5;
