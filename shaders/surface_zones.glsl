@@ -1,15 +1,29 @@
 // Surface function: zone tiles with blended transition bands (engine:
 // render/ZoneSurface.h). Zone-map coordinates: x right, y down (= world +z),
 // the map's pixel centres on the terrain's real samples.
-layout(binding = 3) uniform sampler2DArray uTiles;    // layer = zone id; rgb albedo, a height
-layout(binding = 4) uniform usampler2D uZoneId;       // the zone owning each field texel
-layout(binding = 5) uniform usampler2D uZonePair;     // the zone pair of the nearest borderline
-layout(binding = 6) uniform sampler2D uZoneDistance;  // signed texels to it: < 0 on the pair's first zone's side
+// The surface's options are compiled in (ZoneSurface's defines), not read from
+// uniforms: llvmpipe (Mesa 22.3) runs every branch of a shader with the lanes
+// that skip it masked off, so an option that is off still cost its
+// instructions in every fragment when it was tested at run time.
+//   SIERRA_ZONE_TRIPLANAR     tiles projected along the normal's axes on steep slopes
+//   SIERRA_ZONE_VARIATION     the tile warp against visible repetition
+//   SIERRA_ZONE_HEIGHT_BLEND  the tiles' heights move the transition in a band
+//   SIERRA_ZONE_DEBUG         0 none (default), 1 zone colours, 2 band weights
+#ifndef SIERRA_ZONE_DEBUG
+#define SIERRA_ZONE_DEBUG 0
+#endif
+layout(binding = 3) uniform sampler2DArray uTiles;  // layer = zone id; rgb albedo, a height
+// The zone field, one 32-bit texel each (ZoneSurface packs it): bits 0-7 the
+// first (lower) zone of the nearest borderline's pair, 8-15 the second, 16-31
+// the signed distance to that borderline in texels as a half float, < 0 on the
+// first zone's side. The texel's own zone follows: the pair's first zone where
+// the sign bit is set, else its second (the two are equal away from borderlines).
+layout(binding = 4) uniform usampler2D uZoneField;
 
 layout(std140, binding = 2) uniform Zones {
     vec4 uZoneMap;    // xy: zone-map size in pixels; z: field texels per pixel; w: band width in pixels
-    vec4 uZoneFlags;  // x: height blend; y: triplanar; z: variation; w: debug view (0 none, 1 zones, 2 bands)
-    vec4 uZoneTile[256];    // x: zone-map pixels per tile repetition; y: height blend 0..1
+    vec4 uZoneFieldStep;  // xy: 1 / the field's size in texels
+    vec4 uZoneTile[256];    // x: 1 / (zone-map pixels per tile repetition); y: height blend 0..1
     vec4 uZoneColour[256];  // rgb: the zone's palette colour
 };
 
@@ -17,61 +31,54 @@ vec2 zoneMapPosition(vec3 world) {
     return world.xz / uSpacingValid.zw * (uZoneMap.xy - 1.0) + 0.5;
 }
 
-// A cheap smooth value in [0, 1] that varies over a few tile repetitions.
-float tileVariation(vec2 p) {
-    return 0.5 + 0.25 * (sin(p.x * 0.37 + 1.3 * sin(p.y * 0.23)) + sin(p.y * 0.31 + 1.7 * sin(p.x * 0.19)));
+// Against visible repetition, from the one sample a zone already takes: a slow
+// warp of the tile coordinates by up to kWarp tile repetitions, two nested
+// waves of the zone-map position with periods of about 170-420 pixels, so
+// repeated features no longer line up on a lattice. The warp's slope is at
+// most about 0.05 per zone-map pixel; times kWarp and the largest tile size
+// (32 pixels in the default palette) each entry of the mapping's Jacobian
+// moves by at most about 0.4, so the warped tile never folds.
+const float kWarp = 0.25;  // tile repetitions
+// A sine-like wave of period 2 pi, amplitude 1, continuous in value and slope
+// (two parabolas a period): llvmpipe's sin is a long polynomial with range
+// reduction, and the warp needs no more than a smooth wiggle.
+vec2 wave(vec2 x) {
+    vec2 t = 2.0 * fract(x * (0.5 / 3.14159265)) - 1.0;  // -1..1 over a period
+    return -4.0 * t * (1.0 - abs(t));
+}
+vec2 tileWarp(vec2 m) {
+    vec2 inner = wave(vec2(m.x * 0.015, m.y * 0.019));
+    return wave(vec2(m.y * 0.037 + 1.7 * inner.x, m.x * 0.031 + 1.3 * inner.y));
 }
 
-// One filtered tile sample; `grad` holds d(uv)/dx and d(uv)/dy (taken where
-// control flow is uniform, see surfaceAlbedo).
+// One filtered tile sample; grad: d(uv)/dx in xy, d(uv)/dy in zw, taken where
+// control flow is uniform (surfaceAlbedo). On llvmpipe (Mesa 22.3) the array
+// has no anisotropy and the nearest mip level (ZoneSurface): with anisotropy 8
+// a 1080p frame took minutes, and the one bilinear lookup of the nearest level
+// costs fewer instructions than the shader's own four-texel filter did
+// (docs/zones.md, "Frame cost").
 vec4 tileSample(int zone, vec2 uv, vec4 grad) {
-#ifdef SIERRA_MANUAL_TILE_FILTER
-    // llvmpipe (Mesa 22.3): with anisotropic filtering on, texture() and
-    // textureGrad on the array took minutes a frame; without it they cost
-    // about as much as this (ZoneSurface turns anisotropy off there), and this
-    // filter is what the goldens were made with. The mip level comes from the
-    // gradients and four texelFetch calls are blended bilinearly.
-    vec2 size0 = vec2(textureSize(uTiles, 0).xy);
-    vec2 dx = grad.xy * size0, dy = grad.zw * size0;
-    float lod = max(0.5 * log2(max(dot(dx, dx), dot(dy, dy))), 0.0);
-    int level = min(int(lod + 0.5), textureQueryLevels(uTiles) - 1);
-    ivec2 size = max(ivec2(size0) >> level, ivec2(1));
-    vec2 p = uv * vec2(size) - 0.5;
-    vec2 f = fract(p);
-    ivec2 i0 = ivec2(floor(p));
-    // Tiles are square powers of two (ZoneSurface checks): wrap by a mask, as
-    // llvmpipe runs an integer % lane by lane.
-    ivec2 a = i0 & (size - 1);
-    ivec2 b = (i0 + 1) & (size - 1);
-    vec4 c00 = texelFetch(uTiles, ivec3(a.x, a.y, zone), level);
-    vec4 c10 = texelFetch(uTiles, ivec3(b.x, a.y, zone), level);
-    vec4 c01 = texelFetch(uTiles, ivec3(a.x, b.y, zone), level);
-    vec4 c11 = texelFetch(uTiles, ivec3(b.x, b.y, zone), level);
-    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
-#else
     return textureGrad(uTiles, vec3(uv, float(zone)), grad.xy, grad.zw);
-#endif
 }
 
 // The tiles of a fragment as one loop over sample jobs: zones (1, or 2 in a
-// band) x projections (1, or 3 with triplanar on a steep slope) x samples (1,
-// or 2 with the variation), each job one tileSample whose weighted colour adds
-// to its zone's sum. Why one loop: llvmpipe (Mesa 22.3) runs every branch of a
-// shader with the lanes that skip it masked off, so written with ifs every
-// fragment paid for all 18 tile samples of the three call sites and the zone frame
-// cost about 10x the hypsometric one at 1920x1080; a loop runs only as many
-// times as the block's busiest pixel needs (2 away from bands with the
-// variation, 4 in a band).
+// band) x projections (1, or 3 with triplanar on a steep slope), each job one
+// tileSample whose weighted colour adds to its zone's sum. Why one loop:
+// llvmpipe (Mesa 22.3) runs every branch of a shader with the lanes that skip
+// it masked off, so written with ifs every fragment paid for every tile sample
+// of every call site; a loop runs only as many times as the block's busiest
+// pixel needs (1 away from bands, 2 in a band, x3 on cliffs with triplanar).
 // mapGrad: the zone-map position's screen derivatives; worldGrad: the world
-// position's (x and y derivatives of the xyz). Planar mapping is the seed
-// document's; triplanar takes the tile along the normal on cliffs too.
-void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec3 world, mat2x3 worldGrad, Ground g,
-               out vec4 a, out vec4 b) {
+// position's (x and y derivatives of the xyz); warp: tileWarp at the fragment
+// in tile repetitions, or 0. Planar mapping is the seed document's; triplanar
+// takes the tile along the normal on cliffs too.
+void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp, vec3 world, mat2x3 worldGrad,
+               Ground g, out vec4 a, out vec4 b) {
+#ifdef SIERRA_ZONE_TRIPLANAR
     a = vec4(0.0);
     b = vec4(0.0);
-    bool sides = uZoneFlags.y > 0.5 && g.slope >= 0.05;
+    bool sides = g.slope >= 0.05;
     int projections = sides ? 3 : 1;
-    int variations = uZoneFlags.z > 0.5 ? 2 : 1;
     vec3 wp = vec3(0.0, 1.0, 0.0);  // projection weights: x side (zy), top (xz), z side (xy)
     if (sides) {
         wp = pow(abs(g.normal), vec3(4.0));
@@ -79,13 +86,13 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec3 worl
     }
     // World in zone-map pixels (heights too), before the tile's size.
     float worldScale = (uZoneMap.x - 1.0) / max(uSpacingValid.z, 1e-6);
-    int jobs = zones * projections * variations;
-    // Job j = (zi * projections + projection) * variations + v, counted up
-    // without integer division (which llvmpipe runs lane by lane).
-    int v = 0, projection = 0, zi = 0;
+    int jobs = zones * projections;
+    // Job j = zi * projections + projection, counted up without integer
+    // division (which llvmpipe runs lane by lane).
+    int projection = 0, zi = 0;
     for (int j = 0; j < jobs; ++j) {
         int zone = zi == 0 ? low : high;
-        float inverseSize = 1.0 / max(uZoneTile[zone].x, 1e-3);
+        float scale = uZoneTile[zone].x;  // tile repetitions per zone-map pixel
         vec2 uv = mapXY;
         vec4 grad = mapGrad;
         float weight = wp.y;
@@ -96,65 +103,62 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec3 worl
             grad = projection == 1 ? vec4(pg[0].zy, pg[1].zy) : vec4(pg[0].xy, pg[1].xy);
             weight = projection == 1 ? wp.x : wp.z;
         }
-        uv *= inverseSize;
-        grad *= inverseSize;
-        float variation = variations > 1 ? 0.45 * tileVariation(uv) : 0.0;
-        if (v == 1) {
-            // A second sample, rotated and at another scale, mixed in by a slow
-            // variation: the eye no longer finds the repeat.
-            const mat2 turn = mat2(0.8, 0.6, -0.6, 0.8);
-            uv = turn * uv * 0.61 + 0.37;
-            grad = vec4(turn * grad.xy, turn * grad.zw) * 0.61;
-            weight *= variation;
-        } else {
-            weight *= 1.0 - variation;
-        }
-        vec4 c = tileSample(zone, uv, grad) * weight;
+        vec4 c = tileSample(zone, uv * scale + warp, grad * scale) * weight;
         if (zi == 0) a += c;
         else b += c;
-        if (++v == variations) {
-            v = 0;
-            if (++projection == projections) {
-                projection = 0;
-                ++zi;
-            }
+        if (++projection == projections) {
+            projection = 0;
+            ++zi;
         }
     }
+#else
+    // Planar: one job a zone. b takes every sample and a the first, so away
+    // from bands both hold the one zone's tile (and b's weight is 0 there).
+    for (int zi = 0; zi < zones; ++zi) {
+        int zone = zi == 0 ? low : high;
+        float scale = uZoneTile[zone].x;  // tile repetitions per zone-map pixel
+        b = tileSample(zone, mapXY * scale + warp, mapGrad * scale);
+        if (zi == 0) a = b;
+    }
+#endif
 }
 
-// Signed distance (zone-map pixels) to the borderline of `pair`, bilinear over
-// the four field texels around m, for a fragment of `zone` that the filtered
-// field puts inside a band. Each texel holds the distance to its own nearest
-// borderline, signed by that line's pair; where two texels' nearest lines are
-// of different pairs (a ridge between two borderlines) the hardware-filtered
-// value can pass through 0 far from any border when the zone lies on the
-// negative side of one pair and the positive side of the other: a line of
-// band-blended pixels appeared along such ridges (dotted at the frame's
-// resolution). A texel of another pair is taken at its own distance (a lower
-// bound of its distance to this pair's line) with the sign of its zone's side
-// of this pair, or of this fragment's side when its zone is in neither.
-// `texels`: 4 in a band, 0 elsewhere (the result is then unused). A loop and
-// not an if, so a block with no band pixel pays one masked iteration instead
-// of all four (see zoneTiles).
-float pairDistance(vec2 m, uvec2 pair, uint zone, int texels) {
+// The zone field around zone-map position m, from one textureGather of the
+// four texels around it (no branch, no loop): the zone of the nearest texel,
+// the pair of its nearest borderline, and the signed distance to that line in
+// zone-map pixels, bilinear over the four texels. Each texel holds the
+// distance to its own nearest borderline, signed by that line's pair; where
+// two texels' nearest lines are of different pairs (a ridge between two
+// borderlines) the plain bilinear value can pass through 0 far from any
+// border when the zone lies on the negative side of one pair and the positive
+// side of the other: a line of band-blended pixels appeared along such ridges
+// (dotted at the frame's resolution). So a texel of another pair is taken at
+// its own distance (a lower bound of its distance to this pair's line) with the
+// sign of its zone's side of this pair, or of this fragment's side when its
+// zone is in neither.
+void zoneField(vec2 m, out int zone, out uvec2 pair, out float distance) {
     vec2 p = m * uZoneMap.z - 0.5;
-    ivec2 i0 = ivec2(floor(p));
-    vec2 f = p - vec2(i0);
-    ivec2 last = textureSize(uZoneDistance, 0) - 1;
-    float ownSign = zone == pair.x ? -1.0 : 1.0;
-    vec4 d = vec4(0.0);
-    for (int k = 0; k < texels; ++k) {
-        ivec2 t = clamp(i0 + ivec2(k & 1, k >> 1), ivec2(0), last);
-        float dk = texelFetch(uZoneDistance, t, 0).r;
-        uvec2 pk = texelFetch(uZonePair, t, 0).rg;
-        if (pk != pair) {
-            // The texel's zone from its own pair and sign (no third fetch).
-            uint zk = dk < 0.0 ? pk.x : pk.y;
-            dk = abs(dk) * (zk == pair.x ? -1.0 : zk == pair.y ? 1.0 : ownSign);
-        }
-        d[k] = dk;
-    }
-    return mix(mix(d.x, d.y, f.x), mix(d.z, d.w, f.x), f.y) / uZoneMap.z;
+    vec2 i0 = floor(p);
+    vec2 f = p - i0;
+    // The footprint's centre, so the gather's texels are exactly i0 .. i0 + 1
+    // (clamped at the field's edges, as the texture clamps).
+    uvec4 t = textureGather(uZoneField, (i0 + 1.0) * uZoneFieldStep.xy);  // (0,1), (1,1), (1,0), (0,0)
+    uvec4 lo = t & 255u, hi = (t >> 8u) & 255u;
+    bvec4 negative = notEqual(t & 0x80000000u, uvec4(0u));
+    // The four halves, two to a conversion.
+    vec4 d = vec4(unpackHalf2x16((t.x >> 16u) | (t.y & 0xffff0000u)),
+                  unpackHalf2x16((t.z >> 16u) | (t.w & 0xffff0000u)));
+    uvec4 zk = mix(hi, lo, negative);
+    // The nearest texel: (0, 0) + (f >= 0.5).
+    bool right = f.x >= 0.5, down = f.y >= 0.5;
+    int k = down ? (right ? 1 : 0) : (right ? 2 : 3);
+    pair = uvec2(lo[k], hi[k]);
+    zone = int(zk[k]);
+    float ownSign = negative[k] ? -1.0 : 1.0;
+    bvec4 samePair = bvec4(uvec4(equal(lo, uvec4(pair.x))) & uvec4(equal(hi, uvec4(pair.y))));
+    vec4 side = mix(mix(vec4(ownSign), vec4(1.0), equal(zk, uvec4(pair.y))), vec4(-1.0), equal(zk, uvec4(pair.x)));
+    d = mix(abs(d) * side, d, samePair);
+    distance = mix(mix(d.w, d.z, f.x), mix(d.x, d.y, f.x), f.y) / uZoneMap.z;
 }
 
 vec3 surfaceAlbedo(vec3 world, Ground g) {
@@ -162,28 +166,29 @@ vec3 surfaceAlbedo(vec3 world, Ground g) {
     // Derivatives here, where control flow is still uniform.
     vec4 mGrad = vec4(dFdx(m), dFdy(m));
     mat2x3 wGrad = mat2x3(dFdx(world), dFdy(world));
-    ivec2 size = ivec2(uZoneMap.xy * uZoneMap.z);
-    ivec2 texel = clamp(ivec2(floor(m * uZoneMap.z)), ivec2(0), size - 1);
-    int zone = int(texelFetch(uZoneId, texel, 0).r);
-    uvec2 pair = texelFetch(uZonePair, texel, 0).rg;
+    int zone;
+    uvec2 pair;
+    float d;
+    zoneField(m, zone, pair, d);
     float halfBand = 0.5 * uZoneMap.w;
-    float d = texture(uZoneDistance, m / uZoneMap.xy).r / uZoneMap.z;  // zone-map pixels
     bool inBand = halfBand > 0.0 && pair.x != pair.y && abs(d) < halfBand;
-    // Only where the filtered field says "band" (a few per cent of the
-    // pixels): the exact value, free of the ridge artefact (pairDistance).
-    float exact = pairDistance(m, pair, uint(zone), inBand ? 4 : 0);
-    if (inBand) {
-        d = exact;
-        inBand = abs(d) < halfBand;
-    }
     float weight = inBand ? smoothstep(-halfBand, halfBand, d) : 0.0;  // of the pair's second zone
-
-    // One tile set away from borders, two in a band, none in the debug views.
-    int tiles = uZoneFlags.w > 0.5 ? 0 : inBand ? 2 : 1;
+#if SIERRA_ZONE_DEBUG == 1  // zones: flat palette colours
+    return uZoneColour[zone].rgb;
+#elif SIERRA_ZONE_DEBUG == 2  // bands: the blend weight, black outside every band
+    return inBand ? mix(vec3(0.9, 0.2, 0.1), vec3(0.1, 0.8, 0.2), weight) : vec3(0.05);
+#else
+    // One tile set away from borders, two in a band.
     int low = inBand ? int(pair.x) : zone, high = int(pair.y);
+#ifdef SIERRA_ZONE_VARIATION
+    vec2 warp = kWarp * tileWarp(m);
+#else
+    vec2 warp = vec2(0.0);
+#endif
     vec4 a, b;
-    zoneTiles(tiles, low, high, m, mGrad, world, wGrad, g, a, b);
-    if (tiles == 2 && uZoneFlags.x > 0.5) {
+    zoneTiles(inBand ? 2 : 1, low, high, m, mGrad, warp, world, wGrad, g, a, b);
+#ifdef SIERRA_ZONE_HEIGHT_BLEND
+    if (inBand) {
         // Height blending: where one tile stands higher (stones in sand) it
         // shows through earlier; the shift vanishes at the band's edges.
         float strength = 0.5 * (uZoneTile[low].y + uZoneTile[high].y);
@@ -191,10 +196,7 @@ vec3 surfaceAlbedo(vec3 world, Ground g) {
         weight = clamp(weight + shift, 0.0, 1.0);
         weight = smoothstep(0.15, 0.85, weight);
     }
-
-    if (uZoneFlags.w > 1.5) {  // bands: the blend weight, black outside every band
-        return inBand ? mix(vec3(0.9, 0.2, 0.1), vec3(0.1, 0.8, 0.2), weight) : vec3(0.05);
-    }
-    if (uZoneFlags.w > 0.5) return uZoneColour[zone].rgb;  // zones: flat palette colours
+#endif
     return mix(a.rgb, b.rgb, weight);
+#endif
 }

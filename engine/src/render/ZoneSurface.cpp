@@ -9,6 +9,7 @@
 #include <sierra/zones/Palette.h>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <array>
@@ -28,8 +29,8 @@ constexpr GLenum kMaxAnisotropyLimit = 0x84FF;
 // Field for field the layout of `uniform Zones` in shaders/surface_zones.glsl.
 struct ZoneUniformData {
     glm::vec4 map{0.0f};    // xy: zone-map size in pixels; z: field texels per pixel; w: band width in pixels
-    glm::vec4 flags{0.0f};  // x: height blend; y: triplanar; z: variation; w: debug view (0, 1 zones, 2 bands)
-    std::array<glm::vec4, kMaxZones> tile{};    // x: zone-map pixels per tile repetition; y: height blend 0..1
+    glm::vec4 field{0.0f};  // xy: 1 / the field's size in texels
+    std::array<glm::vec4, kMaxZones> tile{};    // x: 1 / zone-map pixels per tile repetition; y: height blend 0..1
     std::array<glm::vec4, kMaxZones> colour{};  // rgb: the zone's colour in the palette
 };
 
@@ -60,18 +61,24 @@ class ZoneSurface final : public Surface {
 public:
     std::string shaderFile() const override { return "surface_zones.glsl"; }
     std::string defines() const override {
-        return manualFilter_ ? "#define SIERRA_MANUAL_TILE_FILTER 1\n" : std::string();
+        // The options are compiled in (see surface_zones.glsl): on llvmpipe
+        // an option tested at run time costs its instructions even when off.
+        std::string d;
+        if (triplanar_) d += "#define SIERRA_ZONE_TRIPLANAR 1\n";
+        if (variation_) d += "#define SIERRA_ZONE_VARIATION 1\n";
+        if (heightBlend_) d += "#define SIERRA_ZONE_HEIGHT_BLEND 1\n";
+        d += "#define SIERRA_ZONE_DEBUG " + std::to_string(int(debugView_)) + "\n";
+        return d;
     }
     void bind() const override {
         glBindTextureUnit(3, tiles_.id());
-        glBindTextureUnit(4, zoneId_.id());
-        glBindTextureUnit(5, zonePair_.id());
-        glBindTextureUnit(6, distance_.id());
+        glBindTextureUnit(4, field_.id());
         glBindBufferBase(GL_UNIFORM_BUFFER, kZoneUniformBinding, uniforms_.id());
     }
 
-    gpu::Texture tiles_, zoneId_, zonePair_, distance_;
-    bool manualFilter_ = false;  // llvmpipe: tiles filtered in the shader (see surface_zones.glsl)
+    gpu::Texture tiles_, field_;
+    bool triplanar_ = false, variation_ = false, heightBlend_ = false;
+    ZoneDebugView debugView_ = ZoneDebugView::None;
     gpu::Buffer uniforms_;
 };
 
@@ -97,23 +104,24 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
     zones::BorderField f = zones::buildBorderField(lines, {.texelsPerPixel = texelsPerPixel});
 
     auto surface = std::make_unique<ZoneSurface>();
-    surface->zoneId_ = gpu::Texture::create({.format = GL_R8UI, .width = f.width, .height = f.height,
-                                             .filter = GL_NEAREST});
-    surface->zoneId_.upload(GL_RED_INTEGER, GL_UNSIGNED_BYTE, f.zone.data());
-    std::vector<uint8_t> pairs(f.zone.size() * 2);
+    // One 32-bit texel per field texel, so the shader reads the four around a
+    // fragment with one textureGather: the pair's zones in the low bytes, the
+    // signed distance (texels) as a half float in the high half. The texel's
+    // zone is the pair's first where the distance is negative (its sign bit,
+    // so -0 counts), else the second: buildBorderField signs it so.
+    std::vector<uint32_t> packed(f.zone.size());
     for (size_t k = 0; k < f.zone.size(); ++k) {
-        pairs[2 * k] = f.lowZone[k];
-        pairs[2 * k + 1] = f.highZone[k];
+        // Where the map has no borderline the field holds 1e9: the largest half.
+        const float d = std::clamp(f.signedDistance[k], -65504.0f, 65504.0f);
+        packed[k] = uint32_t(f.lowZone[k]) | uint32_t(f.highZone[k]) << 8 | uint32_t(glm::packHalf1x16(d)) << 16;
+        const bool negative = (packed[k] & 0x80000000u) != 0;
+        SIERRA_CHECK(f.zone[k] == (negative ? f.lowZone[k] : f.highZone[k]), "zone field texel ", k, ": zone ",
+                     int(f.zone[k]), " is not the side of its pair (", int(f.lowZone[k]), ", ", int(f.highZone[k]),
+                     ") at distance ", f.signedDistance[k]);
     }
-    surface->zonePair_ = gpu::Texture::create({.format = GL_RG8UI, .width = f.width, .height = f.height,
-                                               .filter = GL_NEAREST});
-    surface->zonePair_.upload(GL_RG_INTEGER, GL_UNSIGNED_BYTE, pairs.data());
-    // Where the map has no borderline the field holds 1e9: clamp so linear
-    // filtering stays finite.
-    std::vector<float> distance(f.signedDistance);
-    for (float& d : distance) d = std::clamp(d, -1e6f, 1e6f);
-    surface->distance_ = gpu::Texture::create({.format = GL_R32F, .width = f.width, .height = f.height});
-    surface->distance_.upload(GL_RED, GL_FLOAT, distance.data());
+    surface->field_ = gpu::Texture::create({.format = GL_R32UI, .width = f.width, .height = f.height,
+                                            .filter = GL_NEAREST});
+    surface->field_.upload(GL_RED_INTEGER, GL_UNSIGNED_INT, packed.data());
 
     // Tiles: one layer per surface type, all of one square size.
     int tileSize = 0;
@@ -125,9 +133,6 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
                      image.height, "; every tile of ", desc.palette, " must be ", tileSize, "x", tileSize);
         images.push_back(std::move(image));
     }
-    // The shader's own tile filter (llvmpipe) wraps texel indices by a mask.
-    SIERRA_CHECK(tileSize > 0 && (tileSize & (tileSize - 1)) == 0, "tiles of ", desc.palette, " are ", tileSize, "x",
-                 tileSize, "; tile sides must be a power of two (256 as sierra-gen tiles makes them)");
     int levels = 1;
     while ((tileSize >> levels) > 0) ++levels;
     surface->tiles_ = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY, .format = GL_RGBA8, .width = tileSize,
@@ -137,12 +142,13 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
         surface->tiles_.uploadLayer(int(k), GL_RGBA, GL_UNSIGNED_BYTE, images[k].rgba.data());
     if (levels > 1) surface->tiles_.generateMipmaps();
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    surface->manualFilter_ = renderer && std::strstr(renderer, "llvmpipe") != nullptr;
-    // No anisotropy on llvmpipe (Mesa 22.3): its software anisotropic filter
-    // makes one 1080p frame that samples the array with texture() or
-    // textureGrad take minutes; at anisotropy 1 the hardware path costs about
-    // what the shader's own filter does (docs/zones.md, "Frame cost").
-    if (!surface->manualFilter_ &&
+    const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe") != nullptr;
+    // llvmpipe (Mesa 22.3) filters in software: with anisotropy 8 one 1080p
+    // frame took minutes, and bilinear lookups of the nearest mip level cost
+    // fewer instructions than trilinear ones (docs/zones.md, "Frame cost").
+    // Other drivers: trilinear, anisotropy 8 (or the driver's limit).
+    if (llvmpipe && levels > 1) glTextureParameteri(surface->tiles_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    if (!llvmpipe &&
         (hasExtension("GL_EXT_texture_filter_anisotropic") || hasExtension("GL_ARB_texture_filter_anisotropic"))) {
         float limit = 1.0f;
         glGetFloatv(kMaxAnisotropyLimit, &limit);
@@ -151,11 +157,14 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
 
     auto u = std::make_unique<ZoneUniformData>();
     u->map = {float(map.width), float(map.height), float(texelsPerPixel), band};
-    u->flags = {desc.heightBlend ? 1.0f : 0.0f, desc.triplanar ? 1.0f : 0.0f, desc.variation ? 1.0f : 0.0f,
-                float(int(desc.debugView))};
+    u->field = {1.0f / float(f.width), 1.0f / float(f.height), 0.0f, 0.0f};
+    surface->triplanar_ = desc.triplanar;
+    surface->variation_ = desc.variation;
+    surface->heightBlend_ = desc.heightBlend;
+    surface->debugView_ = desc.debugView;
     for (size_t k = 0; k < palette.surfaces.size(); ++k) {
         const zones::SurfaceType& s = palette.surfaces[k];
-        u->tile[k] = {s.tileSize, s.heightBlend, 0.0f, 0.0f};
+        u->tile[k] = {1.0f / std::max(s.tileSize, 1e-3f), s.heightBlend, 0.0f, 0.0f};
         u->colour[k] = {float((s.colour >> 16) & 255) / 255.0f, float((s.colour >> 8) & 255) / 255.0f,
                         float(s.colour & 255) / 255.0f, 1.0f};
     }

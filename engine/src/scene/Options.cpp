@@ -325,7 +325,7 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             "linear|height", d.zones.blend, 1, [](Scene& s, Words w) { s.zones.blend = w[0]; });
         addFlag("--triplanar", "Project tiles along the normal's axes on steep slopes", g,
                 [](Scene& s, Words) { s.zones.triplanar = true; });
-        addFlag("--no-tile-variation", "No second, rotated tile sample against visible repetition", g,
+        addFlag("--no-tile-variation", "No slow warp of the tile coordinates against visible repetition", g,
                 [](Scene& s, Words) { s.zones.variation = false; });
         add("--debug-view", "Flat zone colours (zones) or the band blend weight (bands)", g, "none|zones|bands",
             d.zones.debugView, 1, [](Scene& s, Words w) { s.zones.debugView = w[0]; });

@@ -8,11 +8,14 @@
 // the distance-to-border field built from them (sierra/zones). On the GPU:
 //   unit 3  tiles, a 2D texture array (layer = zone id) with mipmaps and, where
 //           the driver has it, anisotropic filtering; RGB albedo, A height
-//   unit 4  zone id per field texel (R8UI, nearest)
-//   unit 5  the zone pair of the nearest borderline (RG8UI, nearest)
-//   unit 6  signed distance to that borderline in texels (R32F, linear)
-//   block 2 per-zone tile size, height blend and debug colour; map size, band
-//           width, flags
+//   unit 4  the zone field (R32UI, nearest, read by textureGather): per texel
+//           the zone pair of the nearest borderline (bits 0-7, 8-15) and the
+//           signed distance to it in texels (a half float, bits 16-31); the
+//           texel's zone is the pair's first where the sign is negative
+//   block 2 per-zone tile scale, mip level offset, height blend and debug
+//           colour; map, field and tile sizes, band width
+// The options (triplanar, variation, height blend, debug view) are compiled
+// into the shader.
 // A fragment away from every band samples one zone's tiles; in a band of width
 // W it blends the pair's tiles by smoothstep(-W/2, W/2, distance), moved by
 // the tiles' heights when height blending is on.
@@ -35,7 +38,7 @@ struct ZoneSurfaceDesc {
     float epsilon = 0.5f;      // borderline simplification, zone-map pixels
     bool heightBlend = true;   // tile heights move the transition inside a band
     bool triplanar = false;    // tiles projected along the normal's axes on steep slopes
-    bool variation = true;     // a second, rotated sample against visible repetition
+    bool variation = true;     // a slow warp of the tile coordinates against visible repetition
     ZoneDebugView debugView = ZoneDebugView::None;
     zones::AutoZoneDesc autoZones;  // thresholds for map "auto" (seaLevel in stored units)
 };

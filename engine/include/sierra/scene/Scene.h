@@ -163,7 +163,7 @@ struct ZonesDesc {
     float epsilon = 0.5f; // borderline simplification, zone-map pixels, >= 0
     std::string blend = "height";  // linear (by distance) or height (tile heights move the transition)
     bool triplanar = false;        // project tiles along the normal's axes on steep slopes
-    bool variation = true;         // blend a second, rotated sample against visible tile repetition
+    bool variation = true;         // warp the tile coordinates slowly against visible tile repetition
     std::string debugView = "none";  // none, zones (flat zone colours) or bands (the blend weight)
     // Auto-zoning thresholds (fractions of the depth and land relief; slope in degrees).
     float deepWater = 0.35f;
