@@ -26,11 +26,12 @@ set(known_modules core terrain sbt analysis zones tin scene gpu render)
 # Only the EGL context's own file sees EGL (relative to ENGINE_DIR).
 set(EGL_FILES src/gpu/EglContext.cpp)
 
-# C and POSIX headers counted as the standard library.
+# C and POSIX headers, and the compiler's SIMD intrinsics, counted as the
+# standard library.
 set(system_headers
   assert.h ctype.h errno.h fcntl.h float.h inttypes.h limits.h math.h poll.h pthread.h
   sched.h signal.h stddef.h stdint.h stdio.h stdlib.h string.h time.h unistd.h dlfcn.h
-  dirent.h omp.h)
+  dirent.h omp.h xmmintrin.h emmintrin.h)
 
 # The dependency a header belongs to: a module name, a library name, "std", or
 # "unknown".
