@@ -95,6 +95,19 @@ TEST_F(CurvatureGpuTest, NonSquareGridMatchesCpu) {
     checkAllMethods(f, "non-square waves");
 }
 
+// Fields without no-data are computed in runs of samples that cross row ends,
+// reading texels whose alignment depends on the width modulo 4: every residue,
+// with the border rows and columns each run touches.
+TEST_F(CurvatureGpuTest, RunsMatchCpuForEveryWidthModulo4) {
+    for (int width : {8, 10, 11, 12}) {
+        terrain::Heightfield f(width, 7);
+        for (int j = 0; j < f.height(); ++j)
+            for (int i = 0; i < f.width(); ++i)
+                f.at(i, j) = std::sin(0.7f * float(i) + 0.2f * float(j)) * std::cos(0.5f * float(j)) * 2.0f;
+        checkAllMethods(f, "waves " + std::to_string(width) + "x7");
+    }
+}
+
 TEST_F(CurvatureGpuTest, AnalyticSurfacesMatchCpu) {
     terrain::Heightfield quadric(33, 33), cylinder(33, 33), bump(33, 33), plane(33, 33);
     for (int j = 0; j < 33; ++j) {
