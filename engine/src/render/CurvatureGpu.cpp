@@ -38,7 +38,7 @@ std::string groupDefines(int x, int y) { return define("CURVATURE_GROUP_X", x) +
 
 int roundUp(int v, int m) { return (v + m - 1) / m * m; }
 
-// Floor division and remainder (d > 0).
+// v / d rounded down (d > 0).
 int floorDiv(int v, int d) { return v >= 0 ? v / d : -((-v + d - 1) / d); }
 
 }  // namespace
@@ -81,24 +81,26 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
     c.height_ = field.height();
     c.spacingX_ = field.spacingX();
     c.spacingZ_ = field.spacingZ();
-    GLint maxTexels = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-    SIERRA_CHECK(field.sampleCount() <= int64_t(maxTexels), "GPU curvature: a ", c.width_, "x", c.height_,
-                 " grid has more samples than the driver's buffer textures hold (", maxTexels, ")");
-
     // Leads and tails of a row and more, so that every window of a run
-    // (rows -1 ... +1) lies inside the buffers. The heights' lead aligns the
-    // runs' windows on vec4 texels as far as the width allows (at most one
-    // texel more than needed per row); the gradients' lead keeps their
-    // RG32F view (the hatch strokes') at an offset the driver accepts.
+    // (rows -1 ... +1) lies inside the buffers. The heights' lead puts the
+    // start of a run's middle window row (sample r * kRun - 1) at float 1 of
+    // a texel for odd widths, 0 for even ones: then the 10 floats of each of
+    // the 3 rows start at float 0, 1 or 2 of a texel and take 3 texels (a
+    // start at float 3 would take 4). The gradients' lead keeps their RG32F
+    // view (the hatch strokes') at an offset the driver accepts.
     const int w = c.width_;
     c.heightsLead_ = w + 4;
-    while ((c.heightsLead_ - 1 - w) % 4 != (w % 2 == 1 ? 1 : 0)) ++c.heightsLead_;
+    while ((c.heightsLead_ - 1) % 4 != w % 2) ++c.heightsLead_;
     GLint align = 16;
     glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &align);
     c.gradientLead_ = roundUp(w + 4, std::max(4, int(align) / 8));
     const size_t samples = size_t(field.sampleCount());
     const size_t padded = size_t(roundUp(int(samples), kRun)) + size_t(w) + 2 * kRun;
+    GLint maxTexels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    SIERRA_CHECK(int64_t(c.heightsLead_) + int64_t(padded) <= int64_t(maxTexels), "GPU curvature: a ", c.width_,
+                 "x", c.height_, " grid has more samples than the driver's buffer textures hold (", maxTexels,
+                 ")");
 
     std::vector<float> heights(size_t(c.heightsLead_) + padded, 0.0f);
     const float scale = field.verticalScale();
