@@ -1,4 +1,7 @@
 #version 450 core
+#ifdef CURVATURE_RUNS
+#extension GL_ARB_gpu_shader_int64 : require  // 64-bit stores: 2 floats per lane and component
+#endif
 // The curvature field on the GPU: the same four-direction field as the CPU
 // reference (engine: analysis/Curvature.h, whose definitions, border rule and
 // order of operations this copies), in two dispatches of this file:
@@ -16,6 +19,16 @@
 // which cost a quarter of an imageStore there; the heights or gradients
 // around a vertex are fetched once (a 3x3 window) and shared by the four
 // directions instead of being fetched per direction (see CURVATURE_NEAR).
+//
+// Fields without no-data take the fast path (CURVATURE_RUNS): each
+// invocation computes a run of CURVATURE_RUN consecutive samples in
+// row-major order with the interior formulas only, reading its heights or
+// gradients as vec4 texels and writing 2 (field) or 4 (gradients) samples per
+// 64-bit vector store; llvmpipe's per-invocation costs (a coroutine per 8
+// invocations, one scalar store per lane and component, a gather per fetch)
+// are then paid once per run instead of once per sample. The samples on the
+// grid's border (clamped stencils, one-sided normals) are then overwritten
+// by a second dispatch of the per-sample code (CURVATURE_BORDER).
 // Workgroup size, set by the engine (CurvatureGpu.cpp); 16x16 by default.
 #ifndef CURVATURE_GROUP_X
 #define CURVATURE_GROUP_X 16
@@ -31,14 +44,66 @@ bool noData(float v) {
     return (b & 0x7f800000u) == 0x7f800000u && (b & 0x007fffffu) != 0u;
 }
 float nanValue() { return uintBitsToFloat(0x7fc00000u); }
-// World heights (stored height * vertical scale), NaN = no data, row-major.
+// World heights (stored height * vertical scale), NaN = no data, row-major
+// after a lead of CURVATURE_LEAD floats (the engine's padding, which aligns
+// the runs' texels).
+#ifndef CURVATURE_LEAD
+#define CURVATURE_LEAD 4
+#endif
+// Gradients before sample 0 in the gradient buffer (a multiple of 4; the
+// engine's padding, see CurvatureGpu.cpp).
+#ifndef CURVATURE_GRADIENT_LEAD
+#define CURVATURE_GRADIENT_LEAD 4
+#endif
 layout(binding = 2) uniform samplerBuffer uHeights;
-float heightAt(ivec2 ij) { return texelFetch(uHeights, ij.y * uSize.x + ij.x).r; }
+float heightAt(ivec2 ij) { return texelFetch(uHeights, CURVATURE_LEAD + ij.y * uSize.x + ij.x).r; }
+
+// The sample of this invocation: its grid position, or with CURVATURE_BORDER
+// (a 1D dispatch over the 2 (width + height) - 4 border samples) the b-th
+// border sample: row 0, row height - 1, then columns 0 and width - 1.
+ivec2 sampleIndex() {
+#ifdef CURVATURE_BORDER
+    int b = int(gl_GlobalInvocationID.x);
+    int w = uSize.x, h = uSize.y;
+    if (b < w) return ivec2(b, 0);
+    if (b < 2 * w) return ivec2(b - w, h - 1);
+    b -= 2 * w;
+    if (b < h - 2) return ivec2(0, 1 + b);
+    if (b < 2 * (h - 2)) return ivec2(w - 1, 1 + b - (h - 2));
+    return uSize;  // past the end: no sample
+#else
+    return ivec2(gl_GlobalInvocationID.xy);
+#endif
+}
+
+#ifdef CURVATURE_RUNS
+// Runs: CURVATURE_RUN samples per invocation (a multiple of 4), run r covers
+// samples r * run ... in row-major order (a run may cross a row end; the
+// border samples it gets wrong are overwritten). Rows -1, 0, +1 of the
+// window: the values at samples r * run - 1 + rho * width ... + run + 1,
+// which the engine locates as texel (base + CURVATURE_T<rho>) component
+// CURVATURE_A<rho> onwards of the vec4 views (compile-time constants).
+#ifndef CURVATURE_RUN
+#define CURVATURE_RUN 8
+#define CURVATURE_T0 0
+#define CURVATURE_A0 0
+#define CURVATURE_T1 0
+#define CURVATURE_A1 0
+#define CURVATURE_T2 0
+#define CURVATURE_A2 0
+#endif
+const int kRun = CURVATURE_RUN;
+const int kWin = CURVATURE_RUN + 2;  // window columns: -1 ... run
+int runIndex() { return int(gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * int(gl_WorkGroupSize.x * gl_WorkGroupSize.y) + int(gl_LocalInvocationIndex); }
+uint64_t pack2(float a, float b) { return packUint2x32(uvec2(floatBitsToUint(a), floatBitsToUint(b))); }
+#endif
 
 #ifdef CURVATURE_GRADIENT
 
 // (dy/dx, dy/dz) per sample, row-major; NaN = no data.
+#ifndef CURVATURE_RUNS
 layout(std430, binding = 1) writeonly buffer GradientOut { vec2 uGradientData[]; };
+#endif
 // The normals are compiled in (CURVATURE_NORMALS 0 edge, 1 triangle, 2 quad,
 // analysis::NormalMethod): a software rasteriser runs every branch of a
 // uniform switch otherwise.
@@ -53,12 +118,67 @@ const ivec2 kRing[8] = ivec2[8](ivec2(1, 0), ivec2(1, 1), ivec2(0, 1), ivec2(-1,
 
 vec3 triangleNormal(vec3 a, vec3 b) { return normalize(cross(b, a)); }
 
+#ifdef CURVATURE_RUNS
+// 4 gradients per 64-bit vector, row-major.
+layout(std430, binding = 1) writeonly buffer GradientRuns { u64vec4 uGradientRuns[]; };
+layout(binding = 3) uniform samplerBuffer uHeights4;  // the heights, 4 per texel
+
+// One window row of heights: kWin values from texel t, component a.
+void heightRow(int t, int a, out float w[kWin]) {
+    for (int q = 0; q < (kWin + 3 + 3) / 4; ++q) {
+        vec4 v = texelFetch(uHeights4, t + q);
+        for (int c = 0; c < 4; ++c) {
+            int k = 4 * q + c - a;
+            if (k >= 0 && k < kWin) w[k] = v[c];
+        }
+    }
+}
+
 void main() {
-    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    int r = runIndex();
+    if (r * kRun >= uSize.x * uSize.y) return;
+    int base = r * kRun / 4;
+    float s[kWin], m[kWin], n[kWin];  // rows -1 (south), 0, +1 (north)
+    heightRow(base + CURVATURE_T0, CURVATURE_A0, s);
+    heightRow(base + CURVATURE_T1, CURVATURE_A1, m);
+    heightRow(base + CURVATURE_T2, CURVATURE_A2, n);
+    const float hx = uSpacing.x, hz = uSpacing.y;
+    vec2 g[kRun];
+    for (int k = 0; k < kRun; ++k) {
+        // The interior sums of the CPU (analysis: Internal.h, interiorNormalSums).
+        float c = m[k + 1];
+        vec3 e = vec3(hx, m[k + 2] - c, 0.0), w = vec3(-hx, m[k] - c, 0.0);
+        vec3 no = vec3(0.0, n[k + 1] - c, hz), so = vec3(0.0, s[k + 1] - c, -hz);
+        vec3 sum;
+        if (uNormals == 0) {
+            sum = vec3(-(e.y - w.y) / (2.0 * hx), 1.0, -(no.y - so.y) / (2.0 * hz));
+        } else if (uNormals == 1) {
+            sum = triangleNormal(e, no) + triangleNormal(no, w) + triangleNormal(w, so) + triangleNormal(so, e);
+        } else {
+            vec3 ne = vec3(hx, n[k + 2] - c, hz), nw = vec3(-hx, n[k] - c, hz);
+            vec3 sw = vec3(-hx, s[k] - c, -hz), se = vec3(hx, s[k + 2] - c, -hz);
+            sum = normalize(triangleNormal(e, ne) + triangleNormal(ne, no)) +
+                  normalize(triangleNormal(no, nw) + triangleNormal(nw, w)) +
+                  normalize(triangleNormal(w, sw) + triangleNormal(sw, so)) +
+                  normalize(triangleNormal(so, se) + triangleNormal(se, e));
+        }
+        float inv = 1.0 / sum.y;
+        g[k] = vec2(-sum.x * inv, -sum.z * inv);
+    }
+    for (int q = 0; q < kRun / 4; ++q) {
+        uGradientRuns[(CURVATURE_GRADIENT_LEAD + r * kRun) / 4 + q] = u64vec4(pack2(g[4 * q].x, g[4 * q].y), pack2(g[4 * q + 1].x, g[4 * q + 1].y),
+                                                    pack2(g[4 * q + 2].x, g[4 * q + 2].y), pack2(g[4 * q + 3].x, g[4 * q + 3].y));
+    }
+}
+
+#else
+
+void main() {
+    ivec2 ij = sampleIndex();
     if (any(greaterThanEqual(ij, uSize))) return;
     float yc = heightAt(ij);
     if (noData(yc)) {
-        uGradientData[ij.y * uSize.x + ij.x] = vec2(nanValue());
+        uGradientData[CURVATURE_GRADIENT_LEAD + ij.y * uSize.x + ij.x] = vec2(nanValue());
         return;
     }
     vec3 e[8];
@@ -91,15 +211,19 @@ void main() {
         }
     }
     if (sum.y <= 0.0) sum = vec3(0.0, 1.0, 0.0);  // no usable neighbour
-    uGradientData[ij.y * uSize.x + ij.x] = vec2(-sum.x / sum.y, -sum.z / sum.y);
+    uGradientData[CURVATURE_GRADIENT_LEAD + ij.y * uSize.x + ij.x] = vec2(-sum.x / sum.y, -sum.z / sum.y);
 }
+
+#endif  // CURVATURE_RUNS
 
 #else
 
 layout(binding = 1) uniform samplerBuffer uGradient;  // (dy/dx, dy/dz) per sample, NaN = no data
 vec2 gradientAt(ivec2 ij) { return texelFetch(uGradient, ij.y * uSize.x + ij.x).rg; }
 // The 4 directions per sample, row-major.
+#ifndef CURVATURE_RUNS
 layout(std430, binding = 1) writeonly buffer FieldOut { vec4 uFieldData[]; };
+#endif
 // The method is compiled in (CURVATURE_METHOD 0 two-normal, 1 three-normal,
 // 2 three-vertex, 3 edge-angle): a software rasteriser runs every branch of
 // a uniform switch otherwise.
@@ -200,7 +324,87 @@ float shaped(float value, float ypp) {
     return uSigned == 1 && ypp < 0.0 ? -value : value;
 }
 
-#ifdef CURVATURE_NEAR
+#ifdef CURVATURE_RUNS
+
+// 2 samples (8 floats) per 64-bit vector, row-major.
+layout(std430, binding = 1) writeonly buffer FieldRuns { u64vec4 uFieldRuns[]; };
+// What the methods read, 4 floats per texel: heights, or 2 gradients.
+layout(binding = 3) uniform samplerBuffer uWindow4;
+
+// One window row: kWin heights (x only) or gradients from texel t, float a.
+void windowRow(int t, int a, out vec2 w[kWin]) {
+    if (uMethod == 0 || uMethod == 1) {
+        for (int q = 0; q < (2 * kWin + 3 + 3) / 4; ++q) {
+            vec4 v = texelFetch(uWindow4, t + q);
+            for (int c = 0; c < 2; ++c) {
+                int k = 2 * q + c - a / 2;
+                if (k >= 0 && k < kWin) w[k] = c == 0 ? v.xy : v.zw;
+            }
+        }
+    } else {
+        for (int q = 0; q < (kWin + 3 + 3) / 4; ++q) {
+            vec4 v = texelFetch(uWindow4, t + q);
+            for (int c = 0; c < 4; ++c) {
+                int k = 4 * q + c - a;
+                if (k >= 0 && k < kWin) w[k] = vec2(v[c], 0.0);
+            }
+        }
+    }
+}
+
+// The measure of the interior stencil (p, v, n) along direction s: the
+// CPU's arithmetic (analysis: Curvature.cpp, measure) without the no-data
+// checks (the fast path runs on fields without no data only).
+float runValue(vec2 p, vec2 v, vec2 n, ivec2 s) {
+    vec2 world = vec2(s) * uSpacing;
+    float invStep = 1.0 / length(world);
+    vec2 u = world * invStep;
+    float value, ypp;
+    if (uMethod == 0) {
+        float sv = dot(v, u), sn = dot(n, u);
+        ypp = (sn - sv) * invStep;
+        value = equation1(ypp, sv);
+    } else if (uMethod == 1) {
+        float sp = dot(p, u), sv = dot(v, u), sn = dot(n, u);
+        ypp = 0.5 * (sn - sp) * invStep;
+        float t = 1.0 + sv * sv;
+        value = 0.5 * (abs(sv - sp) + abs(sn - sv)) * invStep / (t * sqrt(t));
+    } else if (uMethod == 2) {
+        float s1 = (v.x - p.x) * invStep, s2 = (n.x - v.x) * invStep;
+        ypp = (s2 - s1) * invStep;
+        value = equation1(ypp, 0.5 * (s1 + s2));
+    } else {
+        float hx = world.x, hz = world.y;
+        float a = p.x - v.x, b = n.x - v.x;
+        float d = -hx * hx + a * b - hz * hz;
+        float cosTheta = d / sqrt((hx * hx + hz * hz + a * a) * (hx * hx + hz * hz + b * b));
+        ypp = a + b;
+        value = clamp(1.0 + cosTheta, 0.0, 1.0);
+    }
+    return uSecond == 1 ? ypp : shaped(value * uScale, ypp);
+}
+
+void main() {
+    int r = runIndex();
+    if (r * kRun >= uSize.x * uSize.y) return;
+    int base = r * kRun / (uMethod <= 1 ? 2 : 4);
+    vec2 s[kWin], m[kWin], n[kWin];  // rows -1 (south), 0, +1 (north)
+    windowRow(base + CURVATURE_T0, CURVATURE_A0, s);
+    windowRow(base + CURVATURE_T1, CURVATURE_A1, m);
+    windowRow(base + CURVATURE_T2, CURVATURE_A2, n);
+    vec4 f[kRun];
+    for (int k = 0; k < kRun; ++k) {
+        // Direction steps (1, 0), (0, 1), (1, 1), (1, -1): previous, vertex, next.
+        f[k] = vec4(runValue(m[k], m[k + 1], m[k + 2], ivec2(1, 0)), runValue(s[k + 1], m[k + 1], n[k + 1], ivec2(0, 1)),
+                    runValue(s[k], m[k + 1], n[k + 2], ivec2(1, 1)), runValue(n[k], m[k + 1], s[k + 2], ivec2(1, -1)));
+    }
+    for (int q = 0; q < kRun / 2; ++q) {
+        vec4 a = f[2 * q], b = f[2 * q + 1];
+        uFieldRuns[r * (kRun / 2) + q] = u64vec4(pack2(a.x, a.y), pack2(a.z, a.w), pack2(b.x, b.y), pack2(b.z, b.w));
+    }
+}
+
+#elif defined(CURVATURE_NEAR)
 
 // Without reinforcement (distance 1) every direction's stencil, border rule
 // included, lies in the 3x3 window of samples around
@@ -293,7 +497,7 @@ float directionValue(ivec2 ij, int d) {
 }
 
 void main() {
-    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 ij = sampleIndex();
     if (any(greaterThanEqual(ij, uSize))) return;
     vec4 out4;
     if (noData(heightAt(ij))) {
@@ -305,6 +509,6 @@ void main() {
     uFieldData[ij.y * uSize.x + ij.x] = out4;
 }
 
-#endif  // CURVATURE_NEAR
+#endif  // CURVATURE_RUNS, CURVATURE_NEAR
 
 #endif

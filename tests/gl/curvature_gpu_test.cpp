@@ -5,6 +5,7 @@
 #include "GlTest.h"
 
 #include <sierra/analysis/Curvature.h>
+#include <sierra/analysis/Normals.h>
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 #include <sierra/render/CurvatureGpu.h>
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 using namespace sierra;
 using analysis::CurvatureMethod;
@@ -93,6 +95,56 @@ TEST_F(CurvatureGpuTest, NonSquareGridMatchesCpu) {
     for (int j = 0; j < f.height(); ++j)
         for (int i = 0; i < f.width(); ++i) f.at(i, j) = std::sin(0.3f * float(i)) * std::cos(0.2f * float(j)) * 3.0f;
     checkAllMethods(f, "non-square waves");
+}
+
+// Fields without no-data are computed in runs of samples that cross row ends,
+// reading texels whose alignment depends on the width modulo 4: every residue,
+// with the border rows and columns each run touches.
+TEST_F(CurvatureGpuTest, RunsMatchCpuForEveryWidthModulo4) {
+    for (int width : {8, 10, 11, 12}) {
+        terrain::Heightfield f(width, 7);
+        for (int j = 0; j < f.height(); ++j)
+            for (int i = 0; i < f.width(); ++i)
+                f.at(i, j) = std::sin(0.7f * float(i) + 0.2f * float(j)) * std::cos(0.5f * float(j)) * 2.0f;
+        checkAllMethods(f, "waves " + std::to_string(width) + "x7");
+    }
+}
+
+// The tangent planes the hatch strokes read (gradient(): RG32F, texel
+// j * width + i) are the CPU's normals as (dy/dx, dy/dz), from the runs and the
+// border pass alike, for a width of each residue modulo 4.
+TEST_F(CurvatureGpuTest, GradientTextureMatchesCpuNormals) {
+    for (int width : {9, 10, 11, 12}) {
+        terrain::Heightfield f = fractal(17, 3);
+        terrain::Heightfield g(width, 13);
+        for (int j = 0; j < g.height(); ++j)
+            for (int i = 0; i < g.width(); ++i) g.at(i, j) = f.at(i, j) * 3.0f;
+        g.setSpacing(1.5f, 1.0f);
+        render::CurvatureGpu gpu = render::CurvatureGpu::create(g);
+        for (NormalMethod n : {NormalMethod::Edge, NormalMethod::Triangle, NormalMethod::Quad}) {
+            gpu.compute({.method = CurvatureMethod::ThreeVertex, .normals = n}, /*tangentPlanes=*/true);
+            GLint buffer = 0, offset = 0;
+            glGetTextureLevelParameteriv(gpu.gradient().id(), 0, GL_TEXTURE_BUFFER_DATA_STORE_BINDING, &buffer);
+            glGetTextureLevelParameteriv(gpu.gradient().id(), 0, GL_TEXTURE_BUFFER_OFFSET, &offset);
+            std::vector<float> grad(size_t(g.sampleCount()) * 2);
+            glGetNamedBufferSubData(GLuint(buffer), offset, GLsizeiptr(grad.size() * sizeof(float)), grad.data());
+            analysis::NormalField cpu = analysis::computeNormals(g, n);
+            int bad = 0;
+            for (int j = 0; j < g.height(); ++j) {
+                for (int i = 0; i < g.width(); ++i) {
+                    const analysis::Vec3& v = cpu.at(i, j);
+                    const float ex = -v.x / v.y, ez = -v.z / v.y;
+                    const float gx = grad[(size_t(j) * size_t(width) + size_t(i)) * 2];
+                    const float gz = grad[(size_t(j) * size_t(width) + size_t(i)) * 2 + 1];
+                    auto near = [](float a, float b) { return std::fabs(a - b) <= std::max(1e-5f, 1e-4f * std::fabs(b)); };
+                    if ((!near(gx, ex) || !near(gz, ez)) && ++bad <= 3)
+                        ADD_FAILURE() << width << "x13 " << analysis::normalMethodName(n) << " (" << i << ", " << j
+                                      << "): GPU (" << gx << ", " << gz << "), CPU (" << ex << ", " << ez << ")";
+                }
+            }
+            EXPECT_EQ(bad, 0);
+        }
+    }
 }
 
 TEST_F(CurvatureGpuTest, AnalyticSurfacesMatchCpu) {

@@ -1,10 +1,11 @@
 #pragma once
 // The curvature field on the GPU (shaders/curvature.comp): the same field as
-// analysis::computeCurvature, computed by two compute dispatches (vertex
-// gradients from the chosen normals, then the four directions) into storage
-// buffers of one value per sample, which the hatch pass reads through buffer
-// textures (on llvmpipe both are far cheaper than 2D textures and image
-// stores; see curvature.comp). It
+// analysis::computeCurvature, computed by compute dispatches (vertex
+// gradients from the chosen normals, then the four directions; on a field
+// without no-data and without reinforcement each in runs of samples and then
+// on the border, see curvature.comp) into storage buffers of one value per
+// sample, which the hatch pass reads through buffer textures (on llvmpipe
+// both are far cheaper than 2D textures and image stores). It
 // agrees with the CPU reference within 1e-4 relative or 1e-6 absolute
 // (tests/gl/curvature_gpu_test.cpp).
 //
@@ -19,6 +20,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <string>
 
 namespace sierra::render {
 
@@ -52,15 +54,28 @@ public:
     int height() const { return height_; }
 
 private:
+    // The #defines every program of this grid shares (buffer layout, runs' texel offsets).
+    std::string layoutDefines(bool gradients) const;
+    void dispatchRuns(gpu::Program& program);
+    void dispatchBorder(gpu::Program& program);
+
     int width_ = 0, height_ = 0;
     float spacingX_ = 1.0f, spacingZ_ = 1.0f;
-    std::array<gpu::Program, 3> gradientPrograms_;  // per NormalMethod, built on first use
+    bool noData_ = false;     // some sample has no data: the per-sample programs only
+    int heightsLead_ = 0;     // floats before sample 0 in heights_
+    int gradientLead_ = 0;    // gradients before sample 0 in gradient_
+    // Built on first use: per NormalMethod, per sample (whole grid or, with
+    // CURVATURE_BORDER, its border) and in runs.
+    std::array<gpu::Program, 3> gradientPrograms_, gradientBorderPrograms_, gradientRunPrograms_;
     // [CurvatureMethod][distance 1 (CURVATURE_NEAR)][level control (CURVATURE_LEVELS)], built on first use.
     std::array<std::array<std::array<gpu::Program, 2>, 2>, 4> fieldPrograms_;
-    gpu::Buffer heights_;   // world heights, float32 row-major, NaN = no data
-    gpu::Buffer gradient_;  // 2 floats per sample, row-major
-    gpu::Buffer field_;     // 4 floats per sample, row-major
+    // [CurvatureMethod][level control]: runs, and the border after them (distance 1, no no-data).
+    std::array<std::array<gpu::Program, 2>, 4> fieldRunPrograms_, fieldBorderPrograms_;
+    gpu::Buffer heights_;   // world heights, float32 row-major after heightsLead_ floats, NaN = no data
+    gpu::Buffer gradient_;  // 2 floats per sample, row-major after gradientLead_ gradients
+    gpu::Buffer field_;     // 4 floats per sample, row-major, rounded up to whole runs
     gpu::Texture heightsTexture_, gradientTexture_, fieldTexture_;  // buffer textures over them
+    gpu::Texture heights4Texture_, gradient4Texture_;  // RGBA32F views for the runs (from offset 0)
 };
 
 }  // namespace sierra::render
