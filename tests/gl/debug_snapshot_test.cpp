@@ -4,6 +4,7 @@
 // inspection agrees with the frame's statistics.
 
 #include "GlTest.h"
+#include "GoldenCompare.h"
 
 #include <sierra/gpu/Gl.h>
 #include <sierra/gpu/ReadBack.h>
@@ -162,14 +163,9 @@ TEST_F(DebugSnapshot, UiAloneMatchesGoldenWithPlaceholders) {
     overlay.draw(p, column, kHeight);
     gpu::Image ui = gpu::readFramebuffer(column, kHeight);
     const std::string name = "debug_snapshot_only.png";
-    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name, ui);
-    const std::string golden = std::string(SIERRA_GOLDEN_DIR) + "/" + name;
-    const char* env = std::getenv("SIERRA_UPDATE_GOLDEN");
-    if (env && std::string(env) == "1") {
-        render::writePng(golden, ui);
-        GTEST_SKIP() << "golden image " << name << " rewritten";
-    }
-    render::ImageDifference d = render::compareImages(ui, render::readPng(golden), 24);
+    const std::optional<gpu::Image> golden = test::goldenFor(ui, name);
+    if (!golden) return;
+    render::ImageDifference d = render::compareImages(ui, *golden, 24);
     std::printf("%s against golden: PSNR %.2f dB, %.4f%% pixels differ\n", name.c_str(), d.psnr,
                 100.0 * d.differingShare);
     EXPECT_LE(d.differingShare, 0.01);

@@ -31,13 +31,6 @@ bool matchesGolden(const gpu::Image& image, const gpu::Image& golden) {
     return test::compareWithGolden(image, golden).matches;
 }
 
-std::string goldenPath(const std::string& name) { return std::string(SIERRA_GOLDEN_DIR) + "/" + name; }
-
-bool updating() {
-    const char* env = std::getenv("SIERRA_UPDATE_GOLDEN");
-    return env && std::string(env) == "1";
-}
-
 class Golden : public test::GlTest {
 protected:
     void SetUp() override {
@@ -48,25 +41,16 @@ protected:
         target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
     }
 
-    gpu::Image renderFrame(render::Lod lod, float tau = 1.0f) {
+    gpu::Image renderFrame(render::Lod lod, float tau = 1.0f) { return renderFrame({.lod = lod, .tau = tau}); }
+    gpu::Image renderFrame(const render::DrawOptions& options) {
         render::Camera camera = render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
         target_->begin(render::TerrainRenderer::clearColour({}));
-        stats_ = terrain_->draw(camera, kWidth, kHeight, {.lod = lod, .tau = tau});
+        stats_ = terrain_->draw(camera, kWidth, kHeight, options);
         return target_->read();
     }
 
     void checkAgainstGolden(const gpu::Image& image, const std::string& name) {
-        std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
-        render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name, image);
-        if (updating()) {
-            render::writePng(goldenPath(name), image);
-            GTEST_SKIP() << "golden image " << name << " rewritten";
-        }
-        gpu::Image golden = render::readPng(goldenPath(name));
-        const test::GoldenComparison c = test::compareWithGolden(image, golden);
-        std::printf("%s against golden: %s\n", name.c_str(), c.summary().c_str());
-        EXPECT_TRUE(c.matches) << c.summary() << " (frame written to " << SIERRA_TEST_OUTPUT_DIR << "/"
-                               << name << ")";
+        test::expectMatchesGolden(image, name);
     }
 
     terrain::Heightfield field_;
@@ -174,6 +158,29 @@ TEST_F(Golden, ComparisonAcceptsDriverNoise) {
     const test::GoldenComparison c = test::compareWithGolden(noisy, frame);
     std::printf("driver-like noise: %s\n", c.summary().c_str());
     EXPECT_TRUE(c.matches) << c.summary();
+}
+
+// The line comparison lets a wireframe drawn a pixel to the side through, and
+// tells another mesh (tau 1.3 instead of 1) and a black frame apart.
+TEST_F(Golden, LineComparisonAllowsAPixelOfShiftButNotAnotherMesh) {
+    const gpu::Image lines = renderFrame({.tau = 1.0f, .wireframe = true, .polygons = false});
+    gpu::Image shifted = lines;  // one pixel to the right
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = kWidth - 1; x > 0; --x)
+            std::copy_n(&lines.rgba[(size_t(y) * kWidth + x - 1) * 4], 4, &shifted.rgba[(size_t(y) * kWidth + x) * 4]);
+    const test::GoldenComparison moved = test::compareLinesWithGolden(shifted, lines);
+    std::printf("wireframe one pixel to the right: %s\n", moved.summary().c_str());
+    EXPECT_TRUE(moved.matches) << moved.summary();
+    EXPECT_FALSE(test::compareWithGolden(shifted, lines).matches) << "the shaded comparison should not pass it";
+
+    const gpu::Image other = renderFrame({.tau = 1.3f, .wireframe = true, .polygons = false});
+    const test::GoldenComparison mesh = test::compareLinesWithGolden(other, lines);
+    std::printf("wireframe at tau 1.3 against tau 1: %s\n", mesh.summary().c_str());
+    EXPECT_FALSE(mesh.matches) << mesh.summary();
+
+    gpu::Image black = lines;
+    for (size_t p = 0; p < black.rgba.size(); p += 4) black.rgba[p] = black.rgba[p + 1] = black.rgba[p + 2] = 0;
+    EXPECT_FALSE(test::compareLinesWithGolden(black, lines).matches);
 }
 
 TEST_F(Golden, SbtFrameIsCoarserWithLargerTau) {

@@ -5,6 +5,7 @@
 // SIERRA_UPDATE_GOLDEN=1 rewrites the references in tests/golden/.
 
 #include "GlTest.h"
+#include "GoldenCompare.h"
 
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
@@ -203,15 +204,9 @@ protected:
         target.begin(render::TerrainRenderer::clearColour({}));
         renderer.draw(camera, kW, kH, {});
         gpu::Image image = target.read();
-        std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
-        render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name, image);
-        const std::string golden = std::string(SIERRA_GOLDEN_DIR) + "/" + name;
-        const char* env = std::getenv("SIERRA_UPDATE_GOLDEN");
-        if (env && std::string(env) == "1") {
-            render::writePng(golden, image);
-            GTEST_SKIP() << "golden image " << name << " rewritten";
-        }
-        render::ImageDifference d = render::compareImages(image, render::readPng(golden), 24);
+        const std::optional<gpu::Image> golden = test::goldenFor(image, name);
+        if (!golden) return;
+        render::ImageDifference d = render::compareImages(image, *golden, 24);
         std::printf("%s against golden: PSNR %.2f dB, %.4f%% pixels differ\n", name.c_str(), d.psnr,
                     100.0 * d.differingShare);
         EXPECT_TRUE(d.psnr >= 30.0 && d.differingShare <= 0.02) << "PSNR " << d.psnr << ", differing "

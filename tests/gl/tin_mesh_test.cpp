@@ -79,19 +79,6 @@ class TinMesh : public test::GlTest {
         return target_->read();
     }
 
-    void checkAgainstGolden(const gpu::Image& image, const std::string& name) {
-        render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name, image);
-        const char* env = std::getenv("SIERRA_UPDATE_GOLDEN");
-        const std::string golden = std::string(SIERRA_GOLDEN_DIR) + "/" + name;
-        if (env && std::string(env) == "1") {
-            render::writePng(golden, image);
-            GTEST_SKIP() << "golden image " << name << " rewritten";
-        }
-        const test::GoldenComparison c = test::compareWithGolden(image, render::readPng(golden));
-        std::printf("%s against golden: %s\n", name.c_str(), c.summary().c_str());
-        EXPECT_TRUE(c.matches) << c.summary() << " (frame written to " << SIERRA_TEST_OUTPUT_DIR
-                               << "/" << name << ")";
-    }
 
     scene::Scene scene_;
     size_t tinTriangles_ = 0;
@@ -116,7 +103,7 @@ TEST_F(TinMesh, ZoneTilesOnTheTinMatchReferenceAndFullGrid) {
     const render::ImageDifference d = render::compareImages(tin, full, 8);
     std::printf("TIN (%zu triangles) against the full grid: PSNR %.2f dB\n", tinTriangles_, d.psnr);
     EXPECT_GE(d.psnr, 24.0);
-    checkAgainstGolden(tin, "tin_zones.png");
+    test::expectMatchesGolden(tin, "tin_zones.png");
 }
 
 TEST_F(TinMesh, WireframeShowsTheTin) {
@@ -128,7 +115,7 @@ TEST_F(TinMesh, WireframeShowsTheTin) {
     const gpu::Image full = renderFrame(options);
     // Other edges: the wireframes differ where the shaded frames agree.
     EXPECT_LT(render::compareImages(tin, full, 8).psnr, 30.0);
-    checkAgainstGolden(tin, "tin_wireframe.png");
+    test::expectMatchesGolden(tin, "tin_wireframe.png", test::GoldenKind::Lines);
 }
 
 TEST_F(TinMesh, MeshOfAnotherTerrainIsRefused) {

@@ -39,12 +39,7 @@ constexpr int kWidth = 640;
 constexpr int kHeight = 360;
 
 using scene::assetPath;
-std::string outputPath(const std::string& name) { return std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name; }
-
-bool updating() {
-    const char* env = std::getenv("SIERRA_UPDATE_GOLDEN");
-    return env && std::string(env) == "1";
-}
+using test::testOutputPath;
 
 // Depth of the frame just drawn into the pbuffer (no multisampling), rows top-down.
 std::vector<float> readDepth(int width, int height) {
@@ -114,15 +109,7 @@ protected:
     }
 
     void checkAgainstGolden(const gpu::Image& image, const std::string& name) {
-        render::writePng(outputPath(name), image);
-        const std::string golden = std::string(SIERRA_GOLDEN_DIR) + "/" + name;
-        if (updating()) {
-            render::writePng(golden, image);
-            GTEST_SKIP() << "golden image " << name << " rewritten";
-        }
-        const test::GoldenComparison c = test::compareWithGolden(image, render::readPng(golden));
-        std::printf("%s against golden: %s\n", name.c_str(), c.summary().c_str());
-        EXPECT_TRUE(c.matches) << c.summary() << " (frame written to " << outputPath(name) << ")";
+        test::expectMatchesGolden(image, name);
     }
 
     // Zone-map pixel position of a world point: the inverse of the shader's
@@ -222,12 +209,12 @@ void checkDebugViewAgainstMap(const gpu::Image& frame, const std::vector<float>&
     gpu::Image marked;
     const glm::mat4 inverseVp = glm::inverse(camera.viewProjection(float(kWidth) / float(kHeight)));
     Agreement a = compareWithMap(frame, depth, inverseVp, map, palette, toMap, &marked);
-    render::writePng(outputPath(name), marked);
+    render::writePng(testOutputPath(name), marked);
     std::printf("%s: %zu terrain pixels, %.3f%% agree with the zone map, %zu colours seen\n", name.c_str(),
                 a.terrainPixels, 100.0 * a.share(), a.zonesSeen.size());
     EXPECT_GT(a.terrainPixels, size_t(kWidth * kHeight / 8)) << "the terrain covers too little of the frame";
     EXPECT_GE(a.zonesSeen.size(), 4u) << "too few zones in view to tell a wrong mapping";
-    EXPECT_GE(a.share(), 0.99) << "disagreeing pixels are magenta in " << outputPath(name);
+    EXPECT_GE(a.share(), 0.99) << "disagreeing pixels are magenta in " << testOutputPath(name);
 }
 
 TEST_F(ZoneFrames, DebugViewZonesAgreesWithAutoZoneMap) {
@@ -240,7 +227,7 @@ TEST_F(ZoneFrames, DebugViewZonesAgreesWithAutoZoneMap) {
     const render::Camera camera = defaultCamera();
     const gpu::Image frame = renderFrame(camera, 0, flatLighting());
     const std::vector<float> depth = readDepth(kWidth, kHeight);
-    render::writePng(outputPath("zones_debug_auto.png"), frame);
+    render::writePng(testOutputPath("zones_debug_auto.png"), frame);
     checkDebugViewAgainstMap(
         frame, depth, camera, map, palette,
         [&](glm::vec3 w) { return mapPosition(w, map.width, map.height); }, "zones_debug_auto_disagreement.png");
@@ -255,7 +242,7 @@ TEST_F(ZoneFrames, DebugViewZonesAgreesWithSampleMapNear) {
     const render::Camera camera = nearCamera();
     const gpu::Image frame = renderFrame(camera, 0, flatLighting());
     const std::vector<float> depth = readDepth(kWidth, kHeight);
-    render::writePng(outputPath("zones_debug_map_near.png"), frame);
+    render::writePng(testOutputPath("zones_debug_map_near.png"), frame);
     checkDebugViewAgainstMap(
         frame, depth, camera, map, palette,
         [&](glm::vec3 w) { return mapPosition(w, map.width, map.height); }, "zones_debug_map_disagreement.png");
@@ -280,7 +267,7 @@ protected:
         flat.setSpacing(1.0f, 1.0f);
         flat.setVerticalScale(1.0f);
         useField(std::move(flat));
-        dir_ = outputPath("zone_sampling");
+        dir_ = testOutputPath("zone_sampling");
         std::filesystem::create_directories(dir_);
         const char* names[3] = {"red", "green", "blue"};
         for (int k = 0; k < 3; ++k) {
@@ -370,7 +357,7 @@ TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
     const render::Camera camera = topCamera();
     const gpu::Image frame = renderFrame(camera, 0, flatLighting());
     const std::vector<float> depth = readDepth(kWidth, kHeight);
-    render::writePng(outputPath("zone_sampling.png"), frame);
+    render::writePng(testOutputPath("zone_sampling.png"), frame);
     const glm::mat4 inverseVp = glm::inverse(camera.viewProjection(float(kWidth) / float(kHeight)));
 
     size_t far = 0, farPure = 0, banded = 0, bandTwoAtMost = 0, formulaChecked = 0, formulaOk = 0;
@@ -415,7 +402,7 @@ TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
     ASSERT_GT(far, size_t(50000));
     ASSERT_GT(banded, size_t(5000));
     ASSERT_GT(formulaChecked, banded / 2);
-    EXPECT_EQ(mixedFar, 0u) << "pixels away from every band mix tiles (see " << outputPath("zone_sampling.png") << ")";
+    EXPECT_EQ(mixedFar, 0u) << "pixels away from every band mix tiles (see " << testOutputPath("zone_sampling.png") << ")";
     EXPECT_EQ(bandTwoAtMost, banded) << "band pixels mix more than two tiles";
     EXPECT_GE(double(formulaOk), 0.995 * double(formulaChecked)) << "worst weight error " << worstWeightError;
 }
