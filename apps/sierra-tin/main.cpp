@@ -79,6 +79,7 @@ struct ZoneInput {
     tin::Constraints constraints;
     double band = 0.0;
     double epsilon = 0.0;  // the borderlines' simplification, zone-map pixels
+    size_t islandsRemoved = 0;  // islands within epsilon of their longest chord (tin::removeThinIslands)
     double ms = 0.0;
 };
 
@@ -113,7 +114,7 @@ void makeBorderlines(ZoneInput& z, double epsilon, const terrain::Heightfield& f
     Stopwatch clock;
     z.epsilon = epsilon;
     z.lines = tin::gridBorderlines(z.map, z.palette, {.epsilon = epsilon, .bandWidth = z.band},
-                                   field.width(), field.height());
+                                   field.width(), field.height(), &z.islandsRemoved);
     z.constraints = tin::constraintsFromBorderlines(z.lines, field.width(), field.height());
     z.ms += clock.ms();
 }
@@ -230,10 +231,10 @@ int run(const Options& o) {
         for (const auto& e : z.lines.edges) borderSegments += e.left >= 0 && e.right >= 0;
         std::printf(
             "zones: %s, %dx%d, %zu surface types, %zu zones (%zu bands), %zu borderline segments, "
-            "epsilon %.3g px%s, band %.3g px\n",
+            "epsilon %.3g px%s, %zu thin islands removed, band %.3g px\n",
             s.zones.map.c_str(), z.map.width, z.map.height, z.palette.surfaces.size(),
             z.lines.zones.size(), z.constraints.bands.size(), borderSegments, z.epsilon,
-            autoEpsilon ? " (automatic, from the budget)" : "", z.band);
+            autoEpsilon ? " (automatic, from the budget)" : "", z.islandsRemoved, z.band);
     }
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
                 result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
@@ -288,6 +289,7 @@ int run(const Options& o) {
                                {"borderline_segments", borderSegments},
                                {"epsilon", z.epsilon},
                                {"epsilon_auto", autoEpsilon},
+                               {"islands_removed", z.islandsRemoved},
                                {"band", z.band},
                                {"agreement", agreement.fraction()},
                                {"agreement_pixels", agreement.pixels},

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <set>
 #include <utility>
+#include <vector>
 
 namespace sierra::tin {
 
@@ -27,14 +28,145 @@ void checkSizes(int mapWidth, int mapHeight, int gridWidth, int gridHeight) {
                  "x", gridHeight);
 }
 
+// Is (x, y) inside the closed polygon made of `edges` (even-odd rule)?
+bool insideEdges(const zones::Borderlines& lines, const std::vector<uint32_t>& edges, double x,
+                 double y) {
+    bool inside = false;
+    for (uint32_t k : edges) {
+        const zones::Vertex& a = lines.vertices[lines.edges[k].from];
+        const zones::Vertex& b = lines.vertices[lines.edges[k].to];
+        if ((a.y > y) != (b.y > y) && x < a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y))
+            inside = !inside;
+    }
+    return inside;
+}
+
 }  // namespace
+
+size_t removeThinIslands(zones::Borderlines& lines, double epsilon) {
+    if (!(epsilon > 0.0)) return 0;
+    const size_t nv = lines.vertices.size();
+    const std::vector<bool> pinned = zones::junctions(lines);
+    // The edges' connected components (union-find); an island is a component
+    // without a junction: one closed loop with one zone pair all along.
+    std::vector<uint32_t> parent(nv);
+    for (uint32_t v = 0; v < nv; ++v) parent[v] = v;
+    auto root = [&](uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (const zones::Edge& e : lines.edges) parent[root(e.from)] = root(e.to);
+    std::vector<uint8_t> hasJunction(nv, 0);
+    for (uint32_t v = 0; v < nv; ++v)
+        if (pinned[v]) hasJunction[root(v)] = 1;
+    std::vector<std::vector<uint32_t>> loopEdges(nv);
+    for (uint32_t k = 0; k < lines.edges.size(); ++k)
+        if (!hasJunction[root(lines.edges[k].from)]) loopEdges[root(lines.edges[k].from)].push_back(k);
+
+    struct Island {
+        uint32_t root;
+        double x0, y0, x1, y1;  // bounding box
+    };
+    std::vector<Island> thin;
+    for (uint32_t r = 0; r < nv; ++r) {
+        const std::vector<uint32_t>& loop = loopEdges[r];
+        if (loop.size() < 3) continue;
+        std::vector<uint32_t> vs;
+        for (uint32_t k : loop) vs.push_back(lines.edges[k].from);
+        // A strip within epsilon of a chord no longer than the box's diagonal
+        // has an area of at most 2 epsilon x diagonal: a cheap test first.
+        Island box{r, 1e300, 1e300, -1e300, -1e300};
+        double twiceArea = 0.0;
+        const int32_t inside = lines.edges[loop[0]].left;
+        for (uint32_t k : loop) {
+            const zones::Edge& e = lines.edges[k];
+            const zones::Vertex& a = lines.vertices[e.left == inside ? e.from : e.to];
+            const zones::Vertex& b = lines.vertices[e.left == inside ? e.to : e.from];
+            twiceArea += a.x * b.y - b.x * a.y;
+            box.x0 = std::min(box.x0, a.x), box.y0 = std::min(box.y0, a.y);
+            box.x1 = std::max(box.x1, a.x), box.y1 = std::max(box.y1, a.y);
+        }
+        const double diagonal = std::hypot(box.x1 - box.x0, box.y1 - box.y0);
+        if (0.5 * std::fabs(twiceArea) > 2.0 * epsilon * diagonal) continue;
+        // The longest chord (the first pair found on a tie) and every vertex's
+        // distance from its line.
+        double longest = -1.0;
+        zones::Vertex p, q;
+        for (size_t i = 0; i < vs.size(); ++i)
+            for (size_t j = i + 1; j < vs.size(); ++j) {
+                const zones::Vertex& a = lines.vertices[vs[i]];
+                const zones::Vertex& b = lines.vertices[vs[j]];
+                const double d = (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y);
+                if (d > longest) longest = d, p = a, q = b;
+            }
+        const double length = std::sqrt(longest);
+        bool within = length > 0.0;
+        for (size_t i = 0; i < vs.size() && within; ++i) {
+            const zones::Vertex& s = lines.vertices[vs[i]];
+            within = std::fabs((q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x)) <=
+                     epsilon * length;
+        }
+        if (within) thin.push_back(box);
+    }
+    // An island with a kept borderline inside stays: removing it would leave
+    // that borderline's outer zone (the island's) inside another zone. Keeping
+    // one may keep an island around it in turn, so this repeats until stable.
+    std::vector<uint8_t> removed(nv, 0), used(nv, 0);
+    for (const Island& i : thin) removed[i.root] = 1;
+    for (const zones::Edge& e : lines.edges) used[e.from] = used[e.to] = 1;
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (const Island& i : thin) {
+            if (!removed[i.root]) continue;
+            for (uint32_t v = 0; v < nv; ++v) {
+                const zones::Vertex& s = lines.vertices[v];
+                if (!used[v] || removed[root(v)] || s.x <= i.x0 || s.x >= i.x1 || s.y <= i.y0 || s.y >= i.y1)
+                    continue;
+                if (insideEdges(lines, loopEdges[i.root], s.x, s.y)) {
+                    removed[i.root] = 0;
+                    changed = true;
+                    break;
+                }
+            }
+        }
+    }
+    size_t count = 0;
+    for (const Island& i : thin) count += removed[i.root];
+    if (count == 0) return 0;
+    std::vector<zones::Edge> edges;
+    std::vector<int64_t> remap(nv, -1);
+    for (const zones::Edge& e : lines.edges)
+        if (!removed[root(e.from)]) {
+            edges.push_back(e);
+            remap[e.from] = remap[e.to] = 0;
+        }
+    std::vector<zones::Vertex> vertices;
+    for (uint32_t v = 0; v < nv; ++v)
+        if (remap[v] >= 0) {
+            remap[v] = int64_t(vertices.size());
+            vertices.push_back(lines.vertices[v]);
+        }
+    for (zones::Edge& e : edges) {
+        e.from = uint32_t(remap[e.from]);
+        e.to = uint32_t(remap[e.to]);
+    }
+    lines.vertices.swap(vertices);
+    lines.edges.swap(edges);
+    return count;
+}
 
 zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palette& palette,
                                    const zones::BorderlineDesc& desc, int gridWidth,
-                                   int gridHeight) {
+                                   int gridHeight, size_t* removedIslands) {
     checkSizes(map.width, map.height, gridWidth, gridHeight);
-    zones::Borderlines lines =
-        zones::buildBorderlines(map, palette, {.epsilon = desc.epsilon, .bandWidth = 0.0});
+    SIERRA_CHECK(std::isfinite(desc.epsilon) && desc.epsilon >= 0.0,
+                 "borderlines: epsilon must be >= 0 pixels, got ", desc.epsilon);
+    // zones::buildBorderlines without the band, with thin islands removed before rule 3.
+    zones::Borderlines lines = zones::vectorise(map, palette);
+    zones::removeCollinearVertices(lines);
+    const size_t islands = removeThinIslands(lines, desc.epsilon);
+    if (removedIslands) *removedIslands = islands;
+    zones::simplifyArcs(lines, desc.epsilon);
     const double sx = double(map.width - 1) / double(gridWidth - 1);
     const double sy = double(map.height - 1) / double(gridHeight - 1);
     auto snap = [&](const zones::Vertex& v) {

@@ -25,17 +25,32 @@ namespace sierra::tin {
 Constraints::Vertex mapToGrid(double mapX, double mapY, int mapWidth, int mapHeight, int gridWidth,
                               int gridHeight);
 
+// Rule 3 for islands: a closed borderline with no junction (an island, its
+// zone inside, the one around it outside) whose vertices all lie within
+// `epsilon` (pixels) of its longest chord is a strip at most 2 epsilon wide,
+// which rule 3 at epsilon would leave with no area (Douglas-Peucker keeps only
+// the chord's two ends). Such an island is removed and its pixels take the
+// zone around it, unless another borderline lies inside it (its zones would
+// then disagree with the zone around). Vertices left without an edge are
+// dropped, the others keep their order. Returns the number of islands removed.
+// epsilon <= 0, or no island thin enough: nothing changes.
+size_t removeThinIslands(zones::Borderlines& lines, double epsilon);
+
 // A zone map's borderlines ready for a gridWidth x gridHeight TIN:
-// vectorised and simplified (desc.epsilon), every vertex moved to the grid
+// vectorised, thin islands removed (removeThinIslands at desc.epsilon; in a
+// TIN every borderline vertex is a mesh vertex, so an island a mesh of that
+// scale cannot show would only take its budget) and simplified
+// (desc.epsilon), every vertex moved to the grid
 // sample the TIN snaps it to (Constraints' rule), written back in zone-map
 // pixels, coincident vertices merged (rule 1), then doubled into bands
 // (desc.bandWidth) with the copies snapped the same way before their crossing
 // check, so the bands stay a valid subdivision on the grid. Throws
 // sierra::Error as zones::buildBorderlines, and for a map or grid smaller
-// than 2 x 2.
+// than 2 x 2. `removedIslands`, when given, receives the number of islands
+// removed.
 zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palette& palette,
                                    const zones::BorderlineDesc& desc, int gridWidth,
-                                   int gridHeight);
+                                   int gridHeight, size_t* removedIslands = nullptr);
 
 // The borderlines (zone-map pixel units) as constraints of a gridWidth x
 // gridHeight TIN: every edge becomes a segment with its two zones (the zones'
