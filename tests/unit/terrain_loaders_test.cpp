@@ -142,6 +142,22 @@ TEST_F(TerrainLoaders, Png16LargerThanOneStoredBlock) {
     for (size_t k = 0; k < v.size(); ++k) ASSERT_EQ(f.samples()[k], float(v[k])) << k;
 }
 
+TEST_F(TerrainLoaders, Png16OverEightMebibytes) {
+    // 2100 x 2000 x 2 bytes in stored blocks: an 8.4 MB file, over libspng's
+    // 8 MiB chunk cache that once made such files unreadable.
+    const int w = 2100, h = 2000;
+    std::vector<uint16_t> v(size_t(w) * h);
+    for (size_t k = 0; k < v.size(); ++k) v[k] = uint16_t(k * 40503u >> 3);
+    const std::vector<uint8_t> png = encodePngGrey16(w, h, v);
+    ASSERT_GT(png.size(), size_t(8) << 20);
+    writeFileAtomic(path("large.png"), png);
+    Heightfield f = loadHeightfield(path("large.png"));
+    ASSERT_EQ(f.width(), w);
+    ASSERT_EQ(f.height(), h);
+    for (size_t k = 0; k < v.size(); k += 997) ASSERT_EQ(f.samples()[k], float(v[k])) << k;
+    EXPECT_EQ(f.samples().back(), float(v.back()));
+}
+
 TEST_F(TerrainLoaders, PgmAsciiAndBinary8And16Bit) {
     Heightfield a =
         loadHeightfield(write("a.pgm", "P2\n# a comment\n3 2\n255\n0 1 2\n253 254 255\n"));

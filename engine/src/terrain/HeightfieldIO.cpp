@@ -96,9 +96,10 @@ struct SpngFree {
     void operator()(spng_ctx* ctx) const { spng_ctx_free(ctx); }
 };
 
-// Largest ancillary chunk data libspng may keep (text, ICC profiles: a
-// heightmap needs none of it), and the cap on any one chunk beyond the file
-// size: a length field claiming more than the file holds fails at once.
+// Ancillary chunk data libspng may keep (text, ICC profiles: a heightmap needs
+// none of it): 8 MiB, or the file's size for a larger file. Any one chunk is
+// capped at the file's size: a length field claiming more than the file holds
+// fails at once.
 constexpr size_t kPngChunkCache = size_t(8) << 20;
 
 // How a colour PNG's samples become one height (LoadOptions::channel).
@@ -135,7 +136,11 @@ SpngContext openPng(const std::string& what, std::span<const uint8_t> bytes, int
     };
     check(spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR), "cannot set up PNG decoding");
     check(spng_set_image_limits(ctx.get(), kMaxSide, kMaxSide), "cannot set up PNG decoding");
-    check(spng_set_chunk_limits(ctx.get(), std::min<size_t>(bytes.size(), INT32_MAX), kPngChunkCache),
+    // libspng refuses a chunk limit above the cache limit (SPNG_EINVAL), which
+    // made every PNG over 8 MiB unreadable; the cache may then hold up to the
+    // file's size, memory the file already takes.
+    const size_t chunkLimit = std::min<size_t>(bytes.size(), INT32_MAX);
+    check(spng_set_chunk_limits(ctx.get(), chunkLimit, std::max(kPngChunkCache, chunkLimit)),
           "cannot set up PNG decoding");
     check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()), "cannot set up PNG decoding");
     check(spng_get_ihdr(ctx.get(), &ihdr), "unreadable PNG header");
