@@ -202,9 +202,11 @@ vec3 surfaceAlbedo(vec3 world, Ground g) {
     vec4 a, b;
     zoneTiles(inBand ? 2 : 1, low, high, m, mGrad, warp, world, wGrad, g, a, b);
 #ifdef SIERRA_ZONE_HEIGHT_BLEND
-    if (inBand) {
+    {
         // Height blending: where one tile stands higher (stones in sand) it
         // shows through earlier; the shift vanishes at the band's edges.
+        // No `if (inBand)`: llvmpipe runs it masked for every fragment anyway,
+        // and outside bands the weight 0 stays 0 through both steps.
         float strength = 0.5 * (uZoneTile[low].y + uZoneTile[high].y);
         float shift = strength * (b.a - a.a) * 4.0 * weight * (1.0 - weight);
         weight = clamp(weight + shift, 0.0, 1.0);
