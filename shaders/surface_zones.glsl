@@ -71,11 +71,12 @@ vec4 tileSample(int zone, vec2 uv, vec4 grad) {
 // with ifs every fragment paid for every tile sample of every call site; a
 // loop runs only as many times as the block's busiest pixel needs. For the
 // planar pair that bookkeeping costs more than the second sample.
+// scales: the two zones' tile repetitions per zone-map pixel (a, b).
 // mapGrad: the zone-map position's screen derivatives; worldGrad: the world
 // position's (x and y derivatives of the xyz); warp: tileWarp at the fragment
 // in tile repetitions, or 0.
-void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp, vec3 world, mat2x3 worldGrad,
-               Ground g, out vec4 a, out vec4 b) {
+void zoneTiles(int zones, int low, int high, vec2 scales, vec2 mapXY, vec4 mapGrad, vec2 warp, vec3 world,
+               mat2x3 worldGrad, Ground g, out vec4 a, out vec4 b) {
 #ifdef SIERRA_ZONE_TRIPLANAR
     a = vec4(0.0);
     b = vec4(0.0);
@@ -94,7 +95,7 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp
     int projection = 0, zi = 0;
     for (int j = 0; j < jobs; ++j) {
         int zone = zi == 0 ? low : high;
-        float scale = uZoneTile[zone].x;  // tile repetitions per zone-map pixel
+        float scale = zi == 0 ? scales.x : scales.y;
         vec2 uv = mapXY;
         vec4 grad = mapGrad;
         float weight = wp.y;
@@ -119,9 +120,8 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp
     // band cost more: llvmpipe's loop bookkeeping (masked stores of a and b,
     // the per-pass selects) took more instructions than the second sample
     // (docs/zones.md, "Frame cost").
-    float lowScale = uZoneTile[low].x, highScale = uZoneTile[high].x;  // tile repetitions per zone-map pixel
-    a = tileSample(low, mapXY * lowScale + warp, mapGrad * lowScale);
-    b = tileSample(high, mapXY * highScale + warp, mapGrad * highScale);
+    a = tileSample(low, mapXY * scales.x + warp, mapGrad * scales.x);
+    b = tileSample(high, mapXY * scales.y + warp, mapGrad * scales.y);
 #endif
 }
 
@@ -200,14 +200,16 @@ vec3 surfaceAlbedo(vec3 world, Ground g) {
     vec2 warp = vec2(0.0);
 #endif
     vec4 a, b;
-    zoneTiles(inBand ? 2 : 1, low, high, m, mGrad, warp, world, wGrad, g, a, b);
+    // The two zones' tile settings (scale, height blend), read once each.
+    vec2 lowTile = uZoneTile[low].xy, highTile = uZoneTile[high].xy;
+    zoneTiles(inBand ? 2 : 1, low, high, vec2(lowTile.x, highTile.x), m, mGrad, warp, world, wGrad, g, a, b);
 #ifdef SIERRA_ZONE_HEIGHT_BLEND
     {
         // Height blending: where one tile stands higher (stones in sand) it
         // shows through earlier; the shift vanishes at the band's edges.
         // No `if (inBand)`: llvmpipe runs it masked for every fragment anyway,
         // and outside bands the weight 0 stays 0 through both steps.
-        float strength = 0.5 * (uZoneTile[low].y + uZoneTile[high].y);
+        float strength = 0.5 * (lowTile.y + highTile.y);
         float shift = strength * (b.a - a.a) * 4.0 * weight * (1.0 - weight);
         weight = clamp(weight + shift, 0.0, 1.0);
         weight = smoothstep(0.15, 0.85, weight);
