@@ -151,27 +151,17 @@ void zoneField(vec2 m, out int zone, out uvec2 pair, out float distance) {
     vec4 d = vec4(unpackHalf2x16((t.x >> 16u) | (t.y & 0xffff0000u)),
                   unpackHalf2x16((t.z >> 16u) | (t.w & 0xffff0000u)));
     uvec4 zk = mix(hi, lo, negative);
-    // The nearest texel: (0, 0) + (f >= 0.5).
+    // The nearest texel, (0, 0) + (f >= 0.5), selected as one texel: its pair
+    // and sign are then read once, not from four vectors by a per-pixel index.
     bool right = f.x >= 0.5, down = f.y >= 0.5;
-#ifdef X_OLDFIELD
-    int k = down ? (right ? 1 : 0) : (right ? 2 : 3);
-    pair = uvec2(lo[k], hi[k]);
-    zone = int(zk[k]);
-    float ownSign = negative[k] ? -1.0 : 1.0;
-    bvec4 samePair = bvec4(uvec4(equal(lo, uvec4(pair.x))) & uvec4(equal(hi, uvec4(pair.y))));
-#else
     uint tk = down ? (right ? t.y : t.x) : (right ? t.z : t.w);
     pair = uvec2(tk & 255u, (tk >> 8u) & 255u);
     bool ownNegative = (tk & 0x80000000u) != 0u;
     zone = int(ownNegative ? pair.x : pair.y);
     float ownSign = ownNegative ? -1.0 : 1.0;
     bvec4 samePair = equal(t & 0xffffu, uvec4(tk & 0xffffu));
-#endif
     vec4 side = mix(mix(vec4(ownSign), vec4(1.0), equal(zk, uvec4(pair.y))), vec4(-1.0), equal(zk, uvec4(pair.x)));
-#ifdef X_PLAINFIELD
-#else
     d = mix(abs(d) * side, d, samePair);
-#endif
     distance = mix(mix(d.w, d.z, f.x), mix(d.x, d.y, f.x), f.y) / uZoneMap.z;
 }
 
