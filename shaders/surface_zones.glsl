@@ -61,19 +61,22 @@ vec4 tileSample(int zone, vec2 uv, vec4 grad) {
     return textureGrad(uTiles, vec3(uv, float(zone)), grad.xy, grad.zw);
 }
 
-// The tiles of a fragment as one loop over sample jobs: zones (1, or 2 in a
-// band) x projections (1, or 3 with triplanar on a steep slope), each job one
-// tileSample whose weighted colour adds to its zone's sum. Why one loop:
-// llvmpipe (Mesa 22.3) runs every branch of a shader with the lanes that skip
-// it masked off, so written with ifs every fragment paid for every tile sample
-// of every call site; a loop runs only as many times as the block's busiest
-// pixel needs (1 away from bands, 2 in a band, x3 on cliffs with triplanar).
+// The tiles of a fragment: a the first zone's (the fragment's own away from
+// bands), b the band's second zone's (weight 0 away from bands).
+// Planar (the seed document's mapping): two tileSamples, straight.
+// Triplanar (on cliffs too): one loop over sample jobs, zones (1, or 2 in a
+// band) x projections (1, or 3 on a steep slope), each job one tileSample
+// whose weighted colour adds to its zone's sum. llvmpipe (Mesa 22.3) runs
+// every branch of a shader with the lanes that skip it masked off, so written
+// with ifs every fragment paid for every tile sample of every call site; a
+// loop runs only as many times as the block's busiest pixel needs. For the
+// planar pair that bookkeeping costs more than the second sample.
+// scales: the two zones' tile repetitions per zone-map pixel (a, b).
 // mapGrad: the zone-map position's screen derivatives; worldGrad: the world
 // position's (x and y derivatives of the xyz); warp: tileWarp at the fragment
-// in tile repetitions, or 0. Planar mapping is the seed document's; triplanar
-// takes the tile along the normal on cliffs too.
-void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp, vec3 world, mat2x3 worldGrad,
-               Ground g, out vec4 a, out vec4 b) {
+// in tile repetitions, or 0.
+void zoneTiles(int zones, int low, int high, vec2 scales, vec2 mapXY, vec4 mapGrad, vec2 warp, vec3 world,
+               mat2x3 worldGrad, Ground g, out vec4 a, out vec4 b) {
 #ifdef SIERRA_ZONE_TRIPLANAR
     a = vec4(0.0);
     b = vec4(0.0);
@@ -92,7 +95,7 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp
     int projection = 0, zi = 0;
     for (int j = 0; j < jobs; ++j) {
         int zone = zi == 0 ? low : high;
-        float scale = uZoneTile[zone].x;  // tile repetitions per zone-map pixel
+        float scale = zi == 0 ? scales.x : scales.y;
         vec2 uv = mapXY;
         vec4 grad = mapGrad;
         float weight = wp.y;
@@ -112,14 +115,13 @@ void zoneTiles(int zones, int low, int high, vec2 mapXY, vec4 mapGrad, vec2 warp
         }
     }
 #else
-    // Planar: one job a zone. b takes every sample and a the first, so away
-    // from bands both hold the one zone's tile (and b's weight is 0 there).
-    for (int zi = 0; zi < zones; ++zi) {
-        int zone = zi == 0 ? low : high;
-        float scale = uZoneTile[zone].x;  // tile repetitions per zone-map pixel
-        b = tileSample(zone, mapXY * scale + warp, mapGrad * scale);
-        if (zi == 0) a = b;
-    }
+    // Planar: both zones' tiles, straight (b is unused away from bands,
+    // where its weight is 0). A loop of one pass away from bands and two in a
+    // band cost more: llvmpipe's loop bookkeeping (masked stores of a and b,
+    // the per-pass selects) took more instructions than the second sample
+    // (docs/zones.md, "Frame cost").
+    a = tileSample(low, mapXY * scales.x + warp, mapGrad * scales.x);
+    b = tileSample(high, mapXY * scales.y + warp, mapGrad * scales.y);
 #endif
 }
 
@@ -149,13 +151,15 @@ void zoneField(vec2 m, out int zone, out uvec2 pair, out float distance) {
     vec4 d = vec4(unpackHalf2x16((t.x >> 16u) | (t.y & 0xffff0000u)),
                   unpackHalf2x16((t.z >> 16u) | (t.w & 0xffff0000u)));
     uvec4 zk = mix(hi, lo, negative);
-    // The nearest texel: (0, 0) + (f >= 0.5).
+    // The nearest texel, (0, 0) + (f >= 0.5), selected as one texel: its pair
+    // and sign are then read once, not from four vectors by a per-pixel index.
     bool right = f.x >= 0.5, down = f.y >= 0.5;
-    int k = down ? (right ? 1 : 0) : (right ? 2 : 3);
-    pair = uvec2(lo[k], hi[k]);
-    zone = int(zk[k]);
-    float ownSign = negative[k] ? -1.0 : 1.0;
-    bvec4 samePair = bvec4(uvec4(equal(lo, uvec4(pair.x))) & uvec4(equal(hi, uvec4(pair.y))));
+    uint tk = down ? (right ? t.y : t.x) : (right ? t.z : t.w);
+    pair = uvec2(tk & 255u, (tk >> 8u) & 255u);
+    bool ownNegative = (tk & 0x80000000u) != 0u;
+    zone = int(ownNegative ? pair.x : pair.y);
+    float ownSign = ownNegative ? -1.0 : 1.0;
+    bvec4 samePair = equal(t & 0xffffu, uvec4(tk & 0xffffu));
     vec4 side = mix(mix(vec4(ownSign), vec4(1.0), equal(zk, uvec4(pair.y))), vec4(-1.0), equal(zk, uvec4(pair.x)));
     d = mix(abs(d) * side, d, samePair);
     distance = mix(mix(d.w, d.z, f.x), mix(d.x, d.y, f.x), f.y) / uZoneMap.z;
@@ -186,12 +190,16 @@ vec3 surfaceAlbedo(vec3 world, Ground g) {
     vec2 warp = vec2(0.0);
 #endif
     vec4 a, b;
-    zoneTiles(inBand ? 2 : 1, low, high, m, mGrad, warp, world, wGrad, g, a, b);
+    // The two zones' tile settings (scale, height blend), read once each.
+    vec2 lowTile = uZoneTile[low].xy, highTile = uZoneTile[high].xy;
+    zoneTiles(inBand ? 2 : 1, low, high, vec2(lowTile.x, highTile.x), m, mGrad, warp, world, wGrad, g, a, b);
 #ifdef SIERRA_ZONE_HEIGHT_BLEND
-    if (inBand) {
+    {
         // Height blending: where one tile stands higher (stones in sand) it
         // shows through earlier; the shift vanishes at the band's edges.
-        float strength = 0.5 * (uZoneTile[low].y + uZoneTile[high].y);
+        // No `if (inBand)`: llvmpipe runs it masked for every fragment anyway,
+        // and outside bands the weight 0 stays 0 through both steps.
+        float strength = 0.5 * (lowTile.y + highTile.y);
         float shift = strength * (b.a - a.a) * 4.0 * weight * (1.0 - weight);
         weight = clamp(weight + shift, 0.0, 1.0);
         weight = smoothstep(0.15, 0.85, weight);

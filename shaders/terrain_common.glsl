@@ -30,6 +30,12 @@ vec3 gridToWorld(ivec2 ij, float height) {
 
 // The true height, its normal and the water flag at a ground position, from
 // the full-resolution heights: a simplified mesh shades like the full grid.
+// A surface whose colour does not follow the height (zone tiles: only the
+// water flag reads it) defines SIERRA_GROUND_BILINEAR_HEIGHT: the height is
+// then one bilinear fetch instead of smoothHeight's four and its B-spline
+// weights (about a tenth of the zone frame's shader instructions on
+// llvmpipe), and the water's edge, where the normal turns flat, follows the
+// bilinear coast (cell-sized corners) instead of the round one.
 struct Ground {
     float height;  // world units
     vec3 normal;   // unit
@@ -64,7 +70,11 @@ Ground groundAt(vec2 xz) {
     vec2 texel = 1.0 / vec2(uGrid.x);
     vec2 uv = (xz / uSpacingValid.xy + 0.5) * texel;
     Ground g;
+#ifdef SIERRA_GROUND_BILINEAR_HEIGHT
+    g.height = texture(uHeights, uv).r;
+#else
     g.height = smoothHeight(xz);
+#endif
     float dx = texture(uHeights, uv + vec2(texel.x, 0.0)).r - texture(uHeights, uv - vec2(texel.x, 0.0)).r;
     float dz = texture(uHeights, uv + vec2(0.0, texel.y)).r - texture(uHeights, uv - vec2(0.0, texel.y)).r;
     g.normal = normalize(vec3(-dx / (2.0 * uSpacingValid.x), 1.0, -dz / (2.0 * uSpacingValid.y)));

@@ -68,6 +68,9 @@ public:
         if (variation_) d += "#define SIERRA_ZONE_VARIATION 1\n";
         if (heightBlend_) d += "#define SIERRA_ZONE_HEIGHT_BLEND 1\n";
         d += "#define SIERRA_ZONE_DEBUG " + std::to_string(int(debugView_)) + "\n";
+        // The tiles' colour does not follow the height; the water flag alone
+        // reads it (terrain_common.glsl).
+        d += "#define SIERRA_GROUND_BILINEAR_HEIGHT 1\n";
         return d;
     }
     void bind() const override {
