@@ -193,6 +193,54 @@ TEST(TinMesher, MaxErrorWithinBoundOnEverySample) {
     }
 }
 
+// Largest vertical error of the plane through a, b, c over the samples of
+// that closed triangle (its own barycentric loop).
+double planeMaxError(GridPoint a, GridPoint b, GridPoint c, const terrain::Heightfield& field) {
+    const double area = double(orient2(a, b, c));
+    const double za = field.worldHeight(a.x, a.y), zb = field.worldHeight(b.x, b.y), zc = field.worldHeight(c.x, c.y);
+    double worst = 0.0;
+    for (int y = std::min({a.y, b.y, c.y}); y <= std::max({a.y, b.y, c.y}); ++y)
+        for (int x = std::min({a.x, b.x, c.x}); x <= std::max({a.x, b.x, c.x}); ++x) {
+            const GridPoint p{x, y};
+            const int64_t wa = orient2(b, c, p), wb = orient2(c, a, p), wc = orient2(a, b, p);
+            if (wa < 0 || wb < 0 || wc < 0) continue;
+            const double z = (double(wa) * za + double(wb) * zb + double(wc) * zc) / area;
+            worst = std::max(worst, std::fabs(double(field.worldHeight(x, y)) - z));
+        }
+    return worst;
+}
+
+// Where the two triangles of an edge have their four corners on one circle,
+// both diagonals are Delaunay; the mesher keeps the one whose planes have the
+// smaller largest error over the quad (grid samples are often cocircular).
+TEST(TinMesher, CocircularQuadsKeepTheDiagonalOfSmallerError) {
+    size_t cocircular = 0, other = 0;
+    for (uint64_t seed : {1, 2}) {
+        const terrain::Heightfield field = fractal(129, seed);
+        for (double rel : {0.002, 0.01}) {
+            const tin::TinMesh mesh = tin::buildTin(field, {}, {.maxErrorRel = rel}).mesh;
+            const auto edges = directedEdges(mesh);
+            for (const auto& [e, where] : edges) {
+                const auto twin = edges.find({e.second, e.first});
+                if (e.first > e.second || twin == edges.end()) continue;
+                const GridPoint a = mesh.vertices[size_t(e.first)], b = mesh.vertices[size_t(e.second)];
+                const GridPoint p = mesh.vertices[size_t(mesh.triangles[size_t(where.first)][size_t((where.second + 2) % 3)])];
+                const GridPoint d =
+                    mesh.vertices[size_t(mesh.triangles[size_t(twin->second.first)][size_t((twin->second.second + 2) % 3)])];
+                if (strictlyInCircle(a, b, p, d) || strictlyInCircle(b, a, d, p)) continue;
+                if (strictlyInCircle(p, a, d, b) || strictlyInCircle(d, b, p, a)) continue;  // not on the circle
+                ++cocircular;
+                const double kept = std::max(planeMaxError(a, b, p, field), planeMaxError(b, a, d, field));
+                const double flipped = std::max(planeMaxError(p, a, d, field), planeMaxError(d, b, p, field));
+                other += flipped < kept * (1.0 - 1e-6);
+            }
+        }
+    }
+    std::printf("%zu cocircular quads, %zu with the other diagonal better\n", cocircular, other);
+    EXPECT_GT(cocircular, 100u) << "the fractals should give cocircular quads";
+    EXPECT_LT(other * 50, cocircular);
+}
+
 TEST(TinMesher, AbsoluteErrorAndNonSquareGrid) {
     terrain::Heightfield big = fractal(129, 7);
     terrain::Heightfield field(101, 37);

@@ -22,21 +22,22 @@ inline int64_t orient(GridPoint a, GridPoint b, GridPoint c) {
 // 16385 samples a side).
 constexpr int kInCircle64MaxExtent = 1 << 14;
 
-// inCircle in int64 only: exact when every coordinate difference is at most
-// kInCircle64MaxExtent.
-inline bool inCircle64(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
+// inCircleSign in int64 only: exact when every coordinate difference is at
+// most kInCircle64MaxExtent.
+inline int inCircleSign64(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
     const int64_t adx = a.x - d.x, ady = a.y - d.y;
     const int64_t bdx = b.x - d.x, bdy = b.y - d.y;
     const int64_t cdx = c.x - d.x, cdy = c.y - d.y;
     const int64_t det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) +
                         (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
                         (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
-    return det > 0;
+    return (det > 0) - (det < 0);
 }
+inline bool inCircle64(GridPoint a, GridPoint b, GridPoint c, GridPoint d) { return inCircleSign64(a, b, c, d) > 0; }
 
-// True when d lies strictly inside the circumcircle of the counter-clockwise
-// triangle a, b, c.
-inline bool inCircle(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
+// Where d lies against the circumcircle of the counter-clockwise triangle
+// a, b, c: 1 strictly inside, 0 on it, -1 outside.
+inline int inCircleSign(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
     const int64_t adx = a.x - d.x, ady = a.y - d.y;
     const int64_t bdx = b.x - d.x, bdy = b.y - d.y;
     const int64_t cdx = c.x - d.x, cdy = c.y - d.y;
@@ -45,8 +46,12 @@ inline bool inCircle(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
     const Int128 clift = cdx * cdx + cdy * cdy;
     const Int128 det = alift * (bdx * cdy - cdx * bdy) + blift * (cdx * ady - adx * cdy) +
                        clift * (adx * bdy - bdx * ady);
-    return det > 0;
+    return (det > 0) - (det < 0);
 }
+
+// True when d lies strictly inside the circumcircle of the counter-clockwise
+// triangle a, b, c.
+inline bool inCircle(GridPoint a, GridPoint b, GridPoint c, GridPoint d) { return inCircleSign(a, b, c, d) > 0; }
 
 // Scan conversion of a triangle over the grid: calls row(y, x0, x1) for every
 // row y with at least one sample inside or on the triangle, x0..x1 inclusive.
