@@ -199,9 +199,11 @@ class Mesher {
     float height(int x, int y) const { return heights_[size_t(y) * size_t(width_) + size_t(x)]; }
     void scan(int t);
     // The plane through a, b, c against the samples of that triangle: the sum
-    // of squared vertical errors (kLargest false) or the largest one (true).
+    // of squared vertical errors (kLargest false) or the largest one (true;
+    // the scan stops at the first row that starts with `limit` reached).
     template <bool kLargest>
-    double planeError(GridPoint a, GridPoint b, GridPoint c) const;
+    double planeError(GridPoint a, GridPoint b, GridPoint c,
+                      double limit = std::numeric_limits<double>::infinity()) const;
     double quadError(GridPoint a, GridPoint b, GridPoint c) const { return planeError<false>(a, b, c); }
     void heapUpdate(int t);
     bool heapLess(int i, int j) const { return heap_[size_t(i)].error < heap_[size_t(j)].error; }
@@ -451,9 +453,8 @@ bool Mesher::shouldFlip(int e) {
         // On the fractals of docs/tin.md it saves 0.3-1.7% of the triangles at
         // 0.1-0.5% relative error; keeping the first diagonal gave about the
         // public mesher's counts.
-        const double now = std::max(planeError<true>(a, b, p), planeError<true>(b, a, d));
-        const double other = std::max(planeError<true>(p, a, d), planeError<true>(d, b, p));
-        return other < now * (1.0 - 1e-9);
+        const double bar = std::max(planeError<true>(a, b, p), planeError<true>(b, a, d)) * (1.0 - 1e-9);
+        return planeError<true>(p, a, d, bar) < bar && planeError<true>(d, b, p, bar) < bar;
     }
     // Data-dependent: only a strictly convex quad, and only when the other
     // diagonal's two planes fit the quad's samples better (sum of squared errors,
@@ -716,7 +717,7 @@ void Mesher::scan(int t) {
 }
 
 template <bool kLargest>
-double Mesher::planeError(GridPoint a, GridPoint b, GridPoint c) const {
+double Mesher::planeError(GridPoint a, GridPoint b, GridPoint c, double limit) const {
     const double za = height(a.x, a.y), zb = height(b.x, b.y), zc = height(c.x, c.y);
     const double ux = b.x - a.x, uy = b.y - a.y, uz = zb - za;
     const double vx = c.x - a.x, vy = c.y - a.y, vz = zc - za;
@@ -724,6 +725,7 @@ double Mesher::planeError(GridPoint a, GridPoint b, GridPoint c) const {
     const double gx = -(uy * vz - uz * vy) / nz, gy = -(uz * vx - ux * vz) / nz;
     double sum = 0.0;
     scanTriangle(a, b, c, [&](int y, int x0, int x1) {
+        if (kLargest && sum >= limit) return;
         const float* row = heights_ + size_t(y) * size_t(width_);
         for (int x = x0; x <= x1; ++x) {
             const double err = row[x] - (za + gx * (x - a.x) + gy * (y - a.y));
