@@ -41,6 +41,31 @@ bool insideEdges(const zones::Borderlines& lines, const std::vector<uint32_t>& e
     return inside;
 }
 
+// The convex hull of the vertices `vs` (monotone chain; collinear points dropped).
+std::vector<zones::Vertex> convexHull(const zones::Borderlines& lines, const std::vector<uint32_t>& vs) {
+    std::vector<zones::Vertex> points;
+    points.reserve(vs.size());
+    for (uint32_t v : vs) points.push_back(lines.vertices[v]);
+    std::sort(points.begin(), points.end(),
+              [](const zones::Vertex& a, const zones::Vertex& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    if (points.size() < 3) return points;
+    auto cross = [](const zones::Vertex& o, const zones::Vertex& a, const zones::Vertex& b) {
+        return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
+    std::vector<zones::Vertex> hull(2 * points.size());
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i) {  // lower chain
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+        hull[k++] = points[i];
+    }
+    for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+        while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+        hull[k++] = points[i];
+    }
+    hull.resize(k - 1);
+    return hull;
+}
+
 }  // namespace
 
 size_t removeThinIslands(zones::Borderlines& lines, double epsilon) {
@@ -88,40 +113,58 @@ size_t removeThinIslands(zones::Borderlines& lines, double epsilon) {
         }
         const double diagonal = std::hypot(box.x1 - box.x0, box.y1 - box.y0);
         if (0.5 * std::fabs(twiceArea) > 2.0 * epsilon * diagonal) continue;
-        // The longest chord (the first pair found on a tie) and every vertex's
-        // distance from its line.
-        double longest = -1.0;
-        zones::Vertex p, q;
-        for (size_t i = 0; i < vs.size(); ++i)
-            for (size_t j = i + 1; j < vs.size(); ++j) {
-                const zones::Vertex& a = lines.vertices[vs[i]];
-                const zones::Vertex& b = lines.vertices[vs[j]];
-                const double d = (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y);
-                if (d > longest) longest = d, p = a, q = b;
+        // The longest chord joins two corners of the convex hull: the pairs are
+        // tried over the hull only (a long thin island has thousands of
+        // vertices, its hull a few dozen). The island is thin when every vertex
+        // lies within epsilon of a longest chord (of any, where several tie).
+        const std::vector<zones::Vertex> hull = convexHull(lines, vs);
+        double longest = 0.0;
+        std::vector<std::pair<size_t, size_t>> chords;
+        for (size_t i = 0; i < hull.size(); ++i)
+            for (size_t j = i + 1; j < hull.size(); ++j) {
+                const double d = (hull[i].x - hull[j].x) * (hull[i].x - hull[j].x) +
+                                 (hull[i].y - hull[j].y) * (hull[i].y - hull[j].y);
+                if (d > longest) longest = d, chords.clear();
+                if (d == longest && d > 0.0) chords.emplace_back(i, j);
             }
         const double length = std::sqrt(longest);
-        bool within = length > 0.0;
-        for (size_t i = 0; i < vs.size() && within; ++i) {
-            const zones::Vertex& s = lines.vertices[vs[i]];
-            within = std::fabs((q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x)) <=
-                     epsilon * length;
+        bool within = false;
+        for (size_t c = 0; c < chords.size() && !within; ++c) {
+            const zones::Vertex& p = hull[chords[c].first];
+            const zones::Vertex& q = hull[chords[c].second];
+            within = true;
+            for (size_t i = 0; i < vs.size() && within; ++i) {
+                const zones::Vertex& s = lines.vertices[vs[i]];
+                within = std::fabs((q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x)) <= epsilon * length;
+            }
         }
         if (within) thin.push_back(box);
     }
     // An island with a kept borderline inside stays: removing it would leave
     // that borderline's outer zone (the island's) inside another zone. Keeping
     // one may keep an island around it in turn, so this repeats until stable.
-    std::vector<uint8_t> removed(nv, 0), used(nv, 0);
+    // Borderlines never cross, so a component lies inside an island when one
+    // of its vertices does: one vertex per component, sorted by x, is tested.
+    std::vector<uint8_t> removed(nv, 0);
     for (const Island& i : thin) removed[i.root] = 1;
-    for (const zones::Edge& e : lines.edges) used[e.from] = used[e.to] = 1;
+    std::vector<uint32_t> witnesses;  // one vertex of each component, by x
+    {
+        std::vector<uint8_t> seen(nv, 0);
+        for (const zones::Edge& e : lines.edges)
+            if (!seen[root(e.from)]) seen[root(e.from)] = 1, witnesses.push_back(e.from);
+    }
+    std::sort(witnesses.begin(), witnesses.end(),
+              [&](uint32_t a, uint32_t b) { return lines.vertices[a].x < lines.vertices[b].x; });
+    auto byX = [&](uint32_t v, double x) { return lines.vertices[v].x <= x; };
     for (bool changed = true; changed;) {
         changed = false;
         for (const Island& i : thin) {
             if (!removed[i.root]) continue;
-            for (uint32_t v = 0; v < nv; ++v) {
-                const zones::Vertex& s = lines.vertices[v];
-                if (!used[v] || removed[root(v)] || s.x <= i.x0 || s.x >= i.x1 || s.y <= i.y0 || s.y >= i.y1)
-                    continue;
+            for (auto w = std::partition_point(witnesses.begin(), witnesses.end(),
+                                               [&](uint32_t v) { return byX(v, i.x0); });
+                 w != witnesses.end() && lines.vertices[*w].x < i.x1; ++w) {
+                const zones::Vertex& s = lines.vertices[*w];
+                if (removed[root(*w)] || s.y <= i.y0 || s.y >= i.y1) continue;
                 if (insideEdges(lines, loopEdges[i.root], s.x, s.y)) {
                     removed[i.root] = 0;
                     changed = true;
