@@ -65,10 +65,15 @@ struct GoldenComparison {
     }
 };
 
+// Both images non-empty, of one width and height.
+inline bool sameSize(const gpu::Image& image, const gpu::Image& golden) {
+    return image.width == golden.width && image.height == golden.height && image.rgba.size() == golden.rgba.size() &&
+           !image.rgba.empty();
+}
+
 inline GoldenComparison compareWithGolden(const gpu::Image& image, const gpu::Image& golden) {
     GoldenComparison c;
-    if (image.width != golden.width || image.height != golden.height ||
-        image.rgba.size() != golden.rgba.size() || image.rgba.empty()) {
+    if (!sameSize(image, golden)) {
         c.why = "sizes differ";
         return c;
     }
@@ -118,8 +123,7 @@ constexpr double kLineMaxDiffering = 0.001;
 
 inline GoldenComparison compareLinesWithGolden(const gpu::Image& image, const gpu::Image& golden) {
     GoldenComparison c;
-    if (image.width != golden.width || image.height != golden.height ||
-        image.rgba.size() != golden.rgba.size() || image.rgba.empty()) {
+    if (!sameSize(image, golden)) {
         c.why = "sizes differ";
         return c;
     }
