@@ -203,6 +203,21 @@ int run(const Options& o) {
             100.0 * agreement.fraction(), epsilon, std::max(double(s.zones.epsilon), epsilon / 2));
         epsilon = std::max(double(s.zones.epsilon), epsilon / 2);
     }
+    // Constrained borderlines are inserted whole, before the budget counts: when
+    // they alone exceed it the mesh does too, and the user has to know.
+    const int64_t meshTriangles = int64_t(result.mesh.triangles.size());
+    const int64_t meshVertices = int64_t(result.mesh.vertices.size());
+    const bool overTriangles = o.maxTriangles > 0 && meshTriangles > o.maxTriangles;
+    const bool overBudget = overTriangles || (o.maxPoints > 0 && meshVertices > o.maxPoints);
+    if (overBudget) {
+        const std::string limit = overTriangles ? msg("--max-triangles ", o.maxTriangles)
+                                                : msg("--max-points ", o.maxPoints);
+        std::fprintf(stderr,
+                     "sierra-tin: warning: the zone borderlines alone need %lld triangles and %lld "
+                     "vertices, over the budget (%s); the mesh keeps them all. Coarsen them with a "
+                     "larger --epsilon (now %.3g px), or raise the budget\n",
+                     (long long)meshTriangles, (long long)meshVertices, limit.c_str(), epsilon);
+    }
     error = tin::measureError(result.mesh, field);
     const double measureMs = clock.ms();
     clock.restart();
@@ -269,6 +284,7 @@ int run(const Options& o) {
         report["edge_splits"] = st.edgeSplits;
         report["snap_splits"] = st.snapSplits;
         report["stop"] = tin::toString(st.stop);
+        report["over_budget"] = overBudget;
         report["target_error"] = st.targetError;
         report["worst_error_left"] = st.worstError;
         if (budgetStopped)

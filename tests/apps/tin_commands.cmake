@@ -249,6 +249,17 @@ json_get(auto_agreement ${WORK_DIR}/auto.json zones agreement)
 if(auto_agreement LESS 0.995)
   message(FATAL_ERROR "--zones auto: agreement ${auto_agreement}")
 endif()
+# A budget the borderlines alone exceed: the mesh keeps them, and says so (a
+# warning and "over_budget" in the report); a budget they fit is not flagged.
+run_app(over_budget EXPECT_OK MESSAGE "warning: the zone borderlines alone need" COMMAND ${TIN}
+        --generate 129 --hurst 0.8 --zones auto --max-triangles 50 --out over.stl --json over.json)
+json_get(over_flag ${WORK_DIR}/over.json over_budget)
+json_get(over_tris ${WORK_DIR}/over.json triangles)
+json_get(fit_flag ${WORK_DIR}/budget_zones.json over_budget)
+if(NOT over_flag OR NOT over_tris GREATER 50 OR fit_flag)
+  message(FATAL_ERROR "over budget: flag ${over_flag} with ${over_tris} triangles for a budget of 50; "
+                      "the 20000 budget run flagged ${fit_flag}")
+endif()
 
 # --print-config shows the zone options (no --out needed) and --config reads them
 # back: the same mesh as the command line; options given beside --config win.
