@@ -18,7 +18,7 @@ inline constexpr int kExitUsage = 2;
 
 // A wrong option value or scene, found after parsing (exit kExitUsage).
 class UsageError : public Error {
-public:
+  public:
     using Error::Error;
 };
 

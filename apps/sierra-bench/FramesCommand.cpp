@@ -16,10 +16,10 @@
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/SceneView.h>
-#include <sierra/scene/Options.h>
-#include <sierra/scene/Terrain.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
+#include <sierra/scene/Options.h>
+#include <sierra/scene/Terrain.h>
 
 #include <nlohmann/json.hpp>
 
@@ -64,8 +64,9 @@ Stats stats(const std::vector<FrameRecord>& records, double FrameRecord::*field)
 }
 
 // Draws one frame and reads it back; fills the timing fields of `record`.
-gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& target, const render::Camera& camera,
-                      const render::DrawOptions& draw, FrameRecord& record) {
+gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& target,
+                      const render::Camera& camera, const render::DrawOptions& draw,
+                      FrameRecord& record) {
     Stopwatch frame;
     target.begin(render::TerrainRenderer::clearColour(draw.lighting));
     render::DrawStats s = terrain.draw(camera, target.width(), target.height(), draw);
@@ -97,10 +98,11 @@ void runFrames(const FramesOptions& o) {
     std::string description;
     // The context comes first: its texture limit bounds the grid the loader takes.
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
-    std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(), context.platform().c_str());
+    std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(),
+                 context.platform().c_str());
     terrain::Heightfield field =
         scene::loadTerrain(sc.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
-                            render::TerrainGpu::maxGridSide());
+                           render::TerrainGpu::maxGridSide());
     float seaLevel = scene::resolveSeaLevel(sc.terrain, field);
     std::fprintf(stderr, "terrain: %s\n", description.c_str());
     render::TerrainRenderer terrain =
@@ -112,7 +114,9 @@ void runFrames(const FramesOptions& o) {
     render::addOverlayPasses(terrain, sc, field);
     const std::vector<std::string> passNames = terrain.addedPassNames();
     if (o.overlayCosts && passNames.empty())
-        throw UsageError("--overlay-costs needs overlays to time: --style with lines, hatch or contours, or --preset");
+        throw UsageError(
+            "--overlay-costs needs overlays to time: --style with lines, hatch or contours, or "
+            "--preset");
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
     std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());
@@ -131,33 +135,39 @@ void runFrames(const FramesOptions& o) {
     {
         FrameRecord warm;
         timedFrame(terrain, target, cameras.front(), draw, warm);
-        if (o.compareFull || lod == render::Lod::Full) timedFrame(terrain, target, cameras.front(), fullDraw, warm);
+        if (o.compareFull || lod == render::Lod::Full)
+            timedFrame(terrain, target, cameras.front(), fullDraw, warm);
     }
 
     std::vector<FrameRecord> records;
-    Progress progress(o.compareFull ? "frames (and full-grid references)" : "frames", int64_t(cameras.size()));
+    Progress progress(o.compareFull ? "frames (and full-grid references)" : "frames",
+                      int64_t(cameras.size()));
     // Saved frames carry their index in the whole sequence; full-grid
     // references go beside them as NAME_full_0000.png.
     std::string fullFrames;
     if (!o.saveFrames.empty()) {
         std::filesystem::path p(o.saveFrames);
-        fullFrames = (p.parent_path() / (p.stem().string() + "_full" + p.extension().string())).string();
+        fullFrames =
+            (p.parent_path() / (p.stem().string() + "_full" + p.extension().string())).string();
     }
     for (size_t k = 0; k < cameras.size(); ++k) {
         FrameRecord r;
         gpu::Image image = timedFrame(terrain, target, cameras[k], draw, r);
-        if (!o.saveFrames.empty()) render::writePng(render::sequencePath(o.saveFrames, first + int(k)), image);
+        if (!o.saveFrames.empty())
+            render::writePng(render::sequencePath(o.saveFrames, first + int(k)), image);
         std::string detail = msg(fixed(r.total, 1), " ms, ", r.triangles, " triangles");
         if (o.compareFull) {
             FrameRecord full;
             gpu::Image reference = timedFrame(terrain, target, cameras[k], fullDraw, full);
-            if (!fullFrames.empty()) render::writePng(render::sequencePath(fullFrames, first + int(k)), reference);
+            if (!fullFrames.empty())
+                render::writePng(render::sequencePath(fullFrames, first + int(k)), reference);
             render::ImageDifference d = render::compareImages(image, reference, 8);
             r.psnr = d.psnr;
             r.differing = d.differingShare;
             r.fullTotal = full.total;
-            detail += msg(", full grid ", fixed(full.total, 1), " ms, PSNR ",
-                          std::isfinite(d.psnr) ? fixed(d.psnr, 2) + " dB" : std::string("identical"));
+            detail +=
+                msg(", full grid ", fixed(full.total, 1), " ms, PSNR ",
+                    std::isfinite(d.psnr) ? fixed(d.psnr, 2) + " dB" : std::string("identical"));
         }
         if (o.overlayCosts) {
             // Interleaved with the frame above, so the machine's load weighs on all alike.
@@ -178,9 +188,10 @@ void runFrames(const FramesOptions& o) {
     }
     progress.finish();
 
-    Stats refine = stats(records, &FrameRecord::refine), upload = stats(records, &FrameRecord::upload),
-          drawS = stats(records, &FrameRecord::draw), gpuS = stats(records, &FrameRecord::gpu),
-          readS = stats(records, &FrameRecord::readBack), total = stats(records, &FrameRecord::total);
+    Stats refine = stats(records, &FrameRecord::refine),
+          upload = stats(records, &FrameRecord::upload), drawS = stats(records, &FrameRecord::draw),
+          gpuS = stats(records, &FrameRecord::gpu), readS = stats(records, &FrameRecord::readBack),
+          total = stats(records, &FrameRecord::total);
     auto medianOf = [&](auto field) {
         std::vector<double> v;
         for (const FrameRecord& r : records) v.push_back(double(r.*field));
@@ -190,10 +201,13 @@ void runFrames(const FramesOptions& o) {
     double bytes = medianOf(&FrameRecord::bytes);
     double indices = medianOf(&FrameRecord::indices);
 
-    std::printf("sierra-bench frames: %s, %dx%d, %s path, %zu frames, lod %s, tau %g px, geomorph %s, msaa %d, "
-                "threads %d\n",
-                description.c_str(), width, height, pathText.c_str(), cameras.size(), lodText.c_str(), draw.tau,
-                draw.geomorph ? "on" : "off", sc.output.msaa, sc.lod.threads ? sc.lod.threads : defaultThreadCount());
+    std::printf(
+        "sierra-bench frames: %s, %dx%d, %s path, %zu frames, lod %s, tau %g px, geomorph %s, msaa "
+        "%d, "
+        "threads %d\n",
+        description.c_str(), width, height, pathText.c_str(), cameras.size(), lodText.c_str(),
+        draw.tau, draw.geomorph ? "on" : "off", sc.output.msaa,
+        sc.lod.threads ? sc.lod.threads : defaultThreadCount());
     std::printf("renderer: %s\n", context.renderer().c_str());
     std::printf("%-22s %10s %10s %10s\n", "stage (ms)", "median", "p95", "p99");
     auto row = [](const char* name, Stats s) {
@@ -223,9 +237,12 @@ void runFrames(const FramesOptions& o) {
     j["geomorph"] = draw.geomorph;
     j["msaa"] = sc.output.msaa;
     j["threads"] = sc.lod.threads ? sc.lod.threads : defaultThreadCount();
-    auto toJson = [](Stats s) { return nlohmann::json{{"median", s.median}, {"p95", s.p95}, {"p99", s.p99}}; };
-    j["ms"] = {{"refine_strip", toJson(refine)}, {"upload", toJson(upload)},   {"draw", toJson(drawS)},
-               {"draw_gl_timer", toJson(gpuS)},  {"read_back", toJson(readS)}, {"frame", toJson(total)}};
+    auto toJson = [](Stats s) {
+        return nlohmann::json{{"median", s.median}, {"p95", s.p95}, {"p99", s.p99}};
+    };
+    j["ms"] = {{"refine_strip", toJson(refine)}, {"upload", toJson(upload)},
+               {"draw", toJson(drawS)},          {"draw_gl_timer", toJson(gpuS)},
+               {"read_back", toJson(readS)},     {"frame", toJson(total)}};
     j["triangles_median"] = triangles;
     j["indices_per_triangle"] = triangles > 0 ? indices / triangles : 0.0;
     j["bytes_per_frame_median"] = bytes;
@@ -244,34 +261,45 @@ void runFrames(const FramesOptions& o) {
             minPsnr = std::min(minPsnr, r.psnr);
             identical += std::isinf(r.psnr);
         }
-        auto dB = [](double v) { return std::isfinite(v) ? fixed(v, 2) + " dB" : std::string("identical"); };
+        auto dB = [](double v) {
+            return std::isfinite(v) ? fixed(v, 2) + " dB" : std::string("identical");
+        };
         std::printf("full-grid frame (ms): median %.3f, p95 %.3f\n", full.median, full.p95);
         std::printf("frame time ratio %s / full (medians): %.4f (1/%.1f)\n", lodText.c_str(),
                     total.median / full.median, full.median / total.median);
-        std::printf("PSNR against full grid: median %s, min %s; %d of %zu frames identical; differing pixels: "
-                    "median %.3f%%\n",
-                    dB(psnr.median).c_str(), dB(minPsnr).c_str(), identical, records.size(),
-                    100.0 * differing.median);
-        auto psnrJson = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+        std::printf(
+            "PSNR against full grid: median %s, min %s; %d of %zu frames identical; differing "
+            "pixels: "
+            "median %.3f%%\n",
+            dB(psnr.median).c_str(), dB(minPsnr).c_str(), identical, records.size(),
+            100.0 * differing.median);
+        auto psnrJson = [](double v) {
+            return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+        };
         j["full_frame"] = toJson(full);
         j["frame_ratio"] = total.median / full.median;
-        j["psnr"] = {{"median", psnrJson(psnr.median)}, {"min", psnrJson(minPsnr)}, {"identical_frames", identical},
+        j["psnr"] = {{"median", psnrJson(psnr.median)},
+                     {"min", psnrJson(minPsnr)},
+                     {"identical_frames", identical},
                      {"note", "dB against the full grid; null = identical frames"}};
         j["differing_share_median"] = differing.median;
     }
     if (o.overlayCosts) {
         // Ratios of medians of frames drawn in turn from the same cameras.
         Stats bare = stats(records, &FrameRecord::bare);
-        std::printf("overlay costs (frame medians, each camera drawn in turn with and without): no overlays %.3f ms, "
-                    "all overlays %.3f ms: x%.3f (%+.1f%%)\n",
-                    bare.median, total.median, total.median / bare.median, 100.0 * (total.median / bare.median - 1.0));
+        std::printf(
+            "overlay costs (frame medians, each camera drawn in turn with and without): no "
+            "overlays %.3f ms, "
+            "all overlays %.3f ms: x%.3f (%+.1f%%)\n",
+            bare.median, total.median, total.median / bare.median,
+            100.0 * (total.median / bare.median - 1.0));
         nlohmann::json alone = nlohmann::json::object();
         for (size_t p = 0; p < passNames.size() && p < 64; ++p) {
             std::vector<double> v;
             for (const FrameRecord& r : records) v.push_back(r.alone[p]);
             const double m = median(v);
-            std::printf("  %-10s alone %.3f ms: x%.3f (%+.1f%%)\n", passNames[p].c_str(), m, m / bare.median,
-                        100.0 * (m / bare.median - 1.0));
+            std::printf("  %-10s alone %.3f ms: x%.3f (%+.1f%%)\n", passNames[p].c_str(), m,
+                        m / bare.median, 100.0 * (m / bare.median - 1.0));
             alone[passNames[p]] = {{"frame_median", m}, {"ratio", m / bare.median}};
         }
         j["overlay_costs"] = {{"bare_frame_median", bare.median},
@@ -280,11 +308,17 @@ void runFrames(const FramesOptions& o) {
     }
     nlohmann::json perFrame = nlohmann::json::array();
     for (const FrameRecord& r : records)
-        perFrame.push_back({{"refine", r.refine}, {"upload", r.upload}, {"draw", r.draw}, {"gpu", r.gpu},
-                            {"read_back", r.readBack}, {"frame", r.total}, {"triangles", r.triangles},
-                            {"bytes", r.bytes},
-                            {"psnr", o.compareFull && std::isfinite(r.psnr) ? nlohmann::json(r.psnr)
-                                                                            : nlohmann::json(nullptr)}});
+        perFrame.push_back(
+            {{"refine", r.refine},
+             {"upload", r.upload},
+             {"draw", r.draw},
+             {"gpu", r.gpu},
+             {"read_back", r.readBack},
+             {"frame", r.total},
+             {"triangles", r.triangles},
+             {"bytes", r.bytes},
+             {"psnr", o.compareFull && std::isfinite(r.psnr) ? nlohmann::json(r.psnr)
+                                                             : nlohmann::json(nullptr)}});
     j["per_frame"] = perFrame;
     if (!o.json.empty()) {
         writeFileAtomic(o.json, j.dump(2) + "\n");
@@ -304,18 +338,22 @@ void addFramesCommand(CLI::App& app) {
     o->scene.output.debug.clear();
     o->scene.path.type = scene::PathType::Orbit;
     o->scene.path.frames = 60;
-    CLI::App* cmd = app.add_subcommand("frames", "Time view-dependent frames along a camera path (EGL)");
+    CLI::App* cmd =
+        app.add_subcommand("frames", "Time view-dependent frames along a camera path (EGL)");
     o->registrar = std::make_unique<scene::SceneOptions>(
         *cmd, o->scene,
-        scene::kTerrainOptions | scene::kCameraOptions | scene::kPathOptions | scene::kLightingOptions |
-            scene::kLodOptions | scene::kStyleOptions | scene::kFrameOptions | scene::kZoneOptions |
-            scene::kZoneShadingOptions);
-    cmd->add_flag("--compare-full", o->compareFull,
-                  "Also render the full grid from each camera: frame-time ratio, PSNR, differing pixels");
+        scene::kTerrainOptions | scene::kCameraOptions | scene::kPathOptions |
+            scene::kLightingOptions | scene::kLodOptions | scene::kStyleOptions |
+            scene::kFrameOptions | scene::kZoneOptions | scene::kZoneShadingOptions);
+    cmd->add_flag(
+        "--compare-full", o->compareFull,
+        "Also render the full grid from each camera: frame-time ratio, PSNR, differing pixels");
     cmd->add_flag("--overlay-costs", o->overlayCosts,
-                  "Also draw each frame without the overlay passes and with each alone: their cost as ratios");
+                  "Also draw each frame without the overlay passes and with each alone: their cost "
+                  "as ratios");
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");
-    cmd->add_option("--save-frames", o->saveFrames, "Write every frame as PNG (NAME_0000.png, ...)");
+    cmd->add_option("--save-frames", o->saveFrames,
+                    "Write every frame as PNG (NAME_0000.png, ...)");
     cmd->callback([o] {
         asUsage([&] { o->registrar->apply(); });
         if (o->registrar->printConfigRequested()) return;

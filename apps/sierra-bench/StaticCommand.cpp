@@ -17,9 +17,9 @@
 #include <sierra/core/Files.h>
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
-#include <sierra/scene/Options.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
+#include <sierra/scene/Options.h>
 
 #include <nlohmann/json.hpp>
 
@@ -57,21 +57,25 @@ void writeObj(const std::string& path, const terrain::Heightfield& field,
                 remap[v] = uint32_t(order.size());
             }
     writeFileAtomic(path, [&](std::FILE* out) {
-        std::fprintf(out, "# sierra-bench static: fixed-error SBT mesh, %zu triangles\n", tris.size());
+        std::fprintf(out, "# sierra-bench static: fixed-error SBT mesh, %zu triangles\n",
+                     tris.size());
         for (uint32_t v : order) {
             int i = int(v % uint32_t(side)), j = int(v / uint32_t(side));
-            std::fprintf(out, "v %.6g %.6g %.6g\n", i * double(field.spacingX()), double(field.worldHeight(i, j)),
-                         j * double(field.spacingZ()));
+            std::fprintf(out, "v %.6g %.6g %.6g\n", i * double(field.spacingX()),
+                         double(field.worldHeight(i, j)), j * double(field.spacingZ()));
         }
-        for (const auto& t : tris) std::fprintf(out, "f %u %u %u\n", remap[t[0]], remap[t[1]], remap[t[2]]);
+        for (const auto& t : tris)
+            std::fprintf(out, "f %u %u %u\n", remap[t[0]], remap[t[1]], remap[t[2]]);
     });
 }
 
 void runStatic(const StaticOptions& o) {
     if (!std::isfinite(o.maxError))
-        throw Error(msg("static: --max-error must be a finite number (world height units), got ", o.maxError));
+        throw Error(msg("static: --max-error must be a finite number (world height units), got ",
+                        o.maxError));
     if (o.repeat < 1) throw Error(msg("static: --repeat must be >= 1, got ", o.repeat));
-    if (o.threads < 0) throw Error(msg("static: --threads must be >= 0 (0 = all cores), got ", o.threads));
+    if (o.threads < 0)
+        throw Error(msg("static: --threads must be >= 0 (0 = all cores), got ", o.threads));
 
     // The same loading, padding and generation as every Sierra app (heights in
     // the file's units by default here, see addStaticCommand).
@@ -111,8 +115,10 @@ void runStatic(const StaticOptions& o) {
     std::printf("distinct vertices      %lld\n", (long long)vertices);
     std::printf("strip indices          %zu (%d strips)\n", mesh.indices.size(), mesh.stripCount);
     std::printf("indices per triangle   %.4f\n", mesh.indicesPerTriangle());
-    std::printf("extraction median      %.3f ms (p95 %.3f ms, %d runs)\n", medianMs, p95Ms, o.repeat);
-    std::printf("throughput             %.1f M triangles/s (%.1f M/s per thread)\n", mtps, mtps / threads);
+    std::printf("extraction median      %.3f ms (p95 %.3f ms, %d runs)\n", medianMs, p95Ms,
+                o.repeat);
+    std::printf("throughput             %.1f M triangles/s (%.1f M/s per thread)\n", mtps,
+                mtps / threads);
     std::printf("max vertical distance  %g\n", maxDistance);
 
     if (!o.obj.empty()) writeObj(o.obj, field, tris);
@@ -129,7 +135,8 @@ void runStatic(const StaticOptions& o) {
             {"strip_indices", mesh.indices.size()},
             {"strips", mesh.stripCount},
             {"indices_per_triangle", mesh.indicesPerTriangle()},
-            {"extraction_ms", {{"median", medianMs}, {"p95", p95Ms}, {"runs", o.repeat}, {"all", times}}},
+            {"extraction_ms",
+             {{"median", medianMs}, {"p95", p95Ms}, {"runs", o.repeat}, {"all", times}}},
             {"mtriangles_per_s", mtps},
             {"mtriangles_per_s_per_thread", mtps / threads},
             {"max_vertical_distance", maxDistance},
@@ -156,18 +163,21 @@ void addStaticCommand(CLI::App& app) {
 
     CLI::App* cmd = app.add_subcommand(
         "static", "Fixed-error SBT mesh: size, strip efficiency, extraction speed, true max error");
-    state->sceneOptions = std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
-    CLI::Option* maxError = cmd->add_option(
-        "--max-error", o.maxError,
-        "Split while the saturated vertex error exceeds this (world height units; < 0 = full grid); required");
+    state->sceneOptions =
+        std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
+    CLI::Option* maxError = cmd->add_option("--max-error", o.maxError,
+                                            "Split while the saturated vertex error exceeds this "
+                                            "(world height units; < 0 = full grid); required");
     cmd->add_option("--repeat", o.repeat, "Timed extraction runs")->capture_default_str();
     cmd->add_option("--threads", o.threads, "Threads (0 = all cores)")->capture_default_str();
-    cmd->add_option("--obj", o.obj, "Write the mesh as Wavefront OBJ (x = column, y = height, z = row)");
+    cmd->add_option("--obj", o.obj,
+                    "Write the mesh as Wavefront OBJ (x = column, y = height, z = row)");
     cmd->add_option("--json", o.json, "Write the figures as JSON");
     cmd->callback([state, maxError] {
         asUsage([&] { state->sceneOptions->apply(); });
         if (state->sceneOptions->printConfigRequested()) return;
-        if (maxError->count() == 0) throw UsageError("static: --max-error E is required (world height units)");
+        if (maxError->count() == 0)
+            throw UsageError("static: --max-error E is required (world height units)");
         runStatic(state->options);
     });
 }

@@ -1,6 +1,7 @@
 // sierra-bench: measurements of Sierra's pipeline as programs, not tests.
 //   sierra-bench static ...   fixed-error SBT mesh: size, strip efficiency, extraction speed
-//   sierra-bench frames ...   frames along a camera path: per-stage times, PSNR against the full grid
+//   sierra-bench frames ...   frames along a camera path: per-stage times, PSNR against the full
+//   grid
 //
 // One source, two executables: `sierra-bench` itself links no GL (static needs
 // none), and hands `frames` to `sierra-bench-frames` beside it, which links the
@@ -29,7 +30,8 @@ int main(int argc, char** argv) {
     }
     sierra::apps::addStaticCommand(app);
     // Listed for --help; its options are the frames program's own.
-    app.add_subcommand("frames", "Time view-dependent frames along a camera path (EGL; `frames --help`)")
+    app.add_subcommand("frames",
+                       "Time view-dependent frames along a camera path (EGL; `frames --help`)")
         ->allow_extras();
 #endif
     // The subcommands do their work in their callbacks, during parsing.

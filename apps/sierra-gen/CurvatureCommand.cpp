@@ -49,7 +49,8 @@ struct CurvatureCommandOptions {
 };
 
 bool endsWith(const std::string& text, const std::string& tail) {
-    return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+    return text.size() >= tail.size() &&
+           text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
 }
 
 // The options as the analysis takes them; throws UsageError naming the option.
@@ -73,7 +74,8 @@ analysis::CurvatureOptions curvatureOptions(const CurvatureCommandOptions& o) {
     });
     if (o.device != "cpu" && o.device != "gpu")
         throw UsageError(msg("curvature: --device must be cpu or gpu, got '", o.device, "'"));
-    if (!endsWith(o.out, ".npy")) throw UsageError(msg("curvature: --out must name a .npy file, got '", o.out, "'"));
+    if (!endsWith(o.out, ".npy"))
+        throw UsageError(msg("curvature: --out must name a .npy file, got '", o.out, "'"));
     if (!o.png.empty() && !endsWith(o.png, ".png"))
         throw UsageError(msg("curvature: --png must name a .png file, got '", o.png, "'"));
     return options;
@@ -102,8 +104,10 @@ void runCurvature(const CurvatureCommandOptions& o) {
     if (!o.png.empty()) ensureWritableLocation(o.png);
 
     std::string source;
-    const terrain::Heightfield field = scene::loadTerrain(o.scene.terrain, &source, scene::Padding::None);
-    log::info("terrain: ", source, "; curvature of ", field.width(), "x", field.height(), " samples");
+    const terrain::Heightfield field =
+        scene::loadTerrain(o.scene.terrain, &source, scene::Padding::None);
+    log::info("terrain: ", source, "; curvature of ", field.width(), "x", field.height(),
+              " samples");
     analysis::CurvatureField curvature;
     if (o.device == "gpu") {
 #ifdef SIERRA_GEN_GPU
@@ -117,8 +121,9 @@ void runCurvature(const CurvatureCommandOptions& o) {
 
     const int shape[] = {curvature.height, curvature.width, analysis::kDirectionCount};
     writeFileAtomic(o.out, encodeNpyFloat32(shape, curvature.values));
-    log::info("wrote ", o.out, " (", curvature.height, "x", curvature.width, "x", analysis::kDirectionCount,
-              " float32, ", analysis::curvatureMethodName(options.method), ")");
+    log::info("wrote ", o.out, " (", curvature.height, "x", curvature.width, "x",
+              analysis::kDirectionCount, " float32, ",
+              analysis::curvatureMethodName(options.method), ")");
     if (!o.png.empty()) {
         terrain::writeGreyPng(o.png, curvature.width, curvature.height, intensityImage(curvature));
         log::info("wrote ", o.png, " (", curvature.width, "x", curvature.height, ")");
@@ -136,22 +141,28 @@ void addCurvatureCommand(CLI::App& app) {
     };
     auto state = std::make_shared<State>();
     CurvatureCommandOptions& o = state->options;
-    CLI::App* cmd = app.add_subcommand(
-        "curvature", "Curvature along the 4 grid directions as .npy (rows, cols, 4), and its Figure 2 intensity PNG");
-    state->sceneOptions = std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
-    cmd->add_option("--method", o.method, "two-normal, three-normal, three-vertex or edge-angle; required")
+    CLI::App* cmd = app.add_subcommand("curvature",
+                                       "Curvature along the 4 grid directions as .npy (rows, cols, "
+                                       "4), and its Figure 2 intensity PNG");
+    state->sceneOptions =
+        std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
+    cmd->add_option("--method", o.method,
+                    "two-normal, three-normal, three-vertex or edge-angle; required")
         ->required();
     cmd->add_option("--distance", o.distance,
                     "Reinforcement distance in grid steps (1 = none; not with two-normal)")
         ->capture_default_str();
-    cmd->add_option("--normals", o.normals, "Vertex normals of the normal methods: edge, triangle or quad")
+    cmd->add_option("--normals", o.normals,
+                    "Vertex normals of the normal methods: edge, triangle or quad")
         ->capture_default_str();
     cmd->add_option("--scale", o.scale, "Factor on every value (>= 0)")->capture_default_str();
     cmd->add_flag("--signed", o.signedValues, "Keep the sign of y'' (negative = convex, a ridge)");
-    cmd->add_option("--device", o.device, "cpu (the multithreaded reference) or gpu (the compute shader)")
+    cmd->add_option("--device", o.device,
+                    "cpu (the multithreaded reference) or gpu (the compute shader)")
         ->capture_default_str();
     cmd->add_option("--out", o.out, "Output .npy, float32 (rows, cols, 4); required")->required();
-    cmd->add_option("--png", o.png, "Also write the Figure 2 image: the largest value per sample as intensity");
+    cmd->add_option("--png", o.png,
+                    "Also write the Figure 2 image: the largest value per sample as intensity");
     cmd->callback([state] {
         asUsage([&] { state->sceneOptions->apply(); });
         if (state->sceneOptions->printConfigRequested()) return;

@@ -1,4 +1,5 @@
-// sierra-gen map --heightmap FILE [terrain options] --scheme plasma|atlas|hypsometric|hillshade|slope
+// sierra-gen map --heightmap FILE [terrain options] --scheme
+// plasma|atlas|hypsometric|hillshade|slope
 //                [--cpt FILE.cpt] [--colour-bar] [--sun-azimuth A --sun-altitude B] --out FILE.png
 //
 // One pixel per sample of the terrain as loaded (padding removed), row 0 =
@@ -45,11 +46,15 @@ void runMap(const MapOptions& o) {
             throw UsageError(msg("map: --scheme: ", e.what()));
         }
     }();
-    const bool shaded = scheme == terrain::MapScheme::Hillshade || scheme == terrain::MapScheme::Slope;
+    const bool shaded =
+        scheme == terrain::MapScheme::Hillshade || scheme == terrain::MapScheme::Slope;
     if (!o.cpt.empty() && shaded)
-        throw UsageError(msg("map: --cpt colours heights; it cannot be combined with --scheme ", o.scheme));
+        throw UsageError(
+            msg("map: --cpt colours heights; it cannot be combined with --scheme ", o.scheme));
     if (o.colourBar && scheme == terrain::MapScheme::Hillshade)
-        throw UsageError("map: --colour-bar has nothing to label on a hillshade (use it with a height scheme or slope)");
+        throw UsageError(
+            "map: --colour-bar has nothing to label on a hillshade (use it with a height scheme or "
+            "slope)");
 
     // The output location and the table are checked before the work.
     ensureWritableLocation(o.out);
@@ -67,10 +72,12 @@ void runMap(const MapOptions& o) {
         if (cpt) return cpt->ramp(lo, hi);
         if (scheme == terrain::MapScheme::Slope)  // the bar of slope: white flat to black vertical
             return terrain::ColourRamp({{0.0f, {255, 255, 255}}, {90.0f, {0, 0, 0}}}, 0.0f, 90.0f);
-        const terrain::RampScheme rs = scheme == terrain::MapScheme::Plasma ? terrain::RampScheme::Plasma
-                                       : scheme == terrain::MapScheme::Atlas ? terrain::RampScheme::Atlas
-                                                                             : terrain::RampScheme::Hypsometric;
-        return terrain::ColourRamp({.scheme = rs, .minHeight = lo, .maxHeight = hi, .seaLevel = sea});
+        const terrain::RampScheme rs =
+            scheme == terrain::MapScheme::Plasma  ? terrain::RampScheme::Plasma
+            : scheme == terrain::MapScheme::Atlas ? terrain::RampScheme::Atlas
+                                                  : terrain::RampScheme::Hypsometric;
+        return terrain::ColourRamp(
+            {.scheme = rs, .minHeight = lo, .maxHeight = hi, .seaLevel = sea});
     }();
     terrain::RgbImage image = terrain::renderMap(field, scheme, ramp, o.sun);
     if (o.colourBar) {
@@ -95,15 +102,21 @@ void addMapCommand(CLI::App& app) {
     };
     auto state = std::make_shared<State>();
     MapOptions& o = state->options;
-    CLI::App* cmd = app.add_subcommand("map", "2D map PNG of a heightfield: height colours, hillshade or slope");
-    state->sceneOptions = std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
+    CLI::App* cmd = app.add_subcommand(
+        "map", "2D map PNG of a heightfield: height colours, hillshade or slope");
+    state->sceneOptions =
+        std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
     cmd->add_option("--scheme", o.scheme, "plasma (grey), atlas, hypsometric, hillshade or slope")
         ->capture_default_str();
-    cmd->add_option("--cpt", o.cpt, "GMT .cpt colour table for the heights (absolute stored heights)");
-    cmd->add_flag("--colour-bar", o.colourBar, "Add a legend with ticks and numbers in height units");
-    cmd->add_option("--sun-azimuth", o.sun.azimuth, "Hillshade sun, degrees clockwise from north (up)")
+    cmd->add_option("--cpt", o.cpt,
+                    "GMT .cpt colour table for the heights (absolute stored heights)");
+    cmd->add_flag("--colour-bar", o.colourBar,
+                  "Add a legend with ticks and numbers in height units");
+    cmd->add_option("--sun-azimuth", o.sun.azimuth,
+                    "Hillshade sun, degrees clockwise from north (up)")
         ->capture_default_str();
-    cmd->add_option("--sun-altitude", o.sun.altitude, "Hillshade sun, degrees above the horizon, 0..90")
+    cmd->add_option("--sun-altitude", o.sun.altitude,
+                    "Hillshade sun, degrees above the horizon, 0..90")
         ->capture_default_str();
     cmd->add_option("--out", o.out, "Output PNG; required")->required();
     cmd->callback([state] {
@@ -111,8 +124,9 @@ void addMapCommand(CLI::App& app) {
         if (state->sceneOptions->printConfigRequested()) return;
         const terrain::Sun& sun = state->options.sun;
         if (!std::isfinite(sun.azimuth) || !(sun.altitude >= 0.0f && sun.altitude <= 90.0f))
-            throw UsageError(msg("map: --sun-altitude must be 0..90 degrees and --sun-azimuth finite, got ",
-                                 sun.altitude, " and ", sun.azimuth));
+            throw UsageError(
+                msg("map: --sun-altitude must be 0..90 degrees and --sun-azimuth finite, got ",
+                    sun.altitude, " and ", sun.azimuth));
         runMap(state->options);
     });
 }

@@ -47,13 +47,18 @@ void runTiles(const TilesOptions& o) {
 
 void addTilesCommand(CLI::App& app) {
     auto opts = std::make_shared<TilesOptions>();
-    CLI::App* cmd = app.add_subcommand("tiles", "Generate the seamless surface tiles as PNGs (RGB albedo, A height)");
+    CLI::App* cmd = app.add_subcommand(
+        "tiles", "Generate the seamless surface tiles as PNGs (RGB albedo, A height)");
     cmd->add_option("--out", opts->out, "Output folder (created if missing)")->required();
-    cmd->add_option("--size", opts->size, "Tile side in texels, a power of two 16..2048 (default 256)")
+    cmd->add_option("--size", opts->size,
+                    "Tile side in texels, a power of two 16..2048 (default 256)")
         ->check(CLI::Range(16, 2048));
     cmd->add_option("--seed", opts->seed, "Seed (default 1)");
-    cmd->add_option("--only", opts->only, "Only these tiles (names: grass sand rock snow shallow-water deep-water earth)");
-    cmd->add_option("--sheet", opts->sheet, "Also write a contact sheet PNG (2x2 repeats over heights)");
+    cmd->add_option(
+        "--only", opts->only,
+        "Only these tiles (names: grass sand rock snow shallow-water deep-water earth)");
+    cmd->add_option("--sheet", opts->sheet,
+                    "Also write a contact sheet PNG (2x2 repeats over heights)");
     cmd->callback([opts] { runTiles(*opts); });
 }
 

@@ -1,6 +1,7 @@
 // sierra-gen zones --zones MAP.png|auto [--palette P.json] [--zone-epsilon E] [--band W]
-//                  --json OUT.json [--svg OUT.svg] [--svg-href REF] [--borderlines] [--write-map OUT.png]
-//                  [terrain options] [--deep-water F --sand-top F --zone-snow-line F --rock-slope DEG]
+//                  --json OUT.json [--svg OUT.svg] [--svg-href REF] [--borderlines] [--write-map
+//                  OUT.png] [terrain options] [--deep-water F --sand-top F --zone-snow-line F
+//                  --rock-slope DEG]
 //
 // Reads a zone map through a palette (or derives one from a heightfield by
 // height and slope bands with --zones auto), vectorises its borderlines
@@ -51,13 +52,15 @@ void runZones(const ZonesOptions& o) {
     for (const std::string* path : {&o.json, &o.svg, &o.writeMap})
         if (!path->empty()) ensureWritableLocation(*path);
     const scene::ZonesDesc& z = o.scene.zones;
-    const std::string paletteFile = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+    const std::string paletteFile =
+        z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
     zones::Palette palette = zones::loadPalette(paletteFile);
     zones::ZoneMap map;
     std::string source;
     if (z.map == "auto") {
         std::string description;
-        terrain::Heightfield field = scene::loadTerrain(o.scene.terrain, &description, scene::Padding::None);
+        terrain::Heightfield field =
+            scene::loadTerrain(o.scene.terrain, &description, scene::Padding::None);
         // The thresholds as sierra-render applies them (render::applySceneSurface):
         // without water every sample is land, the sea below the lowest height.
         const float sea = scene::resolveSeaLevel(o.scene.terrain, field);
@@ -77,7 +80,8 @@ void runZones(const ZonesOptions& o) {
         if (map.layout == zones::ZoneLayout::Touching) map = zones::drawBorderlines(map);
     }
     std::vector<uint8_t> mapPng;
-    if (!o.writeMap.empty() || (!o.svg.empty() && o.svgHref.empty())) mapPng = zones::encodeZoneMapPng(map, palette);
+    if (!o.writeMap.empty() || (!o.svg.empty() && o.svgHref.empty()))
+        mapPng = zones::encodeZoneMapPng(map, palette);
     if (!o.writeMap.empty()) writeFileAtomic(o.writeMap, mapPng);
 
     const double band = z.band >= 0.0f ? double(z.band) : palette.bandWidth;
@@ -92,21 +96,27 @@ void runZones(const ZonesOptions& o) {
 
     writeFileAtomic(o.json, std::string_view(zones::borderlinesToJson(lines)));
     if (!o.svg.empty())
-        writeFileAtomic(o.svg, std::string_view(zones::borderlinesToSvg(lines, o.svgHref.empty() ? zones::pngDataUri(mapPng) : o.svgHref)));
+        writeFileAtomic(o.svg,
+                        std::string_view(zones::borderlinesToSvg(
+                            lines, o.svgHref.empty() ? zones::pngDataUri(mapPng) : o.svgHref)));
 
     size_t borderEdges = 0;
     for (const auto& e : lines.edges) borderEdges += e.left >= 0 && e.right >= 0;
     std::printf("zone map: %s, %dx%d, %s layout\n", source.c_str(), map.width, map.height,
                 map.layout == zones::ZoneLayout::Touching ? "touching" : "Figure 1 borderline");
-    std::printf("borderlines: %zu vertices, %zu edges (%zu between zones, the rest frame), %zu zones (%zu bands)\n",
-                lines.vertices.size(), lines.edges.size(), borderEdges, lines.zones.size(),
-                lines.zones.size() - palette.surfaces.size());
-    std::printf("epsilon %.3g px, band %.3g px; vectorise %.1f ms, distance field %dx%d %.1f ms (one core)\n", epsilon,
-                band, vectoriseMs, field.width, field.height, fieldMs);
+    std::printf(
+        "borderlines: %zu vertices, %zu edges (%zu between zones, the rest frame), %zu zones (%zu "
+        "bands)\n",
+        lines.vertices.size(), lines.edges.size(), borderEdges, lines.zones.size(),
+        lines.zones.size() - palette.surfaces.size());
+    std::printf(
+        "epsilon %.3g px, band %.3g px; vectorise %.1f ms, distance field %dx%d %.1f ms (one "
+        "core)\n",
+        epsilon, band, vectoriseMs, field.width, field.height, fieldMs);
     auto areas = zones::zoneAreas(lines);
     for (const auto& z : lines.zones)
-        std::printf("  zone %d %-28s %s  area %.1f px^2\n", z.id, z.name.c_str(), zones::colourHex(z.colour).c_str(),
-                    areas[size_t(z.id)]);
+        std::printf("  zone %d %-28s %s  area %.1f px^2\n", z.id, z.name.c_str(),
+                    zones::colourHex(z.colour).c_str(), areas[size_t(z.id)]);
 }
 
 }  // namespace
@@ -121,20 +131,25 @@ void addZonesCommand(CLI::App& app) {
     auto state = std::make_shared<State>();
     ZonesOptions& o = state->options;
     CLI::App* cmd = app.add_subcommand("zones", "Vectorise a zone map's borderlines (JSON, SVG)");
-    state->sceneOptions =
-        std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions | scene::kZoneOptions);
-    cmd->add_option("--json", o.json, "Write vertices, edges [from, to, left, right] and zones as JSON")->required();
+    state->sceneOptions = std::make_unique<scene::SceneOptions>(
+        *cmd, o.scene, scene::kTerrainOptions | scene::kZoneOptions);
+    cmd->add_option("--json", o.json,
+                    "Write vertices, edges [from, to, left, right] and zones as JSON")
+        ->required();
     cmd->add_option("--svg", o.svg, "Write an SVG of the borderlines over the map");
-    cmd->add_option("--svg-href", o.svgHref, "Reference this image in the SVG instead of embedding the map");
+    cmd->add_option("--svg-href", o.svgHref,
+                    "Reference this image in the SVG instead of embedding the map");
     cmd->add_flag("--borderlines", o.borderlines,
                   "Draw 1-pixel borderlines between the zones first (the Figure 1 layout)");
-    cmd->add_option("--write-map", o.writeMap, "Write the zone map used (after --borderlines) as a PNG");
+    cmd->add_option("--write-map", o.writeMap,
+                    "Write the zone map used (after --borderlines) as a PNG");
     cmd->callback([state, cmd] {
         asUsage([&] { state->sceneOptions->apply(); });
         if (state->sceneOptions->printConfigRequested()) return;
         const scene::Scene& s = state->options.scene;
         if (s.zones.map.empty())
-            throw UsageError("zones: say which zones: --zones auto (from the terrain) or --zones MAP.png");
+            throw UsageError(
+                "zones: say which zones: --zones auto (from the terrain) or --zones MAP.png");
         if (s.zones.map != "auto" && (cmd->count("--heightmap") || cmd->count("--generate")))
             throw UsageError("zones: --heightmap and --generate only go with --zones auto");
         runZones(state->options);

@@ -66,12 +66,15 @@ BENCHMARK(BM_Curvature)
 // (distance 2, scale 4) at a threshold that passes the top fifth of the vertices.
 void BM_TraceLines(benchmark::State& state) {
     const auto& field = terrain(int(state.range(0)));
-    auto c = analysis::computeCurvature(field, {.method = analysis::CurvatureMethod::ThreeNormal, .distance = 2, .scale = 4.0f});
+    auto c = analysis::computeCurvature(
+        field, {.method = analysis::CurvatureMethod::ThreeNormal, .distance = 2, .scale = 4.0f});
     std::vector<float> strengths;
     for (int j = 0; j < c.height; ++j)
         for (int i = 0; i < c.width; ++i) strengths.push_back(c.maxMagnitude(i, j));
-    std::nth_element(strengths.begin(), strengths.begin() + strengths.size() * 8 / 10, strengths.end());
-    analysis::LineOptions o{.threshold = strengths[strengths.size() * 8 / 10], .minVertices = 5,
+    std::nth_element(strengths.begin(), strengths.begin() + strengths.size() * 8 / 10,
+                     strengths.end());
+    analysis::LineOptions o{.threshold = strengths[strengths.size() * 8 / 10],
+                            .minVertices = 5,
                             .blended = state.range(1) != 0};
     size_t vertices = 0;
     for (auto _ : state) {
@@ -82,6 +85,9 @@ void BM_TraceLines(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations() * field.sampleCount());
     state.counters["line_vertices"] = double(vertices);
 }
-BENCHMARK(BM_TraceLines)->ArgsProduct({{1025}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TraceLines)
+    ->ArgsProduct({{1025}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

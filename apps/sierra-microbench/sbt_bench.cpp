@@ -29,7 +29,8 @@ const Terrain& terrain(int size) {
     auto& slot = cache[size];
     if (!slot) {
         slot = std::make_unique<Terrain>();
-        slot->field = sierra::terrain::generateDiamondSquare({.size = size, .seed = 1, .roughness = 1.0f});
+        slot->field =
+            sierra::terrain::generateDiamondSquare({.size = size, .seed = 1, .roughness = 1.0f});
         auto [lo, hi] = slot->field.range();
         slot->field.setVerticalScale(0.1f * float(size - 1) / std::max(1e-6f, hi - lo));
         slot->errors = sbt::computeVertexErrors(slot->field);
@@ -48,7 +49,10 @@ void BM_ErrorPass(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations() * t.field.sampleCount());
     state.counters["threads"] = threads;
 }
-BENCHMARK(BM_ErrorPass)->ArgsProduct({{513, 1025, 2049}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ErrorPass)
+    ->ArgsProduct({{513, 1025, 2049}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // Times `refine` (which writes one mesh) after a first call that grows the
 // buffers, and reports triangles per second.
@@ -76,11 +80,13 @@ void BM_RefineFixed(benchmark::State& state) {
     const float relief = (hi - lo) * t.field.verticalScale();
     const float eps = state.range(1) < 0 ? -1.0f : relief * float(state.range(1)) / 10000.0f;
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads, [&](sbt::StripMesh& mesh) { refiner.refineFixed(eps, mesh); });
+    measureRefinement(state, threads,
+                      [&](sbt::StripMesh& mesh) { refiner.refineFixed(eps, mesh); });
 }
 BENCHMARK(BM_RefineFixed)
     ->ArgsProduct({{1025, 2049}, {-1, 0, 5, 10, 20, 50, 100}, {1, 2}})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // A camera 1/8 of the extent above the middle of the south edge, looking at the
 // centre, 1920x1080, 60 degree vertical field of view, tau 1 px.
@@ -104,17 +110,21 @@ void BM_RefineView(benchmark::State& state) {
     auto plane = [&](std::array<float, 3> nrm) {
         float len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
         for (float& c : nrm) c /= len;
-        return sbt::Plane{nrm[0], nrm[1], nrm[2], -(nrm[0] * vp.eye[0] + nrm[1] * vp.eye[1] + nrm[2] * vp.eye[2])};
+        return sbt::Plane{nrm[0], nrm[1], nrm[2],
+                          -(nrm[0] * vp.eye[0] + nrm[1] * vp.eye[1] + nrm[2] * vp.eye[2])};
     };
-    vp.planes = {plane(rot(1, 0, tanX)), plane(rot(-1, 0, tanX)), plane(rot(0, 1, tanY)),
-                 plane(rot(0, -1, tanY)), plane(rot(0, 0, 1)), plane(rot(0, 0, 1))};
+    vp.planes = {plane(rot(1, 0, tanX)),  plane(rot(-1, 0, tanX)), plane(rot(0, 1, tanY)),
+                 plane(rot(0, -1, tanY)), plane(rot(0, 0, 1)),     plane(rot(0, 0, 1))};
     // far plane: inside while the distance along the view is below 4 extents
     vp.planes[5] = sbt::Plane{-vp.planes[4].a, -vp.planes[4].b, -vp.planes[4].c,
                               -vp.planes[4].d + 4.0f * extent};
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
     measureRefinement(state, threads, [&](sbt::StripMesh& mesh) { refiner.refineView(vp, mesh); });
 }
-BENCHMARK(BM_RefineView)->ArgsProduct({{2049}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RefineView)
+    ->ArgsProduct({{2049}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // A rough fractal (Hurst exponent H = range(1) / 10) for the renderer's view:
 // heights scaled so the relief is 20% of the extent (the renderer's automatic
@@ -146,8 +156,9 @@ sbt::ViewParams orbitView(const Terrain& t, float tau, bool cull) {
     const glm::vec3 eye{centre.x + 0.9f * extent * std::cos(a), hi * vs + 0.3f * extent,
                         centre.z + 0.9f * extent * std::sin(a)};
     const glm::vec3 target{centre.x, lo * vs + 0.25f * (hi - lo) * vs, centre.z};
-    return sbt::lookAtView({eye.x, eye.y, eye.z}, {target.x, target.y, target.z}, glm::radians(45.0f),
-                           1920.0f / 1080.0f, 1080.0f, extent * 1e-3f, extent * 4.0f, tau, cull);
+    return sbt::lookAtView({eye.x, eye.y, eye.z}, {target.x, target.y, target.z},
+                           glm::radians(45.0f), 1920.0f / 1080.0f, 1080.0f, extent * 1e-3f,
+                           extent * 4.0f, tau, cull);
 }
 
 // View-dependent refinement + strip of a rough 2049^2 fractal from the orbit
@@ -157,9 +168,13 @@ void BM_RefineOrbit(benchmark::State& state) {
     const int threads = int(state.range(1));
     const sbt::ViewParams view = orbitView(t, 1.0f, state.range(2) != 0);
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads, [&](sbt::StripMesh& mesh) { refiner.refineView(view, mesh); });
+    measureRefinement(state, threads,
+                      [&](sbt::StripMesh& mesh) { refiner.refineView(view, mesh); });
 }
-BENCHMARK(BM_RefineOrbit)->ArgsProduct({{8}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RefineOrbit)
+    ->ArgsProduct({{8}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The same through the double-precision baseline (Refiner::refineViewReference).
 void BM_RefineOrbitReference(benchmark::State& state) {
@@ -167,9 +182,13 @@ void BM_RefineOrbitReference(benchmark::State& state) {
     const int threads = int(state.range(1));
     const sbt::ViewParams view = orbitView(t, 1.0f, state.range(2) != 0);
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads, [&](sbt::StripMesh& mesh) { refiner.refineViewReference(view, mesh); });
+    measureRefinement(state, threads,
+                      [&](sbt::StripMesh& mesh) { refiner.refineViewReference(view, mesh); });
 }
-BENCHMARK(BM_RefineOrbitReference)->ArgsProduct({{8}, {1}, {1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RefineOrbitReference)
+    ->ArgsProduct({{8}, {1}, {1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

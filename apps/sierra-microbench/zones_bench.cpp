@@ -21,7 +21,8 @@ const zones::Palette& palette() {
     static zones::Palette p = [] {
         zones::Palette q;
         for (const std::string& name : zones::tileNames())
-            q.surfaces.push_back({name, zones::Colour(0x204060 + 0x101010 * q.surfaces.size()), "", 16.0f, 0.5f});
+            q.surfaces.push_back(
+                {name, zones::Colour(0x204060 + 0x101010 * q.surfaces.size()), "", 16.0f, 0.5f});
         return q;
     }();
     return p;

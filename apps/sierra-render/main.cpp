@@ -35,13 +35,16 @@ namespace {
 
 void listDevices() {
     auto devices = gpu::EglContext::listDevices();
-    if (devices.empty()) std::printf("no EGL devices enumerated (EGL_EXT_device_enumeration missing)\n");
+    if (devices.empty())
+        std::printf("no EGL devices enumerated (EGL_EXT_device_enumeration missing)\n");
     for (const auto& d : devices)
         std::printf("%d: %s%s\n   %s\n", d.index, d.software ? "software" : "hardware",
                     d.drmFile.empty() ? "" : (" " + d.drmFile).c_str(), d.extensions.c_str());
 }
 
-std::string describe(const glm::vec3& v) { return msg("(", v.x, ", ", v.y, ", ", v.z, ")"); }
+std::string describe(const glm::vec3& v) {
+    return msg("(", v.x, ", ", v.y, ", ", v.z, ")");
+}
 
 int run(const scene::Scene& s) {
     const int width = s.output.width, height = s.output.height;
@@ -49,7 +52,9 @@ int run(const scene::Scene& s) {
     const int first = s.path.range ? s.path.range->first : 0;
     const int last = s.path.range ? s.path.range->last : frameCount - 1;
     const bool sequence = frameCount > 1;
-    auto framePath = [&](const std::string& base, int k) { return sequence ? render::sequencePath(base, k) : base; };
+    auto framePath = [&](const std::string& base, int k) {
+        return sequence ? render::sequencePath(base, k) : base;
+    };
 
     // Every output location is checked before any work, so a bad path fails
     // at once rather than after the frames.
@@ -60,17 +65,19 @@ int run(const scene::Scene& s) {
     std::string description;
     // The context comes first: its texture limit bounds the grid the loader takes.
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
-    log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(), ")");
+    log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(),
+              ")");
     terrain::Heightfield field =
         scene::loadTerrain(s.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
-                            render::TerrainGpu::maxGridSide());
+                           render::TerrainGpu::maxGridSide());
     float seaLevel = scene::resolveSeaLevel(s.terrain, field);
     log::info("terrain: ", description);
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
         log::info(zones);
-    if (std::string mesh = render::applySceneMesh(terrain, s, field); !mesh.empty()) log::info(mesh);
+    if (std::string mesh = render::applySceneMesh(terrain, s, field); !mesh.empty())
+        log::info(mesh);
     log::info("terrain on the GPU: ", terrain.summary());
     render::addOverlayPasses(terrain, s, field);
     render::FrameTarget target =
@@ -103,12 +110,21 @@ int run(const scene::Scene& s) {
         if (!overlay) overlay = std::make_unique<render::DebugOverlay>();
         const int column = render::debugColumnWidth(width);
         const int frameWidth = render::snapshotFrameWidth(width, column);
-        if (snapshotCameras.empty()) snapshotCameras = render::snapshotCameras(s, terrain.bounds(), frameWidth);
+        if (snapshotCameras.empty())
+            snapshotCameras = render::snapshotCameras(s, terrain.bounds(), frameWidth);
         const render::Camera& camera = snapshotCameras[size_t(k)];
-        render::SnapshotFacts facts{.scene = &s, .field = &field, .glRenderer = context.renderer(),
-                                    .glVersion = context.version(), .eglPlatform = context.platform(),
-                                    .renderer = &terrain, .camera = camera, .frameWidth = frameWidth,
-                                    .height = height, .draw = draw, .frames = history, .frameMs = frameMs};
+        render::SnapshotFacts facts{.scene = &s,
+                                    .field = &field,
+                                    .glRenderer = context.renderer(),
+                                    .glVersion = context.version(),
+                                    .eglPlatform = context.platform(),
+                                    .renderer = &terrain,
+                                    .camera = camera,
+                                    .frameWidth = frameWidth,
+                                    .height = height,
+                                    .draw = draw,
+                                    .frames = history,
+                                    .frameMs = frameMs};
         render::DebugPanel panel = render::buildDebugPanel(facts, s.output.snapshotDeterministic);
         gpu::Image shot;
         if (uiOnly) {
@@ -137,26 +153,29 @@ int run(const scene::Scene& s) {
         target.begin(clear);
         stats = terrain.draw(camera, width, height, draw);
         if (stats.triangles == 0)
-            log::warn("frame ", k, ": no terrain triangle is in view of the camera at ", describe(camera.position),
-                      " looking at ", describe(camera.target), " (the frame is sky only)");
+            log::warn("frame ", k, ": no terrain triangle is in view of the camera at ",
+                      describe(camera.position), " looking at ", describe(camera.target),
+                      " (the frame is sky only)");
         target.resolve();
         bool ready = reader.start(image);
         terrain.collectGpuTime(stats);
         frameMs.push_back(float(frame.ms()));
         history.push_back(stats);
         if (ready) writeNext(image);
-        if (!s.output.debug.empty() && s.output.snapshotEvery > 0 && (k - first) % s.output.snapshotEvery == 0)
+        if (!s.output.debug.empty() && s.output.snapshotEvery > 0 &&
+            (k - first) % s.output.snapshotEvery == 0)
             snapshot(k, framePath(s.output.debug, k));
         if (!s.output.depth.empty()) {
             render::DepthImage depth = terrain.renderDepth(camera, width, height, draw);
-            writeFileAtomic(framePath(s.output.depth, k), encodeNpyFloat32(depth.height, depth.width, depth.depth));
+            writeFileAtomic(framePath(s.output.depth, k),
+                            encodeNpyFloat32(depth.height, depth.width, depth.depth));
         }
     }
     if (reader.finish(image)) writeNext(image);
-    log::info(render::lodName(draw.lod), " frame: ", stats.triangles, " triangles, ", stats.indices, " indices (",
-              fixed(stats.indicesPerTriangle()), " per triangle), refine + strip ", fixed(stats.refineMs),
-              " ms, upload ", fixed(stats.uploadMs), " ms, draw (GL timer) ", fixed(stats.drawMs), " ms, frame ",
-              fixed(frameMs.back(), 1), " ms");
+    log::info(render::lodName(draw.lod), " frame: ", stats.triangles, " triangles, ", stats.indices,
+              " indices (", fixed(stats.indicesPerTriangle()), " per triangle), refine + strip ",
+              fixed(stats.refineMs), " ms, upload ", fixed(stats.uploadMs), " ms, draw (GL timer) ",
+              fixed(stats.drawMs), " ms, frame ", fixed(frameMs.back(), 1), " ms");
     log::info("wrote ", framePath(s.output.frame, first),
               last > first ? " .. " + framePath(s.output.frame, last) : std::string());
 
@@ -170,10 +189,11 @@ int run(const scene::Scene& s) {
 
 int main(int argc, char** argv) {
     scene::Scene scene;
-    CLI::App app{"Renders terrain off-screen (EGL) to PNG.\n"
-                 "With no arguments: a generated 1025x1025 fractal terrain to out/frame.png and an ImGui\n"
-                 "debug snapshot to out/debug.png. Every option is also a key of a scene file (--config).",
-                 "sierra-render"};
+    CLI::App app{
+        "Renders terrain off-screen (EGL) to PNG.\n"
+        "With no arguments: a generated 1025x1025 fractal terrain to out/frame.png and an ImGui\n"
+        "debug snapshot to out/debug.png. Every option is also a key of a scene file (--config).",
+        "sierra-render"};
     scene::SceneOptions options(app, scene, scene::kAllOptions);
     bool devices = false;
     app.add_flag("--list-devices", devices, "List the EGL devices and exit");

@@ -56,7 +56,6 @@ const CLI::Validator kNonNegative(
     },
     "");
 
-
 struct Options {
     scene::Scene scene;  // its terrain, and its zones' map, palette, band and epsilon
     double maxError = 0.0;
@@ -79,7 +78,8 @@ struct ZoneInput {
     tin::Constraints constraints;
     double band = 0.0;
     double epsilon = 0.0;  // the borderlines' simplification, zone-map pixels
-    size_t islandsRemoved = 0;  // islands within epsilon of their longest chord (tin::removeThinIslands)
+    size_t islandsRemoved =
+        0;  // islands within epsilon of their longest chord (tin::removeThinIslands)
     double ms = 0.0;
 };
 
@@ -153,14 +153,14 @@ int run(const Options& o) {
     ZoneInput z;
     if (zoned) z = loadZones(s, field);
 
-    tin::TinDesc desc{.maxError = o.maxError,
-                      .maxErrorRel = o.maxErrorRel,
-                      .maxTriangles = o.maxTriangles,
-                      .maxPoints = o.maxPoints,
-                      .budgetStop = o.budgetStop == "last" ? tin::BudgetStop::Last
-                                                           : tin::BudgetStop::BestMax,
-                      .triangulation = o.delaunay == "data" ? tin::Triangulation::DataDependent
-                                                            : tin::Triangulation::Delaunay};
+    tin::TinDesc desc{
+        .maxError = o.maxError,
+        .maxErrorRel = o.maxErrorRel,
+        .maxTriangles = o.maxTriangles,
+        .maxPoints = o.maxPoints,
+        .budgetStop = o.budgetStop == "last" ? tin::BudgetStop::Last : tin::BudgetStop::BestMax,
+        .triangulation = o.delaunay == "data" ? tin::Triangulation::DataDependent
+                                              : tin::Triangulation::Delaunay};
     const bool errorTarget = o.maxError > 0.0 || o.maxErrorRel > 0.0;
     const bool budget = o.maxTriangles > 0 || o.maxPoints > 0;
     if (!errorTarget && !budget) desc.maxErrorRel = 0.001;
@@ -257,10 +257,11 @@ int run(const Options& o) {
     const bool budgetStopped =
         st.stop == tin::StopReason::Triangles || st.stop == tin::StopReason::Points;
     if (budgetStopped)
-        std::printf("budget stop (%s): kept the mesh after %lld of %lld insertions, max error %.6g "
-                    "(%.6g at the last)\n",
-                    tin::toString(desc.budgetStop), (long long)st.inserted,
-                    (long long)st.budgetInserted, st.worstError, st.budgetWorstError);
+        std::printf(
+            "budget stop (%s): kept the mesh after %lld of %lld insertions, max error %.6g "
+            "(%.6g at the last)\n",
+            tin::toString(desc.budgetStop), (long long)st.inserted, (long long)st.budgetInserted,
+            st.worstError, st.budgetWorstError);
     std::printf("vertical error: max %.6g, rms %.6g (target %.6g) over %lld samples\n",
                 error.maxError, error.rmsError, st.targetError, (long long)error.samples);
     if (zoned)

@@ -19,10 +19,13 @@ using sierra::analysis::test::sampleSurface;
 namespace {
 
 constexpr CurvatureMethod kAllMethods[] = {CurvatureMethod::TwoNormal, CurvatureMethod::ThreeNormal,
-                                           CurvatureMethod::ThreeVertex, CurvatureMethod::EdgeAngle};
-constexpr NormalMethod kAllNormals[] = {NormalMethod::Edge, NormalMethod::Triangle, NormalMethod::Quad};
+                                           CurvatureMethod::ThreeVertex,
+                                           CurvatureMethod::EdgeAngle};
+constexpr NormalMethod kAllNormals[] = {NormalMethod::Edge, NormalMethod::Triangle,
+                                        NormalMethod::Quad};
 
-CurvatureField curvature(const terrain::Heightfield& f, CurvatureMethod m, NormalMethod n = NormalMethod::Quad,
+CurvatureField curvature(const terrain::Heightfield& f, CurvatureMethod m,
+                         NormalMethod n = NormalMethod::Quad,
                          CurvatureOutput out = CurvatureOutput::Curvature, int distance = 1) {
     return computeCurvature(f, {.method = m, .normals = n, .distance = distance, .output = out});
 }
@@ -40,7 +43,8 @@ void directionOf(int d, double h, double& ux, double& uz, double& length) {
 TEST(AnalysisCurvature, PlaneIsZeroForEveryMethodNormalAndDirection) {
     // A tilted plane in world units (spacing 2, vertical scale 0.5), borders
     // included. Tolerance 1e-5: float rounding of heights up to ~30.
-    auto plane = sampleSurface(33, 29, 2.0, 0.5, [](double x, double z) { return 0.3 * x - 0.2 * z + 5.0; });
+    auto plane =
+        sampleSurface(33, 29, 2.0, 0.5, [](double x, double z) { return 0.3 * x - 0.2 * z + 5.0; });
     for (CurvatureMethod m : kAllMethods)
         for (NormalMethod n : kAllNormals) {
             auto c = curvature(plane, m, n);
@@ -51,8 +55,8 @@ TEST(AnalysisCurvature, PlaneIsZeroForEveryMethodNormalAndDirection) {
                 for (int i = 0; i < c.width; ++i)
                     for (int d = 0; d < 4; ++d)
                         ASSERT_NEAR(c.at(i, j, d), 0.0f, 1e-5f)
-                            << curvatureMethodName(m) << "/" << normalMethodName(n) << " at " << i << "," << j
-                            << " dir " << d;
+                            << curvatureMethodName(m) << "/" << normalMethodName(n) << " at " << i
+                            << "," << j << " dir " << d;
         }
 }
 
@@ -61,9 +65,11 @@ TEST(AnalysisCurvature, QuadricThreeVertexSecondDerivativeIsExact) {
     // Three-vertex y'' is exact for a quadric: a along x, b along z, (a+b)/2
     // + c on x+z and (a+b)/2 - c on x-z. Tolerance 1e-5 (float rounding).
     const double a = 0.03, b = -0.02, c = 0.01, h = 2.0;
-    auto f = sampleSurface(33, 33, h, 0.5, [&](double x, double z) { return (a * x * x + b * z * z) / 2 + c * x * z; },
-                           -32.0, -32.0);
-    auto ypp = curvature(f, CurvatureMethod::ThreeVertex, NormalMethod::Quad, CurvatureOutput::SecondDerivative);
+    auto f = sampleSurface(
+        33, 33, h, 0.5, [&](double x, double z) { return (a * x * x + b * z * z) / 2 + c * x * z; },
+        -32.0, -32.0);
+    auto ypp = curvature(f, CurvatureMethod::ThreeVertex, NormalMethod::Quad,
+                         CurvatureOutput::SecondDerivative);
     auto k = curvature(f, CurvatureMethod::ThreeVertex);
     const double expected[4] = {a, b, (a + b) / 2 + c, (a + b) / 2 - c};
     for (int j = 0; j < 33; ++j)
@@ -77,7 +83,8 @@ TEST(AnalysisCurvature, QuadricThreeVertexSecondDerivativeIsExact) {
                 directionOf(d, h, ux, uz, len);
                 double slope = (a * x + c * z) * ux + (b * z + c * x) * uz;
                 double kappa = std::fabs(expected[d]) / std::pow(1 + slope * slope, 1.5);
-                ASSERT_NEAR(k.at(i, j, d), kappa, 1e-5 + 1e-4 * kappa) << i << "," << j << " dir " << d;
+                ASSERT_NEAR(k.at(i, j, d), kappa, 1e-5 + 1e-4 * kappa)
+                    << i << "," << j << " dir " << d;
             }
 }
 
@@ -87,8 +94,9 @@ TEST(AnalysisCurvature, QuadricEdgeNormalsGiveExactNormalMethodSecondDerivatives
     // and quad normals average unit normals, so on this gentle quadric (slopes
     // below 1) their y'' is within 10% of the exact value.
     const double a = 0.03, b = -0.02, c = 0.01, h = 2.0;
-    auto f = sampleSurface(33, 33, h, 0.5, [&](double x, double z) { return (a * x * x + b * z * z) / 2 + c * x * z; },
-                           -32.0, -32.0);
+    auto f = sampleSurface(
+        33, 33, h, 0.5, [&](double x, double z) { return (a * x * x + b * z * z) / 2 + c * x * z; },
+        -32.0, -32.0);
     const double expected[4] = {a, b, (a + b) / 2 + c, (a + b) / 2 - c};
     for (CurvatureMethod m : {CurvatureMethod::TwoNormal, CurvatureMethod::ThreeNormal})
         for (NormalMethod n : kAllNormals) {
@@ -98,9 +106,11 @@ TEST(AnalysisCurvature, QuadricEdgeNormalsGiveExactNormalMethodSecondDerivatives
                 for (int i = 2; i < 31; ++i)
                     for (int d = 0; d < 4; ++d) {
                         double err = std::fabs(ypp.at(i, j, d) - expected[d]);
-                        ASSERT_LE(err, n == NormalMethod::Edge ? tol : tol * std::fabs(expected[d]) + 1e-5)
-                            << curvatureMethodName(m) << "/" << normalMethodName(n) << " at " << i << "," << j
-                            << " dir " << d;
+                        ASSERT_LE(err, n == NormalMethod::Edge
+                                           ? tol
+                                           : tol * std::fabs(expected[d]) + 1e-5)
+                            << curvatureMethodName(m) << "/" << normalMethodName(n) << " at " << i
+                            << "," << j << " dir " << d;
                     }
         }
 }
@@ -115,10 +125,13 @@ TEST(AnalysisCurvature, CylinderHasCurvatureOneOverRadiusAcrossItsAxis) {
     // midpoint, y' at the vertex: 8%). Edge angle: 1 + cos of the angle between
     // the chords, from the exact heights (1e-4 relative).
     const double R = 40.0;
-    auto f = sampleSurface(21, 41, 1.0, 1.0, [&](double, double z) { return std::sqrt(R * R - z * z); }, 0.0, -20.0);
+    auto f = sampleSurface(
+        21, 41, 1.0, 1.0, [&](double, double z) { return std::sqrt(R * R - z * z); }, 0.0, -20.0);
     for (CurvatureMethod m : kAllMethods) {
         auto k = curvature(f, m);
-        double tol = m == CurvatureMethod::ThreeVertex ? 0.01 : m == CurvatureMethod::ThreeNormal ? 0.03 : 0.08;
+        double tol = m == CurvatureMethod::ThreeVertex   ? 0.01
+                     : m == CurvatureMethod::ThreeNormal ? 0.03
+                                                         : 0.08;
         // Two samples in from the border, where no stencil uses a one-sided normal.
         for (int j = 2; j < 39; ++j)
             for (int i = 2; i < 19; ++i) {
@@ -130,15 +143,18 @@ TEST(AnalysisCurvature, CylinderHasCurvatureOneOverRadiusAcrossItsAxis) {
                     double yp = -z / fz * dzdt, ypp = -R * R / (fz * fz * fz) * dzdt * dzdt;
                     double kappa = std::fabs(ypp) / std::pow(1 + yp * yp, 1.5);
                     if (d == 1) {
-                        ASSERT_NEAR(kappa, 1.0 / R, 1e-12);  // the section across the axis is the circle
+                        ASSERT_NEAR(kappa, 1.0 / R,
+                                    1e-12);  // the section across the axis is the circle
                     }
                     if (m == CurvatureMethod::EdgeAngle) {
                         double L = d == 1 ? 1.0 : std::sqrt(2.0);
                         double zp = z - dzdt * L, zn = z + dzdt * L;
                         double e1x = -L, e1y = std::sqrt(R * R - zp * zp) - fz;
                         double e2x = L, e2y = std::sqrt(R * R - zn * zn) - fz;
-                        double cosT = (e1x * e2x + e1y * e2y) / (std::hypot(e1x, e1y) * std::hypot(e2x, e2y));
-                        ASSERT_NEAR(k.at(i, j, d), 1 + cosT, 1e-4 * (1 + cosT) + 1e-6) << i << "," << j << " d" << d;
+                        double cosT =
+                            (e1x * e2x + e1y * e2y) / (std::hypot(e1x, e1y) * std::hypot(e2x, e2y));
+                        ASSERT_NEAR(k.at(i, j, d), 1 + cosT, 1e-4 * (1 + cosT) + 1e-6)
+                            << i << "," << j << " d" << d;
                     } else {
                         ASSERT_NEAR(k.at(i, j, d), kappa, tol * kappa)
                             << curvatureMethodName(m) << " at " << i << "," << j << " dir " << d;
@@ -155,10 +171,12 @@ TEST(AnalysisCurvature, SineRidgeThreeVertexSecondDerivativeIsExact) {
     // absolute (peak |y''| ~ 0.3).
     const double A = 5.0, k = 2 * std::numbers::pi / 16.0, h = 1.0;
     auto f = sampleSurface(65, 17, h, 1.0, [&](double x, double) { return A * std::sin(k * x); });
-    auto ypp = curvature(f, CurvatureMethod::ThreeVertex, NormalMethod::Quad, CurvatureOutput::SecondDerivative);
+    auto ypp = curvature(f, CurvatureMethod::ThreeVertex, NormalMethod::Quad,
+                         CurvatureOutput::SecondDerivative);
     for (int j = 1; j < 16; ++j)
         for (int i = 1; i < 64; ++i) {
-            double exact = -A * std::sin(k * i * h) * 4 * std::pow(std::sin(k * h / 2), 2) / (h * h);
+            double exact =
+                -A * std::sin(k * i * h) * 4 * std::pow(std::sin(k * h / 2), 2) / (h * h);
             ASSERT_NEAR(ypp.at(i, j, 0), exact, 1e-5) << i;
             ASSERT_NEAR(ypp.at(i, j, 1), 0.0, 1e-5) << i;
             ASSERT_NEAR(ypp.at(i, j, 2), exact / 2, 1e-5) << i;
@@ -173,22 +191,29 @@ TEST(AnalysisCurvature, SineRidgeNormalMethodsAndEdgeAngle) {
     // Every method is 0 along z (1e-5) and peaks on the crests and troughs.
     const double A = 5.0, k = 2 * std::numbers::pi / 16.0;
     auto f = sampleSurface(65, 17, 1.0, 1.0, [&](double x, double) { return A * std::sin(k * x); });
-    auto three = curvature(f, CurvatureMethod::ThreeNormal, NormalMethod::Edge, CurvatureOutput::SecondDerivative);
-    auto two = curvature(f, CurvatureMethod::TwoNormal, NormalMethod::Edge, CurvatureOutput::SecondDerivative);
+    auto three = curvature(f, CurvatureMethod::ThreeNormal, NormalMethod::Edge,
+                           CurvatureOutput::SecondDerivative);
+    auto two = curvature(f, CurvatureMethod::TwoNormal, NormalMethod::Edge,
+                         CurvatureOutput::SecondDerivative);
     for (int i = 2; i < 63; ++i) {
         double x = i;
         ASSERT_NEAR(three.at(i, 8, 0), -A * std::sin(k * x) * std::pow(std::sin(k), 2), 1e-5) << i;
-        ASSERT_NEAR(two.at(i, 8, 0), A * std::sin(k) * (std::cos(k * (x + 1)) - std::cos(k * x)), 1e-5) << i;
+        ASSERT_NEAR(two.at(i, 8, 0), A * std::sin(k) * (std::cos(k * (x + 1)) - std::cos(k * x)),
+                    1e-5)
+            << i;
     }
     for (CurvatureMethod m : kAllMethods) {
         auto c = curvature(f, m);
-        for (int i = 0; i < 65; ++i) ASSERT_NEAR(c.at(i, 8, 1), 0.0, 1e-5) << curvatureMethodName(m);
+        for (int i = 0; i < 65; ++i)
+            ASSERT_NEAR(c.at(i, 8, 1), 0.0, 1e-5) << curvatureMethodName(m);
         // Crest at i = 4 (x = 4, sin = 1), trough at i = 12: the x value there
         // beats its neighbours two columns away (two-normal is one-sided, so
         // compare with the neighbour before and two after).
         for (int peak : {4, 12, 20}) {
-            EXPECT_GT(c.at(peak, 8, 0), c.at(peak - 2, 8, 0)) << curvatureMethodName(m) << " peak " << peak;
-            EXPECT_GT(c.at(peak, 8, 0), c.at(peak + 3, 8, 0)) << curvatureMethodName(m) << " peak " << peak;
+            EXPECT_GT(c.at(peak, 8, 0), c.at(peak - 2, 8, 0))
+                << curvatureMethodName(m) << " peak " << peak;
+            EXPECT_GT(c.at(peak, 8, 0), c.at(peak + 3, 8, 0))
+                << curvatureMethodName(m) << " peak " << peak;
         }
     }
 }
@@ -203,26 +228,32 @@ TEST(AnalysisCurvature, GaussianBumpHasZeroRadialSecondDerivativeAtSigma) {
     // below 2% of its value at the centre.
     for (int diagonal = 0; diagonal < 2; ++diagonal) {
         const double sigma = diagonal ? 8.0 * std::sqrt(2.0) : 10.0, A = 20.0;
-        auto f = sampleSurface(61, 61, 1.0, 1.0,
-                               [&](double x, double z) { return A * std::exp(-(x * x + z * z) / (2 * sigma * sigma)); },
-                               -30.0, -30.0);
+        auto f = sampleSurface(
+            61, 61, 1.0, 1.0,
+            [&](double x, double z) {
+                return A * std::exp(-(x * x + z * z) / (2 * sigma * sigma));
+            },
+            -30.0, -30.0);
         const double peak = A / (sigma * sigma);
         struct Probe {
             int di, dj, dir;
         };
-        std::vector<Probe> probes = diagonal ? std::vector<Probe>{{8, 8, 2}, {-8, -8, 2}, {8, -8, 3}, {-8, 8, 3}}
-                                             : std::vector<Probe>{{10, 0, 0}, {-10, 0, 0}, {0, 10, 1}, {0, -10, 1}};
+        std::vector<Probe> probes =
+            diagonal ? std::vector<Probe>{{8, 8, 2}, {-8, -8, 2}, {8, -8, 3}, {-8, 8, 3}}
+                     : std::vector<Probe>{{10, 0, 0}, {-10, 0, 0}, {0, 10, 1}, {0, -10, 1}};
         for (CurvatureMethod m : kAllMethods) {
             bool edge = m == CurvatureMethod::EdgeAngle;
-            auto c = curvature(f, m, NormalMethod::Quad,
-                               edge ? CurvatureOutput::Curvature : CurvatureOutput::SecondDerivative);
+            auto c =
+                curvature(f, m, NormalMethod::Quad,
+                          edge ? CurvatureOutput::Curvature : CurvatureOutput::SecondDerivative);
             double ref = edge ? c.at(30, 30, probes[0].dir) : peak;
             double tol = m == CurvatureMethod::TwoNormal ? 0.1 : 0.02;
             for (auto p : probes)
                 EXPECT_LT(std::fabs(c.at(30 + p.di, 30 + p.dj, p.dir)), tol * ref)
                     << curvatureMethodName(m) << " at offset " << p.di << "," << p.dj;
             // Sanity: not trivially zero: at the centre |y''| is near the peak.
-            EXPECT_GT(std::fabs(c.at(30, 30, probes[0].dir)), edge ? 0.0 : 0.5 * peak) << curvatureMethodName(m);
+            EXPECT_GT(std::fabs(c.at(30, 30, probes[0].dir)), edge ? 0.0 : 0.5 * peak)
+                << curvatureMethodName(m);
         }
     }
 }
@@ -233,8 +264,10 @@ TEST(AnalysisCurvature, ReinforcementPushesValuesAwayFromOne) {
     // about a^2: below 1 it drops, above 1 it grows. Edge angle lies in [0, 1]
     // and can only drop.
     for (double a : {0.5, 2.0}) {
-        auto f = sampleSurface(41, 9, 0.05, 1.0, [&](double x, double) { return a * x * x / 2; }, -1.0, 0.0);
-        for (CurvatureMethod m : {CurvatureMethod::ThreeNormal, CurvatureMethod::ThreeVertex, CurvatureMethod::EdgeAngle}) {
+        auto f = sampleSurface(
+            41, 9, 0.05, 1.0, [&](double x, double) { return a * x * x / 2; }, -1.0, 0.0);
+        for (CurvatureMethod m : {CurvatureMethod::ThreeNormal, CurvatureMethod::ThreeVertex,
+                                  CurvatureMethod::EdgeAngle}) {
             auto one = curvature(f, m, NormalMethod::Quad, CurvatureOutput::Curvature, 1);
             auto two = curvature(f, m, NormalMethod::Quad, CurvatureOutput::Curvature, 2);
             for (int i = 16; i <= 24; ++i) {
@@ -267,7 +300,8 @@ TEST(AnalysisCurvature, ReinforcementIsTheProductWithTheMeasureAtDistance) {
             for (int i = 1; i < 32; ++i)
                 for (int d = 0; d < 4; ++d) {
                     double expect = double(nearG.at(2 * i, 2 * j, d)) * nearSub.at(i, j, d);
-                    ASSERT_NEAR(reinforced.at(2 * i, 2 * j, d), expect, 1e-5 * std::fabs(expect) + 1e-9)
+                    ASSERT_NEAR(reinforced.at(2 * i, 2 * j, d), expect,
+                                1e-5 * std::fabs(expect) + 1e-9)
                         << curvatureMethodName(m) << " " << i << "," << j << " d" << d;
                 }
     }
@@ -288,7 +322,8 @@ TEST(AnalysisCurvature, NoDataGivesNanThatDoesNotSpread) {
         for (int distance : {1, 2}) {
             if (m == CurvatureMethod::TwoNormal && distance > 1) continue;
             auto plain = curvature(g, m, NormalMethod::Quad, CurvatureOutput::Curvature, distance);
-            auto holed = curvature(masked, m, NormalMethod::Quad, CurvatureOutput::Curvature, distance);
+            auto holed =
+                curvature(masked, m, NormalMethod::Quad, CurvatureOutput::Curvature, distance);
             bool normals = m == CurvatureMethod::TwoNormal || m == CurvatureMethod::ThreeNormal;
             for (int d = 0; d < 4; ++d) EXPECT_TRUE(std::isnan(holed.at(pi, pj, d)));
             int nanCount = 0;
@@ -300,13 +335,17 @@ TEST(AnalysisCurvature, NoDataGivesNanThatDoesNotSpread) {
                         if (std::isnan(v)) {
                             ++nanCount;
                             // On the line through p along d, within reach.
-                            int di = kDirectionSteps[size_t(d)][0], dj = kDirectionSteps[size_t(d)][1];
+                            int di = kDirectionSteps[size_t(d)][0],
+                                dj = kDirectionSteps[size_t(d)][1];
                             bool onLine = (i - pi) * dj == (j - pj) * di;
                             ASSERT_TRUE(onLine && cheb <= distance)
-                                << curvatureMethodName(m) << " NaN at " << i << "," << j << " d" << d;
+                                << curvatureMethodName(m) << " NaN at " << i << "," << j << " d"
+                                << d;
                         } else if (cheb > distance + (normals ? 1 : 0)) {
-                            ASSERT_EQ(std::memcmp(&v, &plain.values[(size_t(j) * 65 + i) * 4 + d], 4), 0)
-                                << curvatureMethodName(m) << " changed at " << i << "," << j << " d" << d;
+                            ASSERT_EQ(
+                                std::memcmp(&v, &plain.values[(size_t(j) * 65 + i) * 4 + d], 4), 0)
+                                << curvatureMethodName(m) << " changed at " << i << "," << j << " d"
+                                << d;
                         }
                     }
             EXPECT_GE(nanCount, 4);
@@ -325,14 +364,19 @@ TEST(AnalysisCurvature, MultithreadedEqualsSingleThreadedExactly) {
     for (const auto* field : {&g, &masked})
         for (CurvatureMethod m : kAllMethods)
             for (NormalMethod n : kAllNormals) {
-                CurvatureOptions o{.method = m, .normals = n, .distance = m == CurvatureMethod::TwoNormal ? 1 : 2,
-                                   .scale = 3.0f, .signedValues = true};
+                CurvatureOptions o{.method = m,
+                                   .normals = n,
+                                   .distance = m == CurvatureMethod::TwoNormal ? 1 : 2,
+                                   .scale = 3.0f,
+                                   .signedValues = true};
                 o.threads = 1;
                 auto serial = computeCurvature(*field, o);
                 o.threads = 4;
                 auto parallel = computeCurvature(*field, o);
                 ASSERT_EQ(serial.values.size(), parallel.values.size());
-                ASSERT_EQ(std::memcmp(serial.values.data(), parallel.values.data(), serial.values.size() * 4), 0)
+                ASSERT_EQ(std::memcmp(serial.values.data(), parallel.values.data(),
+                                      serial.values.size() * 4),
+                          0)
                     << curvatureMethodName(m) << "/" << normalMethodName(n);
             }
 }
@@ -342,7 +386,8 @@ TEST(AnalysisCurvature, ScaleLevelsAndSign) {
     auto f = sampleSurface(65, 9, 1.0, 1.0, [&](double x, double) { return A * std::sin(k * x); });
     auto base = computeCurvature(f, {.method = CurvatureMethod::ThreeVertex});
     auto scaled = computeCurvature(f, {.method = CurvatureMethod::ThreeVertex, .scale = 4.0f});
-    auto signedField = computeCurvature(f, {.method = CurvatureMethod::ThreeVertex, .signedValues = true});
+    auto signedField =
+        computeCurvature(f, {.method = CurvatureMethod::ThreeVertex, .signedValues = true});
     Levels lv{.enabled = true, .black = 0.1f, .white = 0.5f, .gamma = 2.0f};
     auto levelled = computeCurvature(f, {.method = CurvatureMethod::ThreeVertex, .levels = lv});
     for (int i = 0; i < 65; ++i) {
@@ -371,7 +416,8 @@ TEST(AnalysisCurvature, BadParametersGiveClearErrors) {
     };
     expectError({.distance = 0}, "distance must be an integer >= 1");
     expectError({.scale = -1.0f}, "scale must be finite and >= 0");
-    expectError({.method = CurvatureMethod::TwoNormal, .distance = 2}, "two-normal has no reinforcement");
+    expectError({.method = CurvatureMethod::TwoNormal, .distance = 2},
+                "two-normal has no reinforcement");
     expectError({.levels = {.enabled = true, .black = 0.5f, .white = 0.5f}}, "white point");
     expectError({.levels = {.enabled = true, .gamma = 0.0f}}, "gamma");
     expectError({.distance = 9}, "too small for reinforcement distance 9");
@@ -381,8 +427,10 @@ TEST(AnalysisCurvature, BadParametersGiveClearErrors) {
     try {
         parseCurvatureMethod("four-normal");
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("unknown curvature method 'four-normal'"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("unknown curvature method 'four-normal'"),
+                  std::string::npos);
     }
-    for (CurvatureMethod m : kAllMethods) EXPECT_EQ(parseCurvatureMethod(curvatureMethodName(m)), m);
+    for (CurvatureMethod m : kAllMethods)
+        EXPECT_EQ(parseCurvatureMethod(curvatureMethodName(m)), m);
     EXPECT_THROW(computeCurvature(terrain::Heightfield{}, {}), Error);
 }

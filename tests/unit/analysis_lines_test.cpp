@@ -46,14 +46,15 @@ std::set<Segment> uniqueSegments(const LineSet& lines) {
 
 TEST(AnalysisLines, SineRidgeGivesOneLinePerCrest) {
     auto field = sineRidge();
-    for (CurvatureMethod m : {CurvatureMethod::TwoNormal, CurvatureMethod::ThreeNormal, CurvatureMethod::ThreeVertex,
-                              CurvatureMethod::EdgeAngle}) {
+    for (CurvatureMethod m : {CurvatureMethod::TwoNormal, CurvatureMethod::ThreeNormal,
+                              CurvatureMethod::ThreeVertex, CurvatureMethod::EdgeAngle}) {
         // Signed values and Ridges: only the crests count. The threshold sits
         // between the crest column and its neighbours (cos(2 pi/16) = 0.92 of it).
         auto c = computeCurvature(field, {.method = m, .signedValues = true});
         float crest = std::fabs(c.at(20, 20, 0));
         ASSERT_GT(crest, 0.0f);
-        LineOptions o{.threshold = 0.96f * crest, .minVertices = 10, .polarity = LinePolarity::Ridges};
+        LineOptions o{
+            .threshold = 0.96f * crest, .minVertices = 10, .polarity = LinePolarity::Ridges};
         auto lines = traceLines(c, o);
         ASSERT_EQ(lines.polylineCount(), 4u) << curvatureMethodName(m);
         std::set<int> columns;
@@ -66,7 +67,8 @@ TEST(AnalysisLines, SineRidgeGivesOneLinePerCrest) {
                 EXPECT_GT(v.alpha, 0.0f);
                 EXPECT_LE(v.alpha, 1.0f);
             }
-            for (size_t k = 1; k < poly.size(); ++k) EXPECT_EQ(std::fabs(poly[k].z - poly[k - 1].z), 1.0f);
+            for (size_t k = 1; k < poly.size(); ++k)
+                EXPECT_EQ(std::fabs(poly[k].z - poly[k - 1].z), 1.0f);
             columns.insert(int(poly[0].x));
         }
         EXPECT_EQ(columns, (std::set<int>{4, 20, 36, 52})) << curvatureMethodName(m);
@@ -74,24 +76,34 @@ TEST(AnalysisLines, SineRidgeGivesOneLinePerCrest) {
 
         // Unsigned: crests and troughs; Valleys: the troughs only.
         auto unsignedField = computeCurvature(field, {.method = m});
-        EXPECT_EQ(traceLines(unsignedField, {.threshold = o.threshold, .minVertices = 10}).polylineCount(), 8u);
-        EXPECT_EQ(traceLines(c, {.threshold = o.threshold, .minVertices = 10, .polarity = LinePolarity::Valleys})
+        EXPECT_EQ(traceLines(unsignedField, {.threshold = o.threshold, .minVertices = 10})
                       .polylineCount(),
-                  4u);
+                  8u);
+        EXPECT_EQ(
+            traceLines(
+                c, {.threshold = o.threshold, .minVertices = 10, .polarity = LinePolarity::Valleys})
+                .polylineCount(),
+            4u);
         // A minimum longer than the grid keeps nothing.
-        EXPECT_EQ(traceLines(c, {.threshold = o.threshold, .minVertices = 42, .polarity = LinePolarity::Ridges})
-                      .polylineCount(),
-                  0u);
+        EXPECT_EQ(
+            traceLines(
+                c, {.threshold = o.threshold, .minVertices = 42, .polarity = LinePolarity::Ridges})
+                .polylineCount(),
+            0u);
     }
 }
 
 TEST(AnalysisLines, BlendedSineRidgeFollowsTheCrests) {
     auto field = sineRidge();
-    auto c = computeCurvature(field, {.method = CurvatureMethod::ThreeVertex, .signedValues = true});
+    auto c =
+        computeCurvature(field, {.method = CurvatureMethod::ThreeVertex, .signedValues = true});
     float crest = std::fabs(c.at(20, 20, 0));
     for (float step : {1.0f, 0.5f}) {
-        LineOptions o{.threshold = 0.96f * crest, .minVertices = 10, .polarity = LinePolarity::Ridges,
-                      .blended = true, .step = step};
+        LineOptions o{.threshold = 0.96f * crest,
+                      .minVertices = 10,
+                      .polarity = LinePolarity::Ridges,
+                      .blended = true,
+                      .step = step};
         auto lines = traceLines(c, o);
         ASSERT_EQ(lines.polylineCount(), 4u) << "step " << step;
         for (size_t p = 0; p < lines.polylineCount(); ++p) {
@@ -109,7 +121,8 @@ TEST(AnalysisLines, FractalTerrainInvariants) {
     // the joins passing the threshold, each vertex on at most one line except
     // as a join.
     auto g = terrain::generateDiamondSquare({.size = 129, .seed = 11});
-    auto c = computeCurvature(g, {.method = CurvatureMethod::ThreeNormal, .distance = 2, .scale = 4.0f});
+    auto c =
+        computeCurvature(g, {.method = CurvatureMethod::ThreeNormal, .distance = 2, .scale = 4.0f});
     std::vector<float> strengths;
     for (int j = 0; j < c.height; ++j)
         for (int i = 0; i < c.width; ++i) strengths.push_back(c.maxMagnitude(i, j));
@@ -127,7 +140,8 @@ TEST(AnalysisLines, FractalTerrainInvariants) {
             for (size_t k = 0; k < poly.size(); ++k) {
                 int i = int(poly[k].x), j = int(poly[k].z);
                 if (k > 0) {
-                    int di = std::abs(i - int(poly[k - 1].x)), dj = std::abs(j - int(poly[k - 1].z));
+                    int di = std::abs(i - int(poly[k - 1].x)),
+                        dj = std::abs(j - int(poly[k - 1].z));
                     ASSERT_LE(std::max(di, dj), 1);
                     ASSERT_GT(di + dj, 0);
                 }
@@ -141,7 +155,8 @@ TEST(AnalysisLines, FractalTerrainInvariants) {
         for (int n : interiorUse) ASSERT_LE(n, 1) << "a vertex runs through two lines";
         // A larger minimum keeps fewer lines.
         if (minVertices == 6) {
-            EXPECT_LT(lines.polylineCount(), traceLines(c, {.threshold = threshold, .minVertices = 2}).polylineCount());
+            EXPECT_LT(lines.polylineCount(),
+                      traceLines(c, {.threshold = threshold, .minVertices = 2}).polylineCount());
         }
     }
     // Blended tracing terminates and keeps its minimum too.
@@ -156,9 +171,11 @@ TEST(AnalysisLines, NoDataStopsLines) {
     for (int j = 0; j < 41; ++j)
         for (int i = 0; i < 65; ++i) mask.push_back(j == 20 ? 0 : 1);  // row 20 has no data
     field.setMask(mask);
-    auto c = computeCurvature(field, {.method = CurvatureMethod::ThreeVertex, .signedValues = true});
+    auto c =
+        computeCurvature(field, {.method = CurvatureMethod::ThreeVertex, .signedValues = true});
     float crest = std::fabs(c.at(20, 5, 0));
-    auto lines = traceLines(c, {.threshold = 0.96f * crest, .minVertices = 10, .polarity = LinePolarity::Ridges});
+    auto lines = traceLines(
+        c, {.threshold = 0.96f * crest, .minVertices = 10, .polarity = LinePolarity::Ridges});
     // Each crest is cut in two by the hole: rows 0..19 and 21..40.
     ASSERT_EQ(lines.polylineCount(), 8u);
     for (size_t p = 0; p < lines.polylineCount(); ++p)

@@ -40,7 +40,8 @@ TEST(AnalysisNormals, MethodsDifferAsDefinedOnACurvedSurface) {
     // y = 0.05 x^2 z (a saddle-like cubic): the edge normal is the central
     // difference gradient exactly; triangle and quad normals average unit
     // face normals and differ from it (and from each other) by a little.
-    auto f = sampleSurface(11, 11, 1.0, 1.0, [](double x, double z) { return 0.05 * x * x * z; }, -5.0, -5.0);
+    auto f = sampleSurface(
+        11, 11, 1.0, 1.0, [](double x, double z) { return 0.05 * x * x * z; }, -5.0, -5.0);
     auto edge = computeNormals(f, NormalMethod::Edge);
     auto tri = computeNormals(f, NormalMethod::Triangle);
     auto quad = computeNormals(f, NormalMethod::Quad);
@@ -78,7 +79,8 @@ TEST(AnalysisNormals, NoDataIsNanAndNeighboursStayFinite) {
             for (int i = 0; i < 17; ++i) {
                 if ((i == 8 && j == 8) || (i == 0 && j == 0)) continue;
                 const Vec3& v = n.at(i, j);
-                ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) << i << "," << j;
+                ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))
+                    << i << "," << j;
                 ASSERT_NEAR(v.x * v.x + v.y * v.y + v.z * v.z, 1.0f, 1e-5f);
                 ASSERT_GT(v.y, 0.0f);
             }
@@ -90,7 +92,8 @@ TEST(AnalysisNormals, ThreadCountDoesNotChangeTheResult) {
     for (NormalMethod m : kAll) {
         auto a = computeNormals(f, m, 1);
         auto b = computeNormals(f, m, 3);
-        ASSERT_EQ(std::memcmp(a.normals.data(), b.normals.data(), a.normals.size() * sizeof(Vec3)), 0);
+        ASSERT_EQ(std::memcmp(a.normals.data(), b.normals.data(), a.normals.size() * sizeof(Vec3)),
+                  0);
     }
     EXPECT_THROW(computeNormals(terrain::Heightfield{}), Error);
     EXPECT_THROW(parseNormalMethod("vertex"), Error);

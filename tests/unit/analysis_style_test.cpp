@@ -39,11 +39,13 @@ constexpr auto kWith = HatchDirection::Along;
 constexpr auto kPerp = HatchDirection::Across;
 
 const Row kFigure3[] = {
-    {"fig3a", k3N, 2, 6, false, 6, 1},   {"fig3b", k3N, 2, 6, true, 6, 1},    {"fig3c", k3N, 2, 11, true, 2, 1},
-    {"fig3d", k2N, 1, 2, false, 5, 1},   {"fig3e", k2N, 1, 11, false, 2, 1},  {"fig3f", k2N, 1, 6, false, 2, 1},
-    {"fig3g", k3N, 2, 3, true, 5, 1},    {"fig3h", k2N, 1, 3, false, 5, 1},   {"fig3i", kEdge, 1, 2, true, 5, 1},
-    {"fig3j", k3V, 1, 2, false, 5, 1},   {"fig3k", k2N, 1, 1, false, 5, 1},   {"fig3l", kEdge, 1, 1, true, 5, 1},
-    {"fig3m", k3V, 1, 1, false, 5, 1},   {"fig3n", k3N, 1, 1.5f, false, 2, 6},
+    {"fig3a", k3N, 2, 6, false, 6, 1},  {"fig3b", k3N, 2, 6, true, 6, 1},
+    {"fig3c", k3N, 2, 11, true, 2, 1},  {"fig3d", k2N, 1, 2, false, 5, 1},
+    {"fig3e", k2N, 1, 11, false, 2, 1}, {"fig3f", k2N, 1, 6, false, 2, 1},
+    {"fig3g", k3N, 2, 3, true, 5, 1},   {"fig3h", k2N, 1, 3, false, 5, 1},
+    {"fig3i", kEdge, 1, 2, true, 5, 1}, {"fig3j", k3V, 1, 2, false, 5, 1},
+    {"fig3k", k2N, 1, 1, false, 5, 1},  {"fig3l", kEdge, 1, 1, true, 5, 1},
+    {"fig3m", k3V, 1, 1, false, 5, 1},  {"fig3n", k3N, 1, 1.5f, false, 2, 6},
 };
 const Row kFigure4[] = {
     {"fig4a", k3N, 2, 4, false, 0.75f, 1, kWith}, {"fig4b", k3N, 1, 4, false, 0.75f, 1, kWith},
@@ -124,36 +126,49 @@ TEST(AnalysisStyle, RoundTripAndDefaults) {
     EXPECT_FALSE(d.layers.hatch);
     EXPECT_FALSE(d.layers.contours);
     EXPECT_EQ(d.curvature.method, CurvatureMethod::ThreeNormal);
-    StyleParams all = styleFromJson(json::parse(R"({"styles": ["shaded", "lines", "hatch", "contours"]})"));
+    StyleParams all =
+        styleFromJson(json::parse(R"({"styles": ["shaded", "lines", "hatch", "contours"]})"));
     EXPECT_TRUE(all.layers.shaded && all.layers.lines && all.layers.hatch && all.layers.contours);
 }
 
 TEST(AnalysisStyle, BadParametersGiveClearErrors) {
     EXPECT_EQ(errorOf(json::parse(R"({"curvature": {"method": "three-normal", "distance": 0}})")),
-              "test.json: style.curvature.distance must be an integer >= 1 (1 = no reinforcement), got 0");
+              "test.json: style.curvature.distance must be an integer >= 1 (1 = no reinforcement), "
+              "got 0");
     EXPECT_EQ(errorOf(json::parse(R"({"curvature": {"scale": -2}})")),
               "test.json: style.curvature.scale must be >= 0, got -2");
     EXPECT_EQ(errorOf(json::parse(R"({"curvature": {"method": "four-normal"}})")),
-              "test.json: style.curvature.method unknown curvature method 'four-normal' (expected two-normal, "
+              "test.json: style.curvature.method unknown curvature method 'four-normal' (expected "
+              "two-normal, "
               "three-normal, three-vertex or edge-angle)");
     auto has = [](const std::string& text, const std::string& words) {
         return text.find(words) != std::string::npos;
     };
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"method": "two-normal", "distance": 2}})")),
-                    "style.curvature.distance must be 1 for two-normal"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"distance": 1.5}})")), "must be an integer >= 1"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"scale": "big"}})")), "style.curvature.scale must be a number"));
+    EXPECT_TRUE(
+        has(errorOf(json::parse(R"({"curvature": {"method": "two-normal", "distance": 2}})")),
+            "style.curvature.distance must be 1 for two-normal"));
+    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"distance": 1.5}})")),
+                    "must be an integer >= 1"));
+    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"scale": "big"}})")),
+                    "style.curvature.scale must be a number"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"dist": 2}})")), "unknown key 'dist'"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"lines": {"min_length": 1}})")), "style.lines.min_length must be an integer >= 2"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"lines": {"width": 0}})")), "style.lines.width must be > 0"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"hatch": {"direction": "with"}})")), "unknown hatch direction 'with'"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"hatch": {"length": -1}})")), "style.hatch.length must be > 0"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"styles": ["lines", "watercolour"]})")), "unknown style \"watercolour\""));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"styles": "lines"})")), "style.styles must be an array"));
+    EXPECT_TRUE(has(errorOf(json::parse(R"({"lines": {"min_length": 1}})")),
+                    "style.lines.min_length must be an integer >= 2"));
+    EXPECT_TRUE(
+        has(errorOf(json::parse(R"({"lines": {"width": 0}})")), "style.lines.width must be > 0"));
+    EXPECT_TRUE(has(errorOf(json::parse(R"({"hatch": {"direction": "with"}})")),
+                    "unknown hatch direction 'with'"));
+    EXPECT_TRUE(has(errorOf(json::parse(R"({"hatch": {"length": -1}})")),
+                    "style.hatch.length must be > 0"));
+    EXPECT_TRUE(has(errorOf(json::parse(R"({"styles": ["lines", "watercolour"]})")),
+                    "unknown style \"watercolour\""));
+    EXPECT_TRUE(
+        has(errorOf(json::parse(R"({"styles": "lines"})")), "style.styles must be an array"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"styles": ["contours"], "contours": false})")),
                     "style.contours is false but \"styles\" lists contours"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"levels": {"black": 0.5, "white": 0.2}}})")),
-                    "style.curvature.levels.white must be above the black point"));
+    EXPECT_TRUE(
+        has(errorOf(json::parse(R"({"curvature": {"levels": {"black": 0.5, "white": 0.2}}})")),
+            "style.curvature.levels.white must be above the black point"));
     EXPECT_TRUE(has(errorOf(json::parse(R"([1, 2])")), "style must be an object"));
 
     auto dir = std::filesystem::temp_directory_path() / "sierra_analysis_style_test";

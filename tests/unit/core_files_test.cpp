@@ -101,8 +101,8 @@ TEST_F(CoreFiles, EnsureWritableLocationCreatesOrRefusesEarly) {
 
     writeFileAtomic(path("file"), std::string_view("x"));
     EXPECT_THAT(errorOf([&] { ensureWritableLocation(path("file/out.png")); }),
-                HasSubstr("cannot write " + path("file/out.png") + ": cannot create the directory " +
-                          path("file")));
+                HasSubstr("cannot write " + path("file/out.png") +
+                          ": cannot create the directory " + path("file")));
     fs::create_directory(path("dir"));
     EXPECT_THAT(errorOf([&] { ensureWritableLocation(path("dir")); }),
                 HasSubstr("it exists and is a directory, not a regular file"));

@@ -45,8 +45,10 @@ TEST(Npy, ThreeDimensionalShapeAndValuesInCOrder) {
     EXPECT_EQ(h.back(), '\n');
     EXPECT_EQ(bytes.size(), 10 + h.size() + values.size() * 4);
     for (size_t k = 0; k < values.size(); ++k) {
-        if (k == 5) EXPECT_TRUE(std::isnan(payload(bytes, k)));
-        else EXPECT_EQ(payload(bytes, k), values[k]) << k;
+        if (k == 5)
+            EXPECT_TRUE(std::isnan(payload(bytes, k)));
+        else
+            EXPECT_EQ(payload(bytes, k), values[k]) << k;
     }
 }
 
@@ -70,7 +72,8 @@ TEST(Npy, RejectsAWrongValueCountOrAnEmptyExtent) {
         encodeNpyFloat32(shape, values);
         FAIL() << "23 values for 2x3x4 were accepted";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("2x3x4 needs 24 values, got 23"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("2x3x4 needs 24 values, got 23"), std::string::npos)
+            << e.what();
     }
     const int zero[] = {2, 0, 4};
     EXPECT_THROW(encodeNpyFloat32(zero, std::vector<float>{}), Error);

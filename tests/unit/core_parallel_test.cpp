@@ -6,8 +6,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <mutex>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -18,15 +18,22 @@ using namespace sierra;
 TEST(CoreParallel, EveryIndexOnceForAnyThreadCount) {
     for (int threads : {1, 2, 3, 8}) {
         std::vector<std::atomic<int>> hits(1003);
-        parallelFor(0, 1003, [&](int64_t i) { ++hits[size_t(i)]; }, threads);
-        for (size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << "index " << i << ", " << threads << " threads";
+        parallelFor(
+            0, 1003, [&](int64_t i) { ++hits[size_t(i)]; }, threads);
+        for (size_t i = 0; i < hits.size(); ++i)
+            ASSERT_EQ(hits[i].load(), 1) << "index " << i << ", " << threads << " threads";
     }
 }
 
 TEST(CoreParallel, ChunksAreContiguousAndIndependentOfThreads) {
     auto chunks = [](int threads) {
         std::vector<std::pair<int64_t, int64_t>> ranges(7);
-        parallelChunks(10, 110, 7, [&](int64_t lo, int64_t hi, int c) { ranges[size_t(c)] = {lo, hi}; }, threads);
+        parallelChunks(
+            10, 110, 7,
+            [&](int64_t lo, int64_t hi, int c) {
+                ranges[size_t(c)] = {lo, hi};
+            },
+            threads);
         return ranges;
     };
     auto one = chunks(1);
@@ -39,9 +46,12 @@ TEST(CoreParallel, ChunksAreContiguousAndIndependentOfThreads) {
 
 TEST(CoreParallel, ExceptionsReachTheCaller) {
     for (int threads : {1, 2}) {
-        EXPECT_THROW(parallelFor(0, 100, [](int64_t i) {
-                         if (i == 57) throw Error("boom");
-                     }, threads),
+        EXPECT_THROW(parallelFor(
+                         0, 100,
+                         [](int64_t i) {
+                             if (i == 57) throw Error("boom");
+                         },
+                         threads),
                      Error);
     }
 }
@@ -55,7 +65,8 @@ TEST(CoreParallel, EmptyRangeCallsNothing) {
 TEST(CoreParallel, ThreadCountsAreBounded) {
     EXPECT_EQ(parseThreadCount("1"), 1);
     EXPECT_EQ(parseThreadCount("256"), kMaxThreads);
-    for (const char* bad : {"0", "-3", "257", "1000000000", "99999999999999999999", "4x", "", " ", "two"})
+    for (const char* bad :
+         {"0", "-3", "257", "1000000000", "99999999999999999999", "4x", "", " ", "two"})
         EXPECT_EQ(parseThreadCount(bad), 0) << bad;
     EXPECT_EQ(parseThreadCount(nullptr), 0);
     const int before = defaultThreadCount();
@@ -67,16 +78,20 @@ TEST(CoreParallel, ThreadCountsAreBounded) {
     // A huge request neither overflows the chunk arithmetic nor starts a
     // billion threads.
     std::vector<std::atomic<int>> hits(5000);
-    parallelFor(0, 5000, [&](int64_t i) { ++hits[size_t(i)]; }, 1000000000);
+    parallelFor(
+        0, 5000, [&](int64_t i) { ++hits[size_t(i)]; }, 1000000000);
     for (size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << i;
     // (end - begin) * chunk index would overflow int64 here.
     int64_t covered = 0, previous = 0;
     bool contiguous = true;
-    parallelChunks(0, int64_t(1) << 60, 1 << 20, [&](int64_t lo, int64_t hi, int) {
-        contiguous = contiguous && lo == previous && hi > lo;
-        previous = hi;
-        covered += hi - lo;
-    }, 1);
+    parallelChunks(
+        0, int64_t(1) << 60, 1 << 20,
+        [&](int64_t lo, int64_t hi, int) {
+            contiguous = contiguous && lo == previous && hi > lo;
+            previous = hi;
+            covered += hi - lo;
+        },
+        1);
     EXPECT_TRUE(contiguous);
     EXPECT_EQ(covered, int64_t(1) << 60);
 }
@@ -85,7 +100,8 @@ TEST(CoreParallel, ShortCallsStayOnTheCallingThread) {
     // Far less than kForkAfterSeconds of work (8 chunks that store one id each,
     // even under a sanitizer): no helper is woken.
     std::vector<std::thread::id> ids(8);
-    parallelChunks(0, 8, 8, [&](int64_t, int64_t, int c) { ids[size_t(c)] = std::this_thread::get_id(); }, 2);
+    parallelChunks(
+        0, 8, 8, [&](int64_t, int64_t, int c) { ids[size_t(c)] = std::this_thread::get_id(); }, 2);
     for (const std::thread::id& id : ids) EXPECT_EQ(id, std::this_thread::get_id());
 }
 
@@ -95,46 +111,64 @@ TEST(CoreParallel, LongCallsShareTheWork) {
     std::mutex m;
     std::set<std::thread::id> ids;
     std::vector<int> order;
-    parallelChunks(0, 40, 40, [&](int64_t, int64_t, int c) {
-        const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(2);
-        while (std::chrono::steady_clock::now() < until) {}
-        std::lock_guard lock(m);
-        ids.insert(std::this_thread::get_id());
-        order.push_back(c);
-    }, 2);
+    parallelChunks(
+        0, 40, 40,
+        [&](int64_t, int64_t, int c) {
+            const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(2);
+            while (std::chrono::steady_clock::now() < until) {
+            }
+            std::lock_guard lock(m);
+            ids.insert(std::this_thread::get_id());
+            order.push_back(c);
+        },
+        2);
     EXPECT_EQ(order.size(), 40u);
     EXPECT_EQ(ids.size(), 2u);
 }
 
 TEST(CoreParallel, ExceptionsFromHelpersReachTheCaller) {
     std::atomic<int> ran{0};
-    EXPECT_THROW(parallelChunks(0, 40, 40, [&](int64_t, int64_t, int c) {
-        const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(1);
-        while (std::chrono::steady_clock::now() < until) {}
-        ++ran;
-        if (c == 20) throw Error("boom");
-    }, 2), Error);
+    EXPECT_THROW(parallelChunks(
+                     0, 40, 40,
+                     [&](int64_t, int64_t, int c) {
+                         const auto until =
+                             std::chrono::steady_clock::now() + std::chrono::milliseconds(1);
+                         while (std::chrono::steady_clock::now() < until) {
+                         }
+                         ++ran;
+                         if (c == 20) throw Error("boom");
+                     },
+                     2),
+                 Error);
     EXPECT_GE(ran.load(), 21);
     // The pool is usable again afterwards.
     std::vector<std::atomic<int>> hits(100);
-    parallelFor(0, 100, [&](int64_t i) { ++hits[size_t(i)]; }, 2);
+    parallelFor(
+        0, 100, [&](int64_t i) { ++hits[size_t(i)]; }, 2);
     for (auto& h : hits) ASSERT_EQ(h.load(), 1);
 }
 
 TEST(CoreParallel, NestedCallsRunSerially) {
     std::vector<std::atomic<int>> hits(64 * 64);
-    parallelFor(0, 64, [&](int64_t i) {
-        const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(100);
-        while (std::chrono::steady_clock::now() < until) {}
-        parallelFor(0, 64, [&](int64_t k) { ++hits[size_t(i * 64 + k)]; }, 2);
-    }, 2);
+    parallelFor(
+        0, 64,
+        [&](int64_t i) {
+            const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(100);
+            while (std::chrono::steady_clock::now() < until) {
+            }
+            parallelFor(
+                0, 64, [&](int64_t k) { ++hits[size_t(i * 64 + k)]; }, 2);
+        },
+        2);
     for (size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << i;
 }
 
 // Busy work of `ms` milliseconds of wall time.
 static void spinFor(double ms) {
-    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(ms);
-    while (std::chrono::steady_clock::now() < until) {}
+    const auto until =
+        std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(ms);
+    while (std::chrono::steady_clock::now() < until) {
+    }
 }
 
 TEST(CoreParallel, RescuedChunksNeverWaitForAStalledHelper) {
@@ -163,7 +197,8 @@ TEST(CoreParallel, RescuedChunksNeverWaitForAStalledHelper) {
             ++out->runs[c][slot];
         },
         2, winners.data());
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     setHelperStallForTesting(0.0);
     EXPECT_TRUE(pooled);
     EXPECT_LT(seconds, 0.75) << "the call waited for the sleeping helper";
@@ -182,8 +217,9 @@ TEST(CoreParallel, RescuedChunksNeverWaitForAStalledHelper) {
     EXPECT_FALSE(parallelHelpersIdle());
     std::vector<uint8_t> serialWinners(8, 9);
     std::vector<int> serialRuns(8, 0);
-    EXPECT_FALSE(parallelRescuedChunks(8, [&](int c, int slot, const ChunkStop&) { serialRuns[size_t(c)] += 1 + slot; },
-                                       2, serialWinners.data()));
+    EXPECT_FALSE(parallelRescuedChunks(
+        8, [&](int c, int slot, const ChunkStop&) { serialRuns[size_t(c)] += 1 + slot; }, 2,
+        serialWinners.data()));
     for (int c = 0; c < 8; ++c) {
         EXPECT_EQ(serialRuns[size_t(c)], 1);
         EXPECT_EQ(serialWinners[size_t(c)], 0);

@@ -67,10 +67,13 @@ TEST(SbtAddressing, GeometryOfEveryLevel) {
                 int64_t c = cross(v0, v1, v2);
                 ASSERT_GT(c, 0) << "vertices must be counter-clockwise";
                 // right angle at vertex 0, equal legs
-                int64_t dot = int64_t(v1.i - v0.i) * (v2.i - v0.i) + int64_t(v1.j - v0.j) * (v2.j - v0.j);
+                int64_t dot =
+                    int64_t(v1.i - v0.i) * (v2.i - v0.i) + int64_t(v1.j - v0.j) * (v2.j - v0.j);
                 ASSERT_EQ(dot, 0);
-                int64_t l1 = int64_t(v1.i - v0.i) * (v1.i - v0.i) + int64_t(v1.j - v0.j) * (v1.j - v0.j);
-                int64_t l2 = int64_t(v2.i - v0.i) * (v2.i - v0.i) + int64_t(v2.j - v0.j) * (v2.j - v0.j);
+                int64_t l1 =
+                    int64_t(v1.i - v0.i) * (v1.i - v0.i) + int64_t(v1.j - v0.j) * (v1.j - v0.j);
+                int64_t l2 =
+                    int64_t(v2.i - v0.i) * (v2.i - v0.i) + int64_t(v2.j - v0.j) * (v2.j - v0.j);
                 ASSERT_EQ(l1, l2);
                 area2 += c;
                 int type = int(Addressing::type(t));
@@ -137,8 +140,8 @@ TEST(SbtAddressing, NeighboursShareTheEdgeOppositeTheirVertex) {
                     for (const TriangleId& o : sharing)
                         if (!(o == t)) expected = o;
                     TriangleId nb = Addressing::neighbour(t, k);
-                    ASSERT_EQ(nb, expected) << "n " << n << " level " << l << " [" << t.r << ","
-                                            << t.c << "] k " << k;
+                    ASSERT_EQ(nb, expected)
+                        << "n " << n << " level " << l << " [" << t.r << "," << t.c << "] k " << k;
                     bool onBorder = (e0.i == e1.i && (e0.i == 0 || e0.i == S)) ||
                                     (e0.j == e1.j && (e0.j == 0 || e0.j == S));
                     EXPECT_EQ(Addressing::hasNeighbour(t, k), !onBorder);
@@ -205,7 +208,8 @@ TEST(SbtAddressing, SplitVerticesKnowTheirHypotenuseAndLevel) {
                 EXPECT_TRUE((a == v1 && b == v2) || (a == v2 && b == v1));
             }
         const int S = 1 << n;
-        for (GridVertex c : {GridVertex{0, 0}, GridVertex{S, 0}, GridVertex{0, S}, GridVertex{S, S}}) {
+        for (GridVertex c :
+             {GridVertex{0, 0}, GridVertex{S, 0}, GridVertex{0, S}, GridVertex{S, S}}) {
             int ai, aj, bi, bj;
             EXPECT_FALSE(sierra::sbt::hypotenuseEndpoints(c.i, c.j, n, &ai, &aj, &bi, &bj));
             EXPECT_EQ(sierra::sbt::vertexLevel(c.i, c.j, n), -1);

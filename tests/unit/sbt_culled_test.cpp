@@ -5,10 +5,10 @@
 #include <sierra/sbt/VertexErrors.h>
 #include <sierra/terrain/DiamondSquare.h>
 
+#include <gtest/gtest.h>
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <gtest/gtest.h>
 
 #include <bit>
 #include <cstdint>
@@ -21,7 +21,8 @@ using sierra::terrain::Heightfield;
 Heightfield terrain(int size, uint64_t seed) {
     Heightfield f = sierra::terrain::generateDiamondSquare({.size = size, .seed = seed});
     auto [lo, hi] = f.range();
-    f.setVerticalScale(0.2f * float(size - 1) / std::max(1e-6f, hi - lo));  // relief 20% of the extent
+    f.setVerticalScale(0.2f * float(size - 1) /
+                       std::max(1e-6f, hi - lo));  // relief 20% of the extent
     return f;
 }
 
@@ -29,24 +30,28 @@ Heightfield terrain(int size, uint64_t seed) {
 // vertical field of view, 16:9 at 1080 pixels, far plane 4 extents.
 sbt::ViewParams view(const Heightfield& f, glm::vec3 eye, glm::vec3 target, bool cull) {
     const float extent = float(f.width() - 1) * f.spacingX();
-    return sbt::lookAtView({eye.x, eye.y, eye.z}, {target.x, target.y, target.z}, glm::radians(45.0f),
-                           16.0f / 9.0f, 1080.0f, extent * 1e-3f, extent * 4.0f, 1.0f, cull);
+    return sbt::lookAtView({eye.x, eye.y, eye.z}, {target.x, target.y, target.z},
+                           glm::radians(45.0f), 16.0f / 9.0f, 1080.0f, extent * 1e-3f,
+                           extent * 4.0f, 1.0f, cull);
 }
 
 // lookAtView builds the same frustum as GL's look-at and perspective matrices.
 TEST(SbtLookAtView, FrustumOfTheGlLookAtCamera) {
     const glm::vec3 eye{-40.0f, 90.0f, 310.0f}, target{128.0f, -5.0f, 120.0f};
     const float fovy = glm::radians(50.0f), aspect = 1.6f, nearPlane = 0.5f, farPlane = 2000.0f;
-    const sbt::ViewParams v = sbt::lookAtView({eye.x, eye.y, eye.z}, {target.x, target.y, target.z}, fovy, aspect,
-                                              900.0f, nearPlane, farPlane, 2.0f, false);
-    const glm::mat4 vp = glm::perspective(fovy, aspect, nearPlane, farPlane) * glm::lookAt(eye, target, {0, 1, 0});
+    const sbt::ViewParams v =
+        sbt::lookAtView({eye.x, eye.y, eye.z}, {target.x, target.y, target.z}, fovy, aspect, 900.0f,
+                        nearPlane, farPlane, 2.0f, false);
+    const glm::mat4 vp =
+        glm::perspective(fovy, aspect, nearPlane, farPlane) * glm::lookAt(eye, target, {0, 1, 0});
     const auto planes = sbt::frustumPlanes(glm::value_ptr(vp));
     for (size_t k = 0; k < planes.size(); ++k) {
         EXPECT_NEAR(v.planes[k].a, planes[k].a, 1e-5f) << "plane " << k;
         EXPECT_NEAR(v.planes[k].b, planes[k].b, 1e-5f) << "plane " << k;
         EXPECT_NEAR(v.planes[k].c, planes[k].c, 1e-5f) << "plane " << k;
         // The far plane comes from a difference of nearly equal rows: float rounding in both.
-        EXPECT_NEAR(v.planes[k].d, planes[k].d, 3e-4f * std::abs(planes[k].d) + 1e-4f) << "plane " << k;
+        EXPECT_NEAR(v.planes[k].d, planes[k].d, 3e-4f * std::abs(planes[k].d) + 1e-4f)
+            << "plane " << k;
     }
     EXPECT_EQ(v.eye, (std::array<float, 3>{eye.x, eye.y, eye.z}));
     EXPECT_FLOAT_EQ(v.lambda, sbt::projectionLambda(900.0f, fovy));
@@ -131,8 +136,8 @@ TEST(SbtCulledSubtrees, MatchBruteForceOnBothPathsForAnyThreadsAndChunkLevel) {
         total += expected;
         for (int chunkLevel : {-1, 0, 3, 6})
             for (int threads : {1, 3}) {
-                SCOPED_TRACE(testing::Message() << "view " << k << " chunk level " << chunkLevel << " threads "
-                                                << threads);
+                SCOPED_TRACE(testing::Message() << "view " << k << " chunk level " << chunkLevel
+                                                << " threads " << threads);
                 sbt::Refiner refiner(f, ve, {.threads = threads, .chunkLevel = chunkLevel});
                 sbt::StripMesh fast, reference;
                 refiner.refineView(views[k], fast);

@@ -68,7 +68,8 @@ View randomView(const Terrain& t, std::mt19937_64& rng) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     auto [lo, hi] = t.field.range();
     const float vs = t.field.verticalScale();
-    const glm::vec3 eye{t.extent * (1.4f * u(rng) - 0.2f), hi * vs + t.extent * (0.01f + 0.3f * u(rng)),
+    const glm::vec3 eye{t.extent * (1.4f * u(rng) - 0.2f),
+                        hi * vs + t.extent * (0.01f + 0.3f * u(rng)),
                         t.extent * (1.4f * u(rng) - 0.2f)};
     const glm::vec3 target{t.extent * u(rng), lo * vs, t.extent * u(rng)};
     return makeView(t, eye, target, 0.5f + 3.0f * u(rng));
@@ -77,7 +78,8 @@ View randomView(const Terrain& t, std::mt19937_64& rng) {
 glm::vec3 truePosition(const Terrain& t, uint32_t v) {
     const int side = t.field.width();
     const int i = int(v % uint32_t(side)), j = int(v / uint32_t(side));
-    return {float(i) * t.field.spacingX(), t.field.worldHeight(i, j), float(j) * t.field.spacingZ()};
+    return {float(i) * t.field.spacingX(), t.field.worldHeight(i, j),
+            float(j) * t.field.spacingZ()};
 }
 
 // Morphed height of vertex v as the shader computes it (sbt::morphedHeight).
@@ -129,7 +131,8 @@ TEST(SbtMorph, DrawnVerticesStayWithinTauAndMorphsEndAtTheBudget) {
         for (uint32_t v : drawnVertices(mesh.indices)) {
             const glm::vec3 p = truePosition(t, v);
             const float d = glm::distance(p, view.eye);
-            const float w = sbt::morphWeight(t.errors.error[v], t.errors.radius[v], d, lambda / view.tau);
+            const float w =
+                sbt::morphWeight(t.errors.error[v], t.errors.radius[v], d, lambda / view.tau);
             const float displacement = std::fabs(drawnHeight(t, view, v) - p.y);
             ASSERT_LE(lambda * displacement / d, view.tau * (1.0f + 1e-4f))
                 << "trial " << trial << " vertex " << v << " w " << w;
@@ -179,7 +182,8 @@ TEST(SbtMorph, SmallCameraMovesDoNotPop) {
             const glm::vec3 p = truePosition(t, v);
             const float d = std::min(glm::distance(p, a.eye), glm::distance(p, b.eye));
             ASSERT_LT(lambda * std::fabs(ha - hb) / d, a.tau)
-                << "trial " << trial << " vertex " << v << (inA ? " in a" : "") << (inB ? " in b" : "");
+                << "trial " << trial << " vertex " << v << (inA ? " in a" : "")
+                << (inB ? " in b" : "");
             worst = std::max(worst, lambda * std::fabs(ha - hb) / d / a.tau);
             const float pa = inA ? p.y : t.base[v], pb = inB ? p.y : t.base[v];
             worstPop = std::max(worstPop, lambda * std::fabs(pa - pb) / d / a.tau);

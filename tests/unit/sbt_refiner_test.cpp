@@ -25,7 +25,8 @@ using sierra::terrain::Heightfield;
 using Tri = std::array<uint32_t, 3>;
 
 Heightfield fractal(int size, uint64_t seed, float roughness = 1.0f) {
-    return sierra::terrain::generateDiamondSquare({.size = size, .seed = seed, .roughness = roughness});
+    return sierra::terrain::generateDiamondSquare(
+        {.size = size, .seed = seed, .roughness = roughness});
 }
 
 // Smooth, real-looking terrain: a sum of Gaussian hills.
@@ -33,14 +34,18 @@ Heightfield gaussians(int size, uint64_t seed) {
     Heightfield f(size, size);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    struct Hill { double x, z, s, h; };
+    struct Hill {
+        double x, z, s, h;
+    };
     std::vector<Hill> hills;
-    for (int k = 0; k < 12; ++k) hills.push_back({u(rng), u(rng), 0.05 + 0.2 * u(rng), 2.0 * u(rng) - 0.7});
+    for (int k = 0; k < 12; ++k)
+        hills.push_back({u(rng), u(rng), 0.05 + 0.2 * u(rng), 2.0 * u(rng) - 0.7});
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
             double x = double(i) / (size - 1), z = double(j) / (size - 1), h = 0;
             for (const Hill& hl : hills)
-                h += hl.h * std::exp(-((x - hl.x) * (x - hl.x) + (z - hl.z) * (z - hl.z)) / (hl.s * hl.s));
+                h += hl.h *
+                     std::exp(-((x - hl.x) * (x - hl.x) + (z - hl.z) * (z - hl.z)) / (hl.s * hl.s));
             f.at(i, j) = float(h * 40.0);
         }
     return f;
@@ -81,8 +86,8 @@ std::vector<Tri> sortedTris(const std::vector<Node>& nodes) {
 }
 
 int64_t cross2(const Tri& t, int side) {
-    int64_t i0 = t[0] % side, j0 = t[0] / side, i1 = t[1] % side, j1 = t[1] / side, i2 = t[2] % side,
-            j2 = t[2] / side;
+    int64_t i0 = t[0] % side, j0 = t[0] / side, i1 = t[1] % side, j1 = t[1] / side,
+            i2 = t[2] % side, j2 = t[2] / side;
     return (i1 - i0) * (j2 - j0) - (j1 - j0) * (i2 - i0);
 }
 
@@ -112,14 +117,16 @@ void expectConforming(const std::vector<Tri>& tris, int side, bool full) {
         if (!full) continue;
         int i0 = e.first % side, j0 = e.first / side, i1 = e.second % side, j1 = e.second / side;
         bool border = (i0 == i1 && (i0 == 0 || i0 == S)) || (j0 == j1 && (j0 == 0 || j0 == S));
-        ASSERT_TRUE(border) << "hanging interior edge (" << i0 << "," << j0 << ")-(" << i1 << "," << j1 << ")";
+        ASSERT_TRUE(border) << "hanging interior edge (" << i0 << "," << j0 << ")-(" << i1 << ","
+                            << j1 << ")";
     }
     for (const auto& [e, count] : directed) {
         int i0 = e.first % side, j0 = e.first / side, i1 = e.second % side, j1 = e.second / side;
         int g = std::gcd(std::abs(i1 - i0), std::abs(j1 - j0));
         for (int s = 1; s < g; ++s) {
             int i = i0 + (i1 - i0) / g * s, j = j0 + (j1 - j0) / g * s;
-            ASSERT_FALSE(isVertex[size_t(j) * side + i]) << "T-junction at (" << i << "," << j << ")";
+            ASSERT_FALSE(isVertex[size_t(j) * side + i])
+                << "T-junction at (" << i << "," << j << ")";
         }
     }
 }
@@ -140,8 +147,10 @@ void expectConsecutiveShareEdge(const std::vector<uint32_t>& indices) {
         strip.clear();
     };
     for (uint32_t v : indices) {
-        if (v == sbt::kRestartIndex) check();
-        else strip.push_back(v);
+        if (v == sbt::kRestartIndex)
+            check();
+        else
+            strip.push_back(v);
     }
     check();
 }
@@ -155,7 +164,8 @@ TEST(SbtErrors, SaturatedAndNestedByBruteForce) {
         const int side = f.width(), n = 5;
         sbt::Addressing ad(n);
         auto pos = [&](sbt::GridVertex v) {
-            return std::array<double, 3>{v.i * double(f.spacingX()), double(f.at(v.i, v.j)) * double(f.verticalScale()),
+            return std::array<double, 3>{v.i * double(f.spacingX()),
+                                         double(f.at(v.i, v.j)) * double(f.verticalScale()),
                                          v.j * double(f.spacingZ())};
         };
         auto dist = [&](sbt::GridVertex a, sbt::GridVertex b) {
@@ -171,12 +181,14 @@ TEST(SbtErrors, SaturatedAndNestedByBruteForce) {
                     sbt::TriangleId t{l, row, col};
                     sbt::GridVertex m = ad.splitVertex(t), a = ad.vertex(t, 1), b = ad.vertex(t, 2);
                     size_t mi = size_t(m.j) * side + m.i;
-                    double raw = std::fabs(double(f.worldHeight(m.i, m.j)) -
-                                           0.5 * (double(f.worldHeight(a.i, a.j)) + double(f.worldHeight(b.i, b.j))));
+                    double raw = std::fabs(
+                        double(f.worldHeight(m.i, m.j)) -
+                        0.5 * (double(f.worldHeight(a.i, a.j)) + double(f.worldHeight(b.i, b.j))));
                     e[mi] = std::max(e[mi], raw);
                     for (int k = 0; k < 3; ++k) r[mi] = std::max(r[mi], dist(m, ad.vertex(t, k)));
                     if (l + 1 < ad.finestLevel()) {
-                        for (sbt::TriangleId c : {sbt::Addressing::leftChild(t), sbt::Addressing::rightChild(t)}) {
+                        for (sbt::TriangleId c :
+                             {sbt::Addressing::leftChild(t), sbt::Addressing::rightChild(t)}) {
                             sbt::GridVertex cm = ad.splitVertex(c);
                             size_t ci = size_t(cm.j) * side + cm.i;
                             e[mi] = std::max(e[mi], e[ci]);
@@ -186,7 +198,8 @@ TEST(SbtErrors, SaturatedAndNestedByBruteForce) {
                             EXPECT_GE(double(ve.radius[mi]), dist(m, cm) + double(ve.radius[ci]));
                         }
                     }
-                    for (int k = 0; k < 3; ++k) EXPECT_GE(double(ve.radius[mi]), dist(m, ad.vertex(t, k)));
+                    for (int k = 0; k < 3; ++k)
+                        EXPECT_GE(double(ve.radius[mi]), dist(m, ad.vertex(t, k)));
                 }
         for (size_t k = 0; k < e.size(); ++k) {
             EXPECT_NEAR(ve.error[k], e[k], 1e-5 * (1 + e[k]));
@@ -234,7 +247,10 @@ TEST(SbtFixed, PlaneAtZeroErrorGivesTwoTriangles) {
 }
 
 TEST(SbtFixed, MeshesMatchBruteForceAndConform) {
-    struct Case { Heightfield f; const char* name; };
+    struct Case {
+        Heightfield f;
+        const char* name;
+    };
     std::vector<Case> cases;
     cases.push_back({fractal(65, 11), "fractal"});
     cases.push_back({gaussians(65, 5), "gaussians"});
@@ -251,10 +267,12 @@ TEST(SbtFixed, MeshesMatchBruteForceAndConform) {
             SCOPED_TRACE(std::string(cs.name) + " eps " + std::to_string(eps));
             refiner.refineFixed(eps, mesh);
             std::vector<Node> expected;
-            leaves(side, [&](uint32_t m, int) { return ve.error[m] > eps; }, expected);
+            leaves(
+                side, [&](uint32_t m, int) { return ve.error[m] > eps; }, expected);
             ASSERT_EQ(mesh.triangleCount, int64_t(expected.size()));
             auto tris = sbt::decodeStrip(mesh.indices);
-            ASSERT_EQ(sortedTris(tris), sortedTris(expected)) << "the strip decodes to the leaf set";
+            ASSERT_EQ(sortedTris(tris), sortedTris(expected))
+                << "the strip decodes to the leaf set";
             expectConforming(tris, side, true);
             expectConsecutiveShareEdge(mesh.indices);
             // every leaf's split vertex is within eps; every split one above it
@@ -264,7 +282,8 @@ TEST(SbtFixed, MeshesMatchBruteForceAndConform) {
                 }
             }
             std::vector<Node> parents;
-            leaves(side, [&](uint32_t m, int) { return ve.error[m] > eps; }, parents);
+            leaves(
+                side, [&](uint32_t m, int) { return ve.error[m] > eps; }, parents);
             if (eps < 0) {
                 EXPECT_EQ(mesh.triangleCount, 2 * int64_t(side - 1) * (side - 1));
                 EXPECT_NEAR(sbt::maxVerticalDistance(cs.f, tris), 0.0, 1e-3);
@@ -294,7 +313,8 @@ TEST(SbtFixed, KeyTiesFallBackToTheExactError) {
         SCOPED_TRACE("eps " + std::to_string(eps));
         refiner.refineFixed(eps, mesh);
         std::vector<Node> expected;
-        leaves(side, [&](uint32_t m, int) { return ve.error[m] > eps; }, expected);
+        leaves(
+            side, [&](uint32_t m, int) { return ve.error[m] > eps; }, expected);
         ASSERT_EQ(mesh.triangleCount, int64_t(expected.size()));
         ASSERT_EQ(sortedTris(sbt::decodeStrip(mesh.indices)), sortedTris(expected));
     }
@@ -338,8 +358,10 @@ TEST(SbtFixed, IdenticalForOneTwoFourThreads) {
             sbt::Refiner refiner(f, ve, {.threads = threads});
             sbt::StripMesh mesh;
             refiner.refineFixed(eps, mesh);
-            if (threads == 1) reference = mesh.indices;
-            else EXPECT_EQ(mesh.indices, reference) << threads << " threads, eps " << eps;
+            if (threads == 1)
+                reference = mesh.indices;
+            else
+                EXPECT_EQ(mesh.indices, reference) << threads << " threads, eps " << eps;
         }
     }
 }
@@ -354,8 +376,8 @@ TEST(SbtFixed, IndicesPerTriangleAtMost1Point7) {
         for (float eps : {-1.0f, 0.0f, emax * 0.001f, emax * 0.01f, emax * 0.05f}) {
             refiner.refineFixed(eps, mesh);
             if (mesh.triangleCount < 1000) continue;
-            EXPECT_LE(mesh.indicesPerTriangle(), 1.7) << size << " eps " << eps << " triangles "
-                                                      << mesh.triangleCount;
+            EXPECT_LE(mesh.indicesPerTriangle(), 1.7)
+                << size << " eps " << eps << " triangles " << mesh.triangleCount;
         }
     }
 }
@@ -370,22 +392,53 @@ struct Camera {
 Camera randomCamera(std::mt19937_64& rng, float extent, float height, float aspect, float fovy) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     Camera cam;
-    cam.eye = {extent * (1.6f * u(rng) - 0.3f), height * (0.2f + 2.0f * u(rng)), extent * (1.6f * u(rng) - 0.3f)};
+    cam.eye = {extent * (1.6f * u(rng) - 0.3f), height * (0.2f + 2.0f * u(rng)),
+               extent * (1.6f * u(rng) - 0.3f)};
     std::array<float, 3> target = {extent * u(rng), 0.0f, extent * u(rng)};
-    std::array<float, 3> f = {target[0] - cam.eye[0], target[1] - cam.eye[1], target[2] - cam.eye[2]};
+    std::array<float, 3> f = {target[0] - cam.eye[0], target[1] - cam.eye[1],
+                              target[2] - cam.eye[2]};
     float fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
     for (float& x : f) x /= fl;
     std::array<float, 3> up = {0, 1, 0};
-    std::array<float, 3> s = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
+    std::array<float, 3> s = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2],
+                              f[0] * up[1] - f[1] * up[0]};
     float sl = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     for (float& x : s) x /= sl;
-    std::array<float, 3> uu = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
-    float view[16] = {s[0], uu[0], -f[0], 0, s[1], uu[1], -f[1], 0, s[2], uu[2], -f[2], 0,
+    std::array<float, 3> uu = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
+                               s[0] * f[1] - s[1] * f[0]};
+    float view[16] = {s[0],
+                      uu[0],
+                      -f[0],
+                      0,
+                      s[1],
+                      uu[1],
+                      -f[1],
+                      0,
+                      s[2],
+                      uu[2],
+                      -f[2],
+                      0,
                       -(s[0] * cam.eye[0] + s[1] * cam.eye[1] + s[2] * cam.eye[2]),
                       -(uu[0] * cam.eye[0] + uu[1] * cam.eye[1] + uu[2] * cam.eye[2]),
-                      (f[0] * cam.eye[0] + f[1] * cam.eye[1] + f[2] * cam.eye[2]), 1};
+                      (f[0] * cam.eye[0] + f[1] * cam.eye[1] + f[2] * cam.eye[2]),
+                      1};
     float zn = 0.5f, zf = extent * 4.0f, t = 1.0f / std::tan(fovy / 2);
-    float proj[16] = {t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (zf + zn) / (zn - zf), -1, 0, 0, 2 * zf * zn / (zn - zf), 0};
+    float proj[16] = {t / aspect,
+                      0,
+                      0,
+                      0,
+                      0,
+                      t,
+                      0,
+                      0,
+                      0,
+                      0,
+                      (zf + zn) / (zn - zf),
+                      -1,
+                      0,
+                      0,
+                      2 * zf * zn / (zn - zf),
+                      0};
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) {
             float v = 0;
@@ -406,7 +459,8 @@ TEST(SbtView, RandomCamerasConformBoundErrorAndCullOnlyOutside) {
         sbt::Refiner refiner(f, ve, {.threads = 1 + trial % 3});
         const float extent = (side - 1) * f.spacingX();
         auto [lo, hi] = f.range();
-        Camera cam = randomCamera(rng, extent, (hi - lo) * f.verticalScale() + 10.0f, 16.0f / 9.0f, 1.0f);
+        Camera cam =
+            randomCamera(rng, extent, (hi - lo) * f.verticalScale() + 10.0f, 16.0f / 9.0f, 1.0f);
         sbt::ViewParams vp;
         vp.eye = cam.eye;
         vp.lambda = sbt::projectionLambda(1080.0f, 1.0f);
@@ -416,7 +470,8 @@ TEST(SbtView, RandomCamerasConformBoundErrorAndCullOnlyOutside) {
 
         auto posOf = [&](uint32_t v) {
             uint32_t i = v % side, j = v / side;
-            return std::array<double, 3>{i * double(f.spacingX()), double(f.at(i, j)) * double(f.verticalScale()),
+            return std::array<double, 3>{i * double(f.spacingX()),
+                                         double(f.at(i, j)) * double(f.verticalScale()),
                                          j * double(f.spacingZ())};
         };
         const double kE = double(vp.lambda) / double(vp.tau);
@@ -431,7 +486,8 @@ TEST(SbtView, RandomCamerasConformBoundErrorAndCullOnlyOutside) {
         sbt::StripMesh all;
         refiner.refineView(vp, all);
         std::vector<Node> expected;
-        leaves(side, [&](uint32_t m, int) { return active(m); }, expected);
+        leaves(
+            side, [&](uint32_t m, int) { return active(m); }, expected);
         auto allTris = sbt::decodeStrip(all.indices);
         ASSERT_EQ(sortedTris(allTris), sortedTris(expected));
         expectConforming(allTris, side, true);
@@ -441,7 +497,8 @@ TEST(SbtView, RandomCamerasConformBoundErrorAndCullOnlyOutside) {
             if (nd.level == 2 * n) continue;
             uint32_t m = (nd.a + nd.b) / 2;
             auto p = posOf(m);
-            double d = std::sqrt((p[0] - vp.eye[0]) * (p[0] - vp.eye[0]) + (p[1] - vp.eye[1]) * (p[1] - vp.eye[1]) +
+            double d = std::sqrt((p[0] - vp.eye[0]) * (p[0] - vp.eye[0]) +
+                                 (p[1] - vp.eye[1]) * (p[1] - vp.eye[1]) +
                                  (p[2] - vp.eye[2]) * (p[2] - vp.eye[2]));
             double r = ve.radius[m];
             ASSERT_GT(d, r - 1e-6) << "an inactive vertex cannot hold the eye in its sphere";
@@ -497,9 +554,12 @@ TEST(SbtView, FastPathEmitsTheBaselineStrip) {
     int64_t triangles = 0;
     for (int trial = 0; trial < 30; ++trial) {
         const int side = trial % 3 == 0 ? 257 : 129;
-        Heightfield f = trial % 4 == 3 ? gaussians(side, trial)
-                                       : sierra::terrain::generateDiamondSquare(
-                                             {.size = side, .seed = uint64_t(trial), .hurst = 0.4f + 0.1f * float(trial % 6)});
+        Heightfield f =
+            trial % 4 == 3
+                ? gaussians(side, trial)
+                : sierra::terrain::generateDiamondSquare({.size = side,
+                                                          .seed = uint64_t(trial),
+                                                          .hurst = 0.4f + 0.1f * float(trial % 6)});
         auto [lo, hi] = f.range();
         const float spacing = trial % 5 == 0 ? 30.0f : 1.0f + 0.25f * float(trial % 3);
         f.setSpacing(spacing, spacing * (trial % 2 ? 1.0f : 0.75f));

@@ -35,8 +35,9 @@ TEST(SbtRescue, AStalledHelperNeitherChangesTheOutputNorHoldsTheRefinement) {
     f.setVerticalScale(0.2f * 512.0f / (hi - lo));
     const sbt::VertexErrors ve = sbt::computeVertexErrors(f);
     const float vs = f.verticalScale();
-    const sbt::ViewParams view = sbt::lookAtView({-60.0f, hi * vs + 80.0f, -40.0f}, {256.0f, lo * vs, 256.0f},
-                                                 0.8f, 16.0f / 9.0f, 1080.0f, 0.5f, 2000.0f, 0.5f);
+    const sbt::ViewParams view =
+        sbt::lookAtView({-60.0f, hi * vs + 80.0f, -40.0f}, {256.0f, lo * vs, 256.0f}, 0.8f,
+                        16.0f / 9.0f, 1080.0f, 0.5f, 2000.0f, 0.5f);
     sbt::StripMesh fixedSerial, viewSerial;
     double serialSeconds = 0;
     {
@@ -58,14 +59,16 @@ TEST(SbtRescue, AStalledHelperNeitherChangesTheOutputNorHoldsTheRefinement) {
     const double kStall = std::max(1.0, 10.0 * serialSeconds);
     sierra::setHelperStallForTesting(kStall);
     const int64_t rescuesBefore = sierra::parallelRescueCount();
-    for (int attempt = 0; attempt < 8 && sierra::parallelRescueCount() == rescuesBefore; ++attempt) {
+    for (int attempt = 0; attempt < 8 && sierra::parallelRescueCount() == rescuesBefore;
+         ++attempt) {
         SCOPED_TRACE(testing::Message() << "attempt " << attempt);
         sierra::waitParallelHelpers();
         sbt::Refiner refiner(f, ve, {.threads = 2});
         sbt::StripMesh fixed, again, viewed;
         auto t0 = std::chrono::steady_clock::now();
         refiner.refineFixed(-1.0f, fixed);
-        EXPECT_LT(secondsSince(t0), 0.5 * kStall) << "the refinement waited for the sleeping helper";
+        EXPECT_LT(secondsSince(t0), 0.5 * kStall)
+            << "the refinement waited for the sleeping helper";
         expectSame(fixed, fixedSerial);
         // At once again (the sleeper, if any, still holds the first one's data),
         // then a view.

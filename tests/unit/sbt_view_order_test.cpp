@@ -77,8 +77,9 @@ std::vector<Tri> decodedInOrder(const sbt::StripMesh& mesh) {
 // Column-major perspective * look-at, the eye anywhere (also outside the
 // terrain), the target anywhere within twice the extent, so that some cameras
 // see the terrain only partly or look away from most of it.
-std::array<float, 16> viewProjection(const std::array<float, 3>& eye, const std::array<float, 3>& target,
-                                     float fovy, float aspect, float zn, float zf) {
+std::array<float, 16> viewProjection(const std::array<float, 3>& eye,
+                                     const std::array<float, 3>& target, float fovy, float aspect,
+                                     float zn, float zf) {
     std::array<float, 3> f = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
     const float fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
     for (float& x : f) x /= fl;
@@ -87,13 +88,39 @@ std::array<float, 16> viewProjection(const std::array<float, 3>& eye, const std:
     for (float& x : s) x /= sl;
     const std::array<float, 3> u = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2],
                                     s[0] * f[1] - s[1] * f[0]};
-    const float view[16] = {s[0], u[0], -f[0], 0, s[1], u[1], -f[1], 0, s[2], u[2], -f[2], 0,
+    const float view[16] = {s[0],
+                            u[0],
+                            -f[0],
+                            0,
+                            s[1],
+                            u[1],
+                            -f[1],
+                            0,
+                            s[2],
+                            u[2],
+                            -f[2],
+                            0,
                             -(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]),
                             -(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]),
-                            f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2], 1};
+                            f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2],
+                            1};
     const float t = 1.0f / std::tan(fovy / 2);
-    const float proj[16] = {t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (zf + zn) / (zn - zf), -1,
-                            0, 0, 2 * zf * zn / (zn - zf), 0};
+    const float proj[16] = {t / aspect,
+                            0,
+                            0,
+                            0,
+                            0,
+                            t,
+                            0,
+                            0,
+                            0,
+                            0,
+                            (zf + zn) / (zn - zf),
+                            -1,
+                            0,
+                            0,
+                            2 * zf * zn / (zn - zf),
+                            0};
     std::array<float, 16> m{};
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
@@ -109,10 +136,12 @@ TEST(SbtViewOrder, SameTrianglesInTheSameOrderAsTheReference) {
         SCOPED_TRACE("trial " + std::to_string(trial));
         const int side = trial % 4 == 0 ? 513 : trial % 4 == 1 ? 257 : 129;
         // Hurst exponents 0.1 (very rough) to 0.9, and a plain fractal.
-        Heightfield f = trial % 5 == 4
-                            ? sierra::terrain::generateDiamondSquare({.size = side, .seed = uint64_t(trial)})
-                            : sierra::terrain::generateDiamondSquare(
-                                  {.size = side, .seed = uint64_t(trial), .hurst = 0.1f + 0.2f * float(trial % 5)});
+        Heightfield f =
+            trial % 5 == 4
+                ? sierra::terrain::generateDiamondSquare({.size = side, .seed = uint64_t(trial)})
+                : sierra::terrain::generateDiamondSquare({.size = side,
+                                                          .seed = uint64_t(trial),
+                                                          .hurst = 0.1f + 0.2f * float(trial % 5)});
         auto [lo, hi] = f.range();
         const float spacing = trial % 6 == 5 ? 25.0f : 0.5f + 0.5f * float(trial % 3);
         f.setSpacing(spacing, spacing * (trial % 2 ? 1.0f : 1.25f));
@@ -127,16 +156,20 @@ TEST(SbtViewOrder, SameTrianglesInTheSameOrderAsTheReference) {
         const float top = hi2 * f.verticalScale(), bottom = lo2 * f.verticalScale();
         // Eyes from low over the terrain to high above it, a third of them
         // outside the square; targets anywhere within twice the extent.
-        std::array<float, 3> eye = {extent * (1.6f * u(rng) - 0.3f), 0.0f, extent * (1.6f * u(rng) - 0.3f)};
+        std::array<float, 3> eye = {extent * (1.6f * u(rng) - 0.3f), 0.0f,
+                                    extent * (1.6f * u(rng) - 0.3f)};
         eye[1] = top + (0.01f + 0.6f * u(rng) * u(rng)) * extent;
-        const std::array<float, 3> target = {extent * (2.0f * u(rng) - 0.5f), bottom + (top - bottom) * u(rng),
+        const std::array<float, 3> target = {extent * (2.0f * u(rng) - 0.5f),
+                                             bottom + (top - bottom) * u(rng),
                                              extent * (2.0f * u(rng) - 0.5f)};
         const float fovy = 0.5f + 0.7f * u(rng);
-        const auto m = viewProjection(eye, target, fovy, 16.0f / 9.0f, 1e-3f * extent, 4.0f * extent);
+        const auto m =
+            viewProjection(eye, target, fovy, 16.0f / 9.0f, 1e-3f * extent, 4.0f * extent);
         sbt::ViewParams vp;
         vp.eye = eye;
         vp.lambda = sbt::projectionLambda(1080.0f, fovy);
-        vp.tau = trial % 3 == 0 ? 1.0f : std::exp(std::uniform_real_distribution<float>(-1.5f, 2.5f)(rng));
+        vp.tau = trial % 3 == 0 ? 1.0f
+                                : std::exp(std::uniform_real_distribution<float>(-1.5f, 2.5f)(rng));
         vp.planes = sbt::frustumPlanes(m.data());
         sbt::Refiner refiner(f, ve, {.threads = 1 + trial % 3});
         for (bool cull : {true, false}) {
@@ -200,8 +233,10 @@ TEST(SbtViewOrder, SuccessiveViewsMatchTheReference) {
 TEST(SbtViewOrder, FlatNanAndHighTerrainsMatchTheReference) {
     for (int kind = 0; kind < 3; ++kind) {
         SCOPED_TRACE("kind " + std::to_string(kind));
-        Heightfield f = kind == 0 ? Heightfield(129, 129, 3.0f)
-                                  : sierra::terrain::generateDiamondSquare({.size = 129, .seed = 4, .hurst = 0.5f});
+        Heightfield f =
+            kind == 0
+                ? Heightfield(129, 129, 3.0f)
+                : sierra::terrain::generateDiamondSquare({.size = 129, .seed = 4, .hurst = 0.5f});
         auto [lo, hi] = f.range();
         if (kind > 0) f.setVerticalScale((kind == 2 ? 2.0f : 25.0f) / (hi - lo));
         if (kind == 1) {

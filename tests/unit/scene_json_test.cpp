@@ -38,7 +38,7 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 class SceneJson : public test::TempDirTest {
-protected:
+  protected:
     // The message of the sierra::Error that loading `text` throws ("" if none).
     std::string loadError(const std::string& text) const {
         std::string file = write("bad.json", text);
@@ -49,7 +49,6 @@ protected:
         }
         return "";
     }
-
 };
 
 // Every field away from its default, optionals present, awkward floats.
@@ -74,15 +73,29 @@ Scene unusualScene() {
                 .distance = 3.4e38f,
                 .fov = 1.0f / 3.0f,
                 .projection = Projection::Orthographic};
-    s.path = {.type = PathType::Keyframes,
-              .frames = 240,
-              .range = FrameRange{10, 19},
-              .keyframes = {{.time = 0.0f, .position = {1, 2, 3}, .target = {4, 5, 6}},
-                            {.time = 2.5f, .position = {-1e-3f, 7.25f, 0.3f}, .target = {0, 0, 0}}}};
-    s.lighting = {.sunAzimuth = 90.0f, .sunAltitude = 0.7f, .ambient = 0.123456789f, .fog = 0.0f,
+    s.path = {
+        .type = PathType::Keyframes,
+        .frames = 240,
+        .range = FrameRange{10, 19},
+        .keyframes = {{.time = 0.0f, .position = {1, 2, 3}, .target = {4, 5, 6}},
+                      {.time = 2.5f, .position = {-1e-3f, 7.25f, 0.3f}, .target = {0, 0, 0}}}};
+    s.lighting = {.sunAzimuth = 90.0f,
+                  .sunAltitude = 0.7f,
+                  .ambient = 0.123456789f,
+                  .fog = 0.0f,
                   .sky = {0.0f, 1.0f, 0.333f}};
-    s.lod = {.mode = LodMode::Full, .tau = 2.75f, .geomorph = false, .cull = false, .threads = 7, .mesh = "tin.obj"};
-    s.output = {.width = 333, .height = 4097, .msaa = 8, .frame = "f/x.png", .debug = "", .depth = "d.npy",
+    s.lod = {.mode = LodMode::Full,
+             .tau = 2.75f,
+             .geomorph = false,
+             .cull = false,
+             .threads = 7,
+             .mesh = "tin.obj"};
+    s.output = {.width = 333,
+                .height = 4097,
+                .msaa = 8,
+                .frame = "f/x.png",
+                .debug = "",
+                .depth = "d.npy",
                 .alpha = true};
     s.style = {.wireframe = true};
     return s;
@@ -133,8 +146,10 @@ TEST_F(SceneJson, FloatsComeBackBitForBit) {
         ASSERT_EQ(std::bit_cast<uint32_t>(back.lighting.ambient), std::bit_cast<uint32_t>(f)) << f;
         ASSERT_EQ(back.camera.position, s.camera.position) << f;
         ASSERT_EQ(back.camera.target, s.camera.target);
-        ASSERT_EQ(std::bit_cast<uint32_t>(back.lighting.sunAzimuth), std::bit_cast<uint32_t>(s.lighting.sunAzimuth));
-        ASSERT_EQ(std::bit_cast<uint32_t>(back.lighting.sunAltitude), std::bit_cast<uint32_t>(s.lighting.sunAltitude));
+        ASSERT_EQ(std::bit_cast<uint32_t>(back.lighting.sunAzimuth),
+                  std::bit_cast<uint32_t>(s.lighting.sunAzimuth));
+        ASSERT_EQ(std::bit_cast<uint32_t>(back.lighting.sunAltitude),
+                  std::bit_cast<uint32_t>(s.lighting.sunAltitude));
         ASSERT_EQ(std::bit_cast<uint32_t>(back.lod.tau), std::bit_cast<uint32_t>(s.lod.tau));
     }
     // Written short: the shortest decimal that reads back as the same float.
@@ -148,7 +163,8 @@ TEST_F(SceneJson, MissingKeysKeepTheBaseScene) {
     base.output.msaa = 0;
     base.output.width = 1920;
     base.path.type = PathType::Orbit;
-    Scene s = sceneFromJson(Json::parse(R"({"camera": {"fov": 30}, "output": {"height": 200}})"), "mem", base);
+    Scene s = sceneFromJson(Json::parse(R"({"camera": {"fov": 30}, "output": {"height": 200}})"),
+                            "mem", base);
     EXPECT_EQ(s.camera.fov, 30.0f);
     EXPECT_EQ(s.output.height, 200);
     EXPECT_EQ(s.output.width, 1920);
@@ -159,7 +175,8 @@ TEST_F(SceneJson, MissingKeysKeepTheBaseScene) {
 
 TEST_F(SceneJson, SeaLevelTakesAutoNoneOrAHeight) {
     auto sea = [](const char* text) {
-        return sceneFromJson(Json::parse(msg(R"({"terrain": {"sea_level": )", text, "}}")), "mem").terrain.seaLevel;
+        return sceneFromJson(Json::parse(msg(R"({"terrain": {"sea_level": )", text, "}}")), "mem")
+            .terrain.seaLevel;
     };
     EXPECT_EQ(sea("\"auto\"").mode, SeaLevel::Mode::Auto);
     EXPECT_EQ(sea("\"none\"").mode, SeaLevel::Mode::None);
@@ -170,30 +187,39 @@ TEST_F(SceneJson, SeaLevelTakesAutoNoneOrAHeight) {
 }
 
 TEST_F(SceneJson, UnknownKeyNamesKeyAndFile) {
-    EXPECT_THAT(loadError(R"({"camera": {"fovy": 30}})"),
-                AllOf(HasSubstr("bad.json"), HasSubstr("unknown key camera.fovy"), HasSubstr("fov")));
-    EXPECT_THAT(loadError(R"({"cameras": {}})"), AllOf(HasSubstr("bad.json"), HasSubstr("unknown key cameras")));
-    EXPECT_THAT(loadError(R"({"path": {"keyframes": [{"time": 0, "position": [0,0,0], "targ": [1,1,1]}]}})"),
-                HasSubstr("unknown key path.keyframes[0].targ"));
+    EXPECT_THAT(
+        loadError(R"({"camera": {"fovy": 30}})"),
+        AllOf(HasSubstr("bad.json"), HasSubstr("unknown key camera.fovy"), HasSubstr("fov")));
+    EXPECT_THAT(loadError(R"({"cameras": {}})"),
+                AllOf(HasSubstr("bad.json"), HasSubstr("unknown key cameras")));
+    EXPECT_THAT(
+        loadError(
+            R"({"path": {"keyframes": [{"time": 0, "position": [0,0,0], "targ": [1,1,1]}]}})"),
+        HasSubstr("unknown key path.keyframes[0].targ"));
 }
 
 TEST_F(SceneJson, WrongTypeNamesKeyFileAndExpectedType) {
     EXPECT_THAT(loadError(R"({"camera": {"fov": "wide"}})"),
-                AllOf(HasSubstr("bad.json"), HasSubstr("camera.fov"), HasSubstr("expected a number"),
-                      HasSubstr("got a string")));
+                AllOf(HasSubstr("bad.json"), HasSubstr("camera.fov"),
+                      HasSubstr("expected a number"), HasSubstr("got a string")));
     EXPECT_THAT(loadError(R"({"output": {"msaa": 4.5}})"),
                 AllOf(HasSubstr("output.msaa"), HasSubstr("expected an integer")));
-    EXPECT_THAT(loadError(R"({"lod": {"cull": 1}})"), AllOf(HasSubstr("lod.cull"), HasSubstr("true or false")));
+    EXPECT_THAT(loadError(R"({"lod": {"cull": 1}})"),
+                AllOf(HasSubstr("lod.cull"), HasSubstr("true or false")));
     EXPECT_THAT(loadError(R"({"camera": {"position": [1, "2", 3]}})"),
                 AllOf(HasSubstr("camera.position[1]"), HasSubstr("expected a number")));
     EXPECT_THAT(loadError(R"({"camera": {"target": [1, 2]}})"),
                 AllOf(HasSubstr("camera.target"), HasSubstr("3 numbers")));
-    EXPECT_THAT(loadError(R"({"terrain": {"seed": -1}})"), AllOf(HasSubstr("terrain.seed"), HasSubstr(">= 0")));
-    EXPECT_THAT(loadError(R"({"style": []})"), AllOf(HasSubstr("style"), HasSubstr("expected an object")));
-    EXPECT_THAT(loadError(R"({"lod": {"mode": "fast"}})"), AllOf(HasSubstr("lod.mode"), HasSubstr("sbt, full")));
+    EXPECT_THAT(loadError(R"({"terrain": {"seed": -1}})"),
+                AllOf(HasSubstr("terrain.seed"), HasSubstr(">= 0")));
+    EXPECT_THAT(loadError(R"({"style": []})"),
+                AllOf(HasSubstr("style"), HasSubstr("expected an object")));
+    EXPECT_THAT(loadError(R"({"lod": {"mode": "fast"}})"),
+                AllOf(HasSubstr("lod.mode"), HasSubstr("sbt, full")));
     EXPECT_THAT(loadError(R"({"lighting": {"ambient": 1e39}})"),
                 AllOf(HasSubstr("lighting.ambient"), HasSubstr("float range")));
-    EXPECT_THAT(loadError(R"([1, 2])"), AllOf(HasSubstr("the top level"), HasSubstr("expected an object")));
+    EXPECT_THAT(loadError(R"([1, 2])"),
+                AllOf(HasSubstr("the top level"), HasSubstr("expected an object")));
 }
 
 TEST_F(SceneJson, NotJsonGivesTheParserPosition) {
@@ -201,7 +227,8 @@ TEST_F(SceneJson, NotJsonGivesTheParserPosition) {
                 AllOf(HasSubstr("bad.json"), HasSubstr("not a JSON"), HasSubstr("line 2")));
     EXPECT_THAT(loadError(""), HasSubstr("bad.json"));
     // A number beyond double's range is refused the same way (found by fuzzing the palette reader).
-    EXPECT_THAT(loadError("{\"lod\": {\"tau\": 3e58836}}"), AllOf(HasSubstr("bad.json"), HasSubstr("not a JSON")));
+    EXPECT_THAT(loadError("{\"lod\": {\"tau\": 3e58836}}"),
+                AllOf(HasSubstr("bad.json"), HasSubstr("not a JSON")));
 }
 
 TEST_F(SceneJson, MissingFileIsNamed) {
@@ -217,9 +244,11 @@ TEST_F(SceneJson, LoadSceneChecksRanges) {
     EXPECT_THAT(loadError(R"({"camera": {"fov": 200}})"),
                 AllOf(HasSubstr("bad.json"), HasSubstr("camera.fov"), HasSubstr("(0, 180)")));
     EXPECT_THAT(loadError(R"({"lod": {"tau": 0}})"), HasSubstr("lod.tau"));
-    EXPECT_THAT(loadError(R"({"path": {"frames": 10, "range": [4, 10]}})"), HasSubstr("path.range"));
-    EXPECT_THAT(loadError(R"({"path": {"type": "keyframes", "keyframes": [{"time": 1}, {"time": 1}]}})"),
-                HasSubstr("path.keyframes"));
+    EXPECT_THAT(loadError(R"({"path": {"frames": 10, "range": [4, 10]}})"),
+                HasSubstr("path.range"));
+    EXPECT_THAT(
+        loadError(R"({"path": {"type": "keyframes", "keyframes": [{"time": 1}, {"time": 1}]}})"),
+        HasSubstr("path.keyframes"));
 }
 
 }  // namespace

@@ -27,8 +27,9 @@ using ::testing::HasSubstr;
 
 // Parses `args` as a command line of an app with `defaults` and `groups`, and
 // the app's own scene options `program` (apply(program)), if any.
-Scene parse(const std::vector<std::string>& args, const Scene& defaults = {}, unsigned groups = kAllOptions,
-            bool* printed = nullptr, const std::function<void(Scene&)>& program = {}) {
+Scene parse(const std::vector<std::string>& args, const Scene& defaults = {},
+            unsigned groups = kAllOptions, bool* printed = nullptr,
+            const std::function<void(Scene&)>& program = {}) {
     CLI::App app{"test"};
     Scene scene = defaults;
     SceneOptions options(app, scene, groups);
@@ -54,7 +55,7 @@ std::string parseError(const std::vector<std::string>& args, const Scene& defaul
 }
 
 class SceneOptionsTest : public test::TempDirTest {
-protected:
+  protected:
     void SetUp() override {
         TempDirTest::SetUp();
         heightmap_ = write("hm.npy", "not read by the registrar");
@@ -91,27 +92,94 @@ TEST_F(SceneOptionsTest, EveryOptionLandsInItsField) {
                    .fov = 60.0f,
                    .projection = Projection::Orthographic};
     want.path = {.type = PathType::Flyover, .frames = 10, .range = FrameRange{3, 5}};
-    want.lighting = {.sunAzimuth = 90.0f, .sunAltitude = 10.0f, .ambient = 0.5f, .fog = 0.0f,
+    want.lighting = {.sunAzimuth = 90.0f,
+                     .sunAltitude = 10.0f,
+                     .ambient = 0.5f,
+                     .fog = 0.0f,
                      .sky = {0.1f, 0.2f, 0.3f}};
     want.lod = {.mode = LodMode::Full, .tau = 2.5f, .geomorph = false, .cull = false, .threads = 3};
-    want.output = {.width = 640, .height = 480, .msaa = 2, .frame = "a.png", .debug = "", .depth = "d.npy",
+    want.output = {.width = 640,
+                   .height = 480,
+                   .msaa = 2,
+                   .frame = "a.png",
+                   .debug = "",
+                   .depth = "d.npy",
                    .alpha = true};
     want.style.wireframe = true;
-    Scene got = parse({"--heightmap", heightmap_, "--seed", "18446744073709551615", "--roughness", "0.5", "--hurst",
-                       "0.8", "--raw-size", "20000x3", "--spacing", "30", "--vertical-scale", "2.5", "--sea-level",
-                       "-4.5", "--height-units", "m", "--channel", "g", "--camera-pos", "-5", "10", "-3.25",
-                       "--camera-target", "1", "2", "3", "--fov", "60", "--ortho", "--path", "flyover", "--frames",
-                       "3:5", "--frame-count", "10", "--sun-azimuth", "90", "--sun-altitude", "10", "--ambient",
-                       "0.5", "--fog", "0", "--sky", "0.1,0.2,0.3", "--lod", "full", "--tau", "2.5", "--no-geomorph",
-                       "--no-cull", "--threads", "3", "--size", "640x480", "--msaa", "2", "--out", "a.png",
-                       "--no-debug", "--depth-out", "d.npy", "--alpha", "--wireframe"});
+    Scene got = parse({"--heightmap",
+                       heightmap_,
+                       "--seed",
+                       "18446744073709551615",
+                       "--roughness",
+                       "0.5",
+                       "--hurst",
+                       "0.8",
+                       "--raw-size",
+                       "20000x3",
+                       "--spacing",
+                       "30",
+                       "--vertical-scale",
+                       "2.5",
+                       "--sea-level",
+                       "-4.5",
+                       "--height-units",
+                       "m",
+                       "--channel",
+                       "g",
+                       "--camera-pos",
+                       "-5",
+                       "10",
+                       "-3.25",
+                       "--camera-target",
+                       "1",
+                       "2",
+                       "3",
+                       "--fov",
+                       "60",
+                       "--ortho",
+                       "--path",
+                       "flyover",
+                       "--frames",
+                       "3:5",
+                       "--frame-count",
+                       "10",
+                       "--sun-azimuth",
+                       "90",
+                       "--sun-altitude",
+                       "10",
+                       "--ambient",
+                       "0.5",
+                       "--fog",
+                       "0",
+                       "--sky",
+                       "0.1,0.2,0.3",
+                       "--lod",
+                       "full",
+                       "--tau",
+                       "2.5",
+                       "--no-geomorph",
+                       "--no-cull",
+                       "--threads",
+                       "3",
+                       "--size",
+                       "640x480",
+                       "--msaa",
+                       "2",
+                       "--out",
+                       "a.png",
+                       "--no-debug",
+                       "--depth-out",
+                       "d.npy",
+                       "--alpha",
+                       "--wireframe"});
     EXPECT_EQ(got, want);
     EXPECT_EQ(sceneToText(got), sceneToText(want));
 }
 
 TEST_F(SceneOptionsTest, RemainingOptionsLandInTheirFields) {
-    Scene s = parse({"--generate", "257", "--azimuth", "30", "--elevation", "45", "--distance", "900", "--debug-out",
-                     "dbg.png", "--sea-level", "none", "--frames", "7", "--path", "orbit"});
+    Scene s = parse({"--generate", "257", "--azimuth", "30", "--elevation", "45", "--distance",
+                     "900", "--debug-out", "dbg.png", "--sea-level", "none", "--frames", "7",
+                     "--path", "orbit"});
     EXPECT_TRUE(s.terrain.heightmap.empty());
     EXPECT_EQ(s.terrain.generateSize, 257);
     EXPECT_EQ(s.camera.azimuth, 30.0f);
@@ -147,7 +215,8 @@ TEST_F(SceneOptionsTest, CommandLineOverridesOnlyWhatItGives) {
     EXPECT_EQ(p.camera.position, (Vec3{1, 2, 3}));
     EXPECT_FALSE(p.camera.azimuth);
     // --generate given beside a file naming a heightmap generates.
-    std::string withMap = write("m.json", msg(R"({"terrain": {"heightmap": ")", heightmap_, R"("}})"));
+    std::string withMap =
+        write("m.json", msg(R"({"terrain": {"heightmap": ")", heightmap_, R"("}})"));
     EXPECT_EQ(parse({"--config", withMap}).terrain.heightmap, heightmap_);
     EXPECT_TRUE(parse({"--config", withMap, "--generate", "65"}).terrain.heightmap.empty());
 }
@@ -163,13 +232,17 @@ TEST_F(SceneOptionsTest, FramesRangeTakesItsCountFromConfigOrFrameCount) {
 
     EXPECT_THAT(parseError({"--path", "orbit", "--frames", "3:12", "--frame-count", "10"}),
                 AllOf(HasSubstr("--frames"), HasSubstr("3:12"), HasSubstr("< 10")));
-    EXPECT_THAT(parseError({"--path", "orbit", "--frames", "5:3", "--frame-count", "10"}), HasSubstr("5:3"));
-    EXPECT_THAT(parseError({"--path", "orbit", "--frames", "-1:3", "--frame-count", "10"}), HasSubstr("-1:3"));
+    EXPECT_THAT(parseError({"--path", "orbit", "--frames", "5:3", "--frame-count", "10"}),
+                HasSubstr("5:3"));
+    EXPECT_THAT(parseError({"--path", "orbit", "--frames", "-1:3", "--frame-count", "10"}),
+                HasSubstr("-1:3"));
     EXPECT_THAT(parseError({"--frames", "3:5"}), HasSubstr("< 1"));  // a count of 1 by default
-    EXPECT_THAT(parseError({"--frames", "a:b"}), AllOf(HasSubstr("--frames 'a'"), HasSubstr("A:B")));
+    EXPECT_THAT(parseError({"--frames", "a:b"}),
+                AllOf(HasSubstr("--frames 'a'"), HasSubstr("A:B")));
     EXPECT_THAT(parseError({"--frames", "3:"}), HasSubstr("--frames"));
     EXPECT_THAT(parseError({"--frames", "0"}), HasSubstr("path.frames (--frames)"));
-    EXPECT_THAT(parseError({"--frames", "5", "--frame-count", "5"}), HasSubstr("--frame-count goes with"));
+    EXPECT_THAT(parseError({"--frames", "5", "--frame-count", "5"}),
+                HasSubstr("--frame-count goes with"));
 }
 
 TEST_F(SceneOptionsTest, RawSizeAllowsTheLoadersLimit) {
@@ -177,15 +250,18 @@ TEST_F(SceneOptionsTest, RawSizeAllowsTheLoadersLimit) {
     EXPECT_EQ(s.terrain.rawWidth, 20000);
     EXPECT_EQ(s.terrain.rawHeight, 3);
     EXPECT_EQ(parse({"--raw-size", "65537x65537"}).terrain.rawWidth, 65537);
-    EXPECT_THAT(parseError({"--raw-size", "65538x3"}), AllOf(HasSubstr("--raw-size"), HasSubstr("1..65537")));
+    EXPECT_THAT(parseError({"--raw-size", "65538x3"}),
+                AllOf(HasSubstr("--raw-size"), HasSubstr("1..65537")));
     EXPECT_THAT(parseError({"--raw-size", "20000"}), HasSubstr("WIDTHxHEIGHT"));
     // The frame size keeps its own, smaller limit.
-    EXPECT_THAT(parseError({"--size", "20000x3"}), AllOf(HasSubstr("--size"), HasSubstr("1..16384")));
+    EXPECT_THAT(parseError({"--size", "20000x3"}),
+                AllOf(HasSubstr("--size"), HasSubstr("1..16384")));
 }
 
 TEST_F(SceneOptionsTest, BadValuesGiveClearErrors) {
     EXPECT_THAT(parseError({"--tau", "0"}), AllOf(HasSubstr("lod.tau (--tau)"), HasSubstr("> 0")));
-    EXPECT_THAT(parseError({"--tau", "abc"}), AllOf(HasSubstr("--tau 'abc'"), HasSubstr("expected a number")));
+    EXPECT_THAT(parseError({"--tau", "abc"}),
+                AllOf(HasSubstr("--tau 'abc'"), HasSubstr("expected a number")));
     EXPECT_THAT(parseError({"--tau", "1.5px"}), HasSubstr("--tau '1.5px'"));
     EXPECT_THAT(parseError({"--fov", "180"}), AllOf(HasSubstr("--fov"), HasSubstr("(0, 180)")));
     EXPECT_THAT(parseError({"--fov", "0"}), HasSubstr("--fov"));
@@ -194,7 +270,8 @@ TEST_F(SceneOptionsTest, BadValuesGiveClearErrors) {
     EXPECT_THAT(parseError({"--camera-pos", "1", "2", "3", "--frames", "3"}),
                 AllOf(HasSubstr("--path keyframes"), HasSubstr("3 frames")));
     EXPECT_EQ(parseError({"--camera-pos", "1", "2", "3", "--frames", "3", "--path", "orbit"}), "");
-    EXPECT_THAT(parseError({"--msaa", "3"}), AllOf(HasSubstr("--msaa"), HasSubstr("0 (off), 2, 4 or 8")));
+    EXPECT_THAT(parseError({"--msaa", "3"}),
+                AllOf(HasSubstr("--msaa"), HasSubstr("0 (off), 2, 4 or 8")));
     EXPECT_THAT(parseError({"--sky", "1,2"}), AllOf(HasSubstr("--sky"), HasSubstr("R,G,B")));
     EXPECT_THAT(parseError({"--sky", "1,2,3"}), AllOf(HasSubstr("--sky"), HasSubstr("0..1")));
     EXPECT_THAT(parseError({"--sea-level", "deep"}), HasSubstr("--sea-level 'deep'"));
@@ -221,7 +298,8 @@ TEST_F(SceneOptionsTest, ParserRefusesWhatCannotGoTogether) {
     EXPECT_THROW(parse({"--camera-pos", "1", "2", "3", "--azimuth", "30"}), CLI::ExcludesError);
     EXPECT_THROW(parse({"--heightmap", heightmap_, "--generate", "65"}), CLI::ExcludesError);
     EXPECT_THROW(parse({"--no-debug", "--debug-out", "x.png"}), CLI::ExcludesError);
-    EXPECT_THAT(parseError({"--camera-pos", "1", "2"}), HasSubstr("--camera-pos: expected 3 numbers"));
+    EXPECT_THAT(parseError({"--camera-pos", "1", "2"}),
+                HasSubstr("--camera-pos: expected 3 numbers"));
     EXPECT_THROW(parse({"--heightmap", (dir_ / "missing.png").string()}), CLI::ValidationError);
     // An app registers only the groups it needs.
     EXPECT_THROW(parse({"--fov", "30"}, Scene{}, kTerrainOptions), CLI::ExtrasError);
@@ -230,7 +308,8 @@ TEST_F(SceneOptionsTest, ParserRefusesWhatCannotGoTogether) {
     // zone options but not the shading ones.
     EXPECT_EQ(parse({"--zones", "auto", "--band", "3"}, Scene{}, kZoneOptions).zones.band, 3.0f);
     for (const char* shading : {"--blend", "--debug-view"})
-        EXPECT_THROW(parse({shading, "linear"}, Scene{}, kZoneOptions), CLI::ExtrasError) << shading;
+        EXPECT_THROW(parse({shading, "linear"}, Scene{}, kZoneOptions), CLI::ExtrasError)
+            << shading;
     EXPECT_THROW(parse({"--triplanar"}, Scene{}, kZoneOptions), CLI::ExtrasError);
     EXPECT_EQ(parse({"--blend", "linear"}, Scene{}, kZoneShadingOptions).zones.blend, "linear");
 }
@@ -238,8 +317,8 @@ TEST_F(SceneOptionsTest, ParserRefusesWhatCannotGoTogether) {
 TEST_F(SceneOptionsTest, PrintConfigFedBackGivesTheSameScene) {
     bool printed = false;
     ::testing::internal::CaptureStdout();
-    Scene s = parse({"--generate", "129", "--fov", "33.3", "--sky", "0.1,0.7,0.9", "--path", "orbit", "--frames", "12",
-                     "--print-config"},
+    Scene s = parse({"--generate", "129", "--fov", "33.3", "--sky", "0.1,0.7,0.9", "--path",
+                     "orbit", "--frames", "12", "--print-config"},
                     Scene{}, kAllOptions, &printed);
     std::string text = ::testing::internal::GetCapturedStdout();
     EXPECT_TRUE(printed);
@@ -254,10 +333,12 @@ TEST_F(SceneOptionsTest, PrintConfigFedBackGivesTheSameScene) {
 // A program's own scene options (apply(program)): applied after --config and the
 // registrar's options, checked with the scene and printed by --print-config.
 TEST_F(SceneOptionsTest, ProgramOptionsAreCheckedAndPrinted) {
-    auto run = [](const std::vector<std::string>& args, const std::function<void(Scene&)>& program) {
+    auto run = [](const std::vector<std::string>& args,
+                  const std::function<void(Scene&)>& program) {
         return parse(args, Scene{}, kTerrainOptions, nullptr, program);
     };
-    std::string config = write("zones.json", R"({"zones": {"map": "auto", "band": 2}, "terrain": {"generate": 65}})");
+    std::string config = write(
+        "zones.json", R"({"zones": {"map": "auto", "band": 2}, "terrain": {"generate": 65}})");
     ::testing::internal::CaptureStdout();
     Scene seen;
     Scene s = run({"--config", config, "--generate", "129", "--print-config"}, [&](Scene& scene) {
@@ -289,19 +370,22 @@ TEST_F(SceneOptionsTest, HelpShowsTheAppDefaults) {
 
 TEST_F(SceneOptionsTest, AutoZoneThresholdsLandInTheirFieldsAndAreChecked) {
     const Scene base;
-    Scene s = parse({"--zones", "auto", "--deep-water", "0.5", "--sand-top", "0.1", "--zone-snow-line", "0.6",
-                     "--rock-slope", "30"},
+    Scene s = parse({"--zones", "auto", "--deep-water", "0.5", "--sand-top", "0.1",
+                     "--zone-snow-line", "0.6", "--rock-slope", "30"},
                     base);
     EXPECT_EQ(s.zones.deepWater, 0.5f);
     EXPECT_EQ(s.zones.sandTop, 0.1f);
     EXPECT_EQ(s.zones.snowLine, 0.6f);
     EXPECT_EQ(s.zones.rockSlope, 30.0f);
-    EXPECT_EQ(s.style.snowLine, base.style.snowLine) << "--zone-snow-line is not the style's --snow-line";
+    EXPECT_EQ(s.style.snowLine, base.style.snowLine)
+        << "--zone-snow-line is not the style's --snow-line";
     const Scene& defaults = base;
-    EXPECT_THAT(parseError({"--deep-water", "1.5"}, defaults), AllOf(HasSubstr("--deep-water"), HasSubstr("0..1")));
+    EXPECT_THAT(parseError({"--deep-water", "1.5"}, defaults),
+                AllOf(HasSubstr("--deep-water"), HasSubstr("0..1")));
     EXPECT_THAT(parseError({"--sand-top", "-0.1"}, defaults), HasSubstr("--sand-top"));
     EXPECT_THAT(parseError({"--zone-snow-line", "2"}, defaults), HasSubstr("--zone-snow-line"));
-    EXPECT_THAT(parseError({"--rock-slope", "90"}, defaults), AllOf(HasSubstr("--rock-slope"), HasSubstr("degrees")));
+    EXPECT_THAT(parseError({"--rock-slope", "90"}, defaults),
+                AllOf(HasSubstr("--rock-slope"), HasSubstr("degrees")));
 }
 
 }  // namespace

@@ -28,10 +28,14 @@ TEST(SceneSeaLevel, GeneratedTerrainHasThirtyPercentBelowTheSea) {
 
 TEST(SceneSeaLevel, LoadedHeightmapsGetWaterOnlyBelowZeroMetres) {
     scene::TerrainSource png{.heightmap = "valley.png"};
-    EXPECT_TRUE(std::isnan(scene::resolveSeaLevel(png, ramp(-50.0f, 100.0f)))) << "unitless: no water";
-    scene::TerrainSource metric{.heightmap = "valley.png", .heightUnits = scene::HeightUnits::Metres};
-    EXPECT_TRUE(std::isnan(scene::resolveSeaLevel(metric, ramp(236.0f, 1076.0f)))) << "land above 0 m: no water";
-    EXPECT_EQ(scene::resolveSeaLevel(metric, ramp(-1437.0f, 2205.0f)), 0.0f) << "topobathymetry: sea at 0 m";
+    EXPECT_TRUE(std::isnan(scene::resolveSeaLevel(png, ramp(-50.0f, 100.0f))))
+        << "unitless: no water";
+    scene::TerrainSource metric{.heightmap = "valley.png",
+                                .heightUnits = scene::HeightUnits::Metres};
+    EXPECT_TRUE(std::isnan(scene::resolveSeaLevel(metric, ramp(236.0f, 1076.0f))))
+        << "land above 0 m: no water";
+    EXPECT_EQ(scene::resolveSeaLevel(metric, ramp(-1437.0f, 2205.0f)), 0.0f)
+        << "topobathymetry: sea at 0 m";
     scene::TerrainSource srtm{.heightmap = "N36W084.hgt"};
     EXPECT_TRUE(scene::metricHeights(srtm));
     EXPECT_EQ(scene::resolveSeaLevel(srtm, ramp(-10.0f, 300.0f)), 0.0f);

@@ -41,8 +41,8 @@ TEST(SceneDirections, BearingsFollowTheCompass) {
 TEST(SceneDirections, DefaultSunKeepsTheFormerDirection) {
     const float n = std::sqrt(0.45f * 0.45f + 0.75f * 0.75f + 0.35f * 0.35f);
     Scene scene;
-    expectNear(directionFromAngles(scene.lighting.sunAzimuth, scene.lighting.sunAltitude), -0.45f / n, 0.75f / n,
-               0.35f / n, 2e-6f);
+    expectNear(directionFromAngles(scene.lighting.sunAzimuth, scene.lighting.sunAltitude),
+               -0.45f / n, 0.75f / n, 0.35f / n, 2e-6f);
 }
 
 TEST(SceneTerrain, HeightUnitsChooseTheVerticalScale) {
@@ -70,7 +70,8 @@ TEST(SceneTerrain, ChannelReachesTheLoader) {
     // A colour PNG is refused as a heightmap unless a channel is chosen.
     const std::string path = ::testing::TempDir() + "/scene_colour.png";
     std::vector<uint8_t> rgb(4 * 4 * 3);
-    for (size_t k = 0; k < rgb.size(); k += 3) rgb[k] = uint8_t(k), rgb[k + 1] = 7, rgb[k + 2] = 200;
+    for (size_t k = 0; k < rgb.size(); k += 3)
+        rgb[k] = uint8_t(k), rgb[k + 1] = 7, rgb[k + 2] = 200;
     ASSERT_TRUE(stbi_write_png(path.c_str(), 4, 4, 3, rgb.data(), 12));
     TerrainSource grey{.heightmap = path};
     EXPECT_THROW(loadTerrain(grey), Error);
@@ -109,7 +110,8 @@ TEST(SceneTerrain, PaddingNoneKeepsTheSamplesAsRead) {
 TEST(SceneTerrain, EnumNamesRoundTrip) {
     for (HeightUnits u : {HeightUnits::Auto, HeightUnits::Metres, HeightUnits::None})
         EXPECT_EQ(parseHeightUnits(toString(u), "x"), u);
-    for (Channel c : {Channel::Grey, Channel::Luminance, Channel::Red, Channel::Green, Channel::Blue})
+    for (Channel c :
+         {Channel::Grey, Channel::Luminance, Channel::Red, Channel::Green, Channel::Blue})
         EXPECT_EQ(parseChannel(toString(c), "x"), c);
     for (PathType p : {PathType::None, PathType::Orbit, PathType::Flyover, PathType::Keyframes})
         EXPECT_EQ(parsePathType(toString(p), "x"), p);
@@ -136,7 +138,8 @@ TEST(SceneTerrain, MaxPaddedSideBoundsFilesAndTheGenerator) {
         loadTerrain(file, nullptr, Padding::PowerOfTwoPlusOne, 33);
         ADD_FAILURE() << "a 40x2 file was loaded under a 33x33 limit";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("pads to a 65x65 grid (4225 samples), over the limit of 33x33"),
+        EXPECT_NE(std::string(e.what()).find(
+                      "pads to a 65x65 grid (4225 samples), over the limit of 33x33"),
                   std::string::npos)
             << e.what();
     }

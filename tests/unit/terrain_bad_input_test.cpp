@@ -197,15 +197,14 @@ Outcome loadInChild(const std::string& file, const LoadOptions& options) {
 
 class TerrainBadInput : public test::TempDirTest {
   protected:
-
     // One row of the table: the load fails with a sierra::Error containing
     // `expected`, within the time and memory limits.
     void expectRow(const std::string& row, const std::string& file, const std::string& expected,
                    const LoadOptions& options = {}) {
         SCOPED_TRACE(row);
         const Outcome o = loadInChild(file, options);
-        std::printf("bad input | %-34s | %7.1f ms | %6ld KiB | %s\n", row.c_str(),
-                    1e3 * o.seconds, o.peakKiB, o.message.c_str());
+        std::printf("bad input | %-34s | %7.1f ms | %6ld KiB | %s\n", row.c_str(), 1e3 * o.seconds,
+                    o.peakKiB, o.message.c_str());
         EXPECT_FALSE(o.timedOut);
         EXPECT_TRUE(o.sierraError) << o.message;
         EXPECT_THAT(o.message, ::testing::HasSubstr(expected));
@@ -213,7 +212,6 @@ class TerrainBadInput : public test::TempDirTest {
         EXPECT_LT(o.seconds, kMaxSeconds);
         EXPECT_LT(o.peakKiB, kMaxPeakKiB);
     }
-
 };
 
 TEST_F(TerrainBadInput, EveryRowFailsFastWithAClearMessage) {
@@ -263,9 +261,10 @@ TEST_F(TerrainBadInput, EveryRowFailsFastWithAClearMessage) {
 
         Bytes huge = png;  // IDAT's length field claims 1 GiB; the file has ~200 bytes
         const size_t idatLength = 8 + 12 + 13;
-        huge[idatLength] = 0x40, huge[idatLength + 1] = huge[idatLength + 2] =
-                                     huge[idatLength + 3] = 0;
-        expectRow("PNG IDAT claiming 1 GiB", write("huge.png", huge), "cannot decode PNG (libspng: ");
+        huge[idatLength] = 0x40,
+        huge[idatLength + 1] = huge[idatLength + 2] = huge[idatLength + 3] = 0;
+        expectRow("PNG IDAT claiming 1 GiB", write("huge.png", huge),
+                  "cannot decode PNG (libspng: ");
 
         std::vector<Chunk> empty = {chunks[0], {"IDAT", {}}, {"IEND", {}}};
         expectRow("PNG with only a zero-length IDAT", write("empty.png", pngOf(empty)),
@@ -281,9 +280,11 @@ TEST_F(TerrainBadInput, EveryRowFailsFastWithAClearMessage) {
     }
     // Headers claiming more samples than the limits allow.
     {
-        expectRow("PGM header 16385x1", write("strip.pgm", "P5 16385 1 255\n" + std::string(16385, 'a')),
+        expectRow("PGM header 16385x1",
+                  write("strip.pgm", "P5 16385 1 255\n" + std::string(16385, 'a')),
                   "PGM size 16385x1: a heightfield needs at least 2x2 samples");
-        expectRow("PGM header 16386x2", write("wide.pgm", "P5 16386 2 255\n" + std::string(32772, 'a')),
+        expectRow("PGM header 16386x2",
+                  write("wide.pgm", "P5 16386 2 255\n" + std::string(32772, 'a')),
                   "PGM size 16386x2 pads to a 32769x32769 grid (1073807361 samples), over the "
                   "limit of 16385x16385 samples (maxPaddedSide");
         expectRow("PGM header 65537x1", write("w65537.pgm", "P5 65537 1 255\n"),
@@ -292,8 +293,7 @@ TEST_F(TerrainBadInput, EveryRowFailsFastWithAClearMessage) {
                   "PGM size 65537x2 pads to a 65537x65537 grid");
         expectRow("PGM header 70000x70000", write("w70000.pgm", "P5 70000 70000 65535\n"),
                   "PGM size 70000x70000 is outside 2..65537 samples per side");
-        expectRow(".npy shape (16386, 16386)",
-                  write("big.npy", npyOf("(16386, 16386)", {})),
+        expectRow(".npy shape (16386, 16386)", write("big.npy", npyOf("(16386, 16386)", {})),
                   ".npy array size 16386x16386 pads to a 32769x32769 grid");
     }
     // Inputs that are not regular files: never a hang, never read to the end.
@@ -307,8 +307,9 @@ TEST_F(TerrainBadInput, EveryRowFailsFastWithAClearMessage) {
                   {.rawWidth = 4, .rawHeight = 4});
         fs::create_symlink("/dev/zero", path("zero.r16"));
         expectRow("symlink to /dev/zero as .r16", path("zero.r16"),
-                  "cannot open " + path("zero.r16") + ": it is a character device; expected a "
-                  "regular file");
+                  "cannot open " + path("zero.r16") +
+                      ": it is a character device; expected a "
+                      "regular file");
         fs::create_symlink("/dev/zero", path("zero.npy"));
         expectRow("symlink to /dev/zero as .npy", path("zero.npy"), "it is a character device");
 #ifdef SIERRA_WITH_GDAL
@@ -333,7 +334,8 @@ TEST_F(TerrainBadInput, EveryRowFailsFastWithAClearMessage) {
     // Non-finite floats: the first bad sample is named.
     {
         const float nan = std::numeric_limits<float>::quiet_NaN();
-        expectRow("NaN in .npy", write("nan.npy", npyOf("(2, 3)", {1.0f, 2.0f, 3.0f, 4.0f, nan, nan})),
+        expectRow("NaN in .npy",
+                  write("nan.npy", npyOf("(2, 3)", {1.0f, 2.0f, 3.0f, 4.0f, nan, nan})),
                   "NaN height at (1,1); heights must be finite");
         Bytes r32;
         for (float v : {1.0f, 2.0f, nan, 4.0f}) {
@@ -390,7 +392,8 @@ TEST_F(TerrainBadInput, DecodeFromMemoryMatchesTheFileLoader) {
         decodeHeightfield("small.pgm", Bytes(pgm.begin(), pgm.end()), {.maxPaddedSide = 17});
         ADD_FAILURE() << "a PGM over the padded-side limit was decoded";
     } catch (const Error& e) {
-        EXPECT_THAT(e.what(), ::testing::HasSubstr("small.pgm: PGM size 30x2 pads to a 33x33 grid"));
+        EXPECT_THAT(e.what(),
+                    ::testing::HasSubstr("small.pgm: PGM size 30x2 pads to a 33x33 grid"));
     }
     EXPECT_THROW(decodeHeightfield("x.tif", png), Error);
     EXPECT_THROW(decodeHeightfield("x.bmp", png), Error);

@@ -190,13 +190,19 @@ using sierra::terrain::ColourRamp;
 using sierra::terrain::RampScheme;
 using sierra::terrain::Rgb;
 
-bool sameColour(Rgb a, Rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+bool sameColour(Rgb a, Rgb b) {
+    return a.r == b.r && a.g == b.g && a.b == b.b;
+}
 
 TEST(ElevationRamp, SameHeightSameColourOnAnyTerrain) {
     // Absolute: 800 m looks the same on a valley DEM and on an alpine one.
-    ColourRamp valley({.scheme = RampScheme::Elevation, .minHeight = 236.0f, .maxHeight = 1076.0f,
+    ColourRamp valley({.scheme = RampScheme::Elevation,
+                       .minHeight = 236.0f,
+                       .maxHeight = 1076.0f,
                        .seaLevel = -10000.0f});
-    ColourRamp alps({.scheme = RampScheme::Elevation, .minHeight = 400.0f, .maxHeight = 4800.0f,
+    ColourRamp alps({.scheme = RampScheme::Elevation,
+                     .minHeight = 400.0f,
+                     .maxHeight = 4800.0f,
                      .seaLevel = -10000.0f});
     EXPECT_TRUE(sameColour(valley.colourAt(800.0f), alps.colourAt(800.0f)));
     // A relative ramp would put snow on the valley's top; the elevation ramp does not.
@@ -207,22 +213,32 @@ TEST(ElevationRamp, SameHeightSameColourOnAnyTerrain) {
 }
 
 TEST(ElevationRamp, LinesMoveTheColours) {
-    ColourRamp low({.scheme = RampScheme::Elevation, .minHeight = 0.0f, .maxHeight = 3000.0f, .seaLevel = -1.0f,
-                    .treeLine = 500.0f, .snowLine = 1000.0f});
+    ColourRamp low({.scheme = RampScheme::Elevation,
+                    .minHeight = 0.0f,
+                    .maxHeight = 3000.0f,
+                    .seaLevel = -1.0f,
+                    .treeLine = 500.0f,
+                    .snowLine = 1000.0f});
     Rgb snow = low.colourAt(1500.0f);
     EXPECT_GT(int(snow.r) + snow.g + snow.b, 3 * 230) << "snow above a 1000 m snow line";
-    EXPECT_THROW(ColourRamp({.scheme = RampScheme::Elevation, .maxHeight = 10.0f, .treeLine = 800.0f,
+    EXPECT_THROW(ColourRamp({.scheme = RampScheme::Elevation,
+                             .maxHeight = 10.0f,
+                             .treeLine = 800.0f,
                              .snowLine = 500.0f}),
                  sierra::Error);
 }
 
 TEST(ElevationRamp, WaterGradedByDepthBelowSeaLevel) {
-    ColourRamp coast({.scheme = RampScheme::Elevation, .minHeight = -1437.0f, .maxHeight = 2205.0f,
+    ColourRamp coast({.scheme = RampScheme::Elevation,
+                      .minHeight = -1437.0f,
+                      .maxHeight = 2205.0f,
                       .seaLevel = 0.0f});
-    Rgb shallow = coast.colourAt(-5.0f), deep = coast.colourAt(-1400.0f), beach = coast.colourAt(2.0f);
+    Rgb shallow = coast.colourAt(-5.0f), deep = coast.colourAt(-1400.0f),
+        beach = coast.colourAt(2.0f);
     EXPECT_GT(shallow.b, shallow.r);
     EXPECT_GT(deep.b, deep.r);
-    EXPECT_LT(int(deep.r) + deep.g + deep.b, int(shallow.r) + shallow.g + shallow.b) << "deeper is darker";
+    EXPECT_LT(int(deep.r) + deep.g + deep.b, int(shallow.r) + shallow.g + shallow.b)
+        << "deeper is darker";
     EXPECT_GT(beach.r, beach.b) << "sand just above sea level";
 }
 

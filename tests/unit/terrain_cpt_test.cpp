@@ -11,7 +11,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
-bool same(Rgb a, Rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+bool same(Rgb a, Rgb b) {
+    return a.r == b.r && a.g == b.g && a.b == b.b;
+}
 
 TEST(Cpt, ContinuousTableWithCommentsAndBfn) {
     const std::string text =
@@ -77,7 +79,8 @@ TEST(Cpt, BadFilesNameTheLine) {
     expectBad("# ok\n0 0 0 0 10 255 255 255\n10 0 0 0 5 1 1 1\n", "line 3", "does not ascend");
     expectBad("0 0 0 0 10 255 255 300\n", "line 1", "0..255");
     expectBad("\n\n0 red 10 blue\n", "line 3", "colour 'red'");
-    expectBad("0 0 0 0 10 1 1 1\n5 0 0 0 20 1 1 1\n", "line 2", "below the end of the previous slice");
+    expectBad("0 0 0 0 10 1 1 1\n5 0 0 0 20 1 1 1\n", "line 2",
+              "below the end of the previous slice");
     expectBad("# COLOR_MODEL = HSV\n0 0 1 1 10 100 1 1\n", "line 1", "HSV");
     expectBad("0 0 0 0 10 1 1 1\nX 1 2 3\n", "line 2", "neither a height");
     expectBad("0 0 0 0 10 1 1 1\nB 1/2\n", "line 2", "r/g/b");

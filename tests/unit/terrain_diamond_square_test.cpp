@@ -115,7 +115,8 @@ double finestSecondDifference(const Heightfield& f) {
 TEST(TerrainDiamondSquare, HurstIsDeterministicAndSmallerIsRougher) {
     const DiamondSquareDesc desc{.size = 257, .seed = 5, .hurst = 0.5f};
     const Heightfield a = generateDiamondSquare(desc);
-    const Heightfield b = generateDiamondSquare(DiamondSquareDesc{.size = 257, .seed = 5, .threads = 1, .hurst = 0.5f});
+    const Heightfield b = generateDiamondSquare(
+        DiamondSquareDesc{.size = 257, .seed = 5, .threads = 1, .hurst = 0.5f});
     EXPECT_TRUE(std::equal(a.samples().begin(), a.samples().end(), b.samples().begin()));
     // H = 1 is the default (errata) scaling up to pow()'s rounding.
     const Heightfield def = generateDiamondSquare({.size = 257, .seed = 5});
@@ -137,8 +138,7 @@ TEST(TerrainDiamondSquare, HurstIsDeterministicAndSmallerIsRougher) {
 
 TEST(TerrainDiamondSquare, RejectsBadHurst) {
     for (float h : {0.0f, -0.5f, 2.5f, NAN, INFINITY})
-        EXPECT_THAT(generateError({.size = 9, .hurst = h}),
-                    HasSubstr("Hurst exponent")) << h;
+        EXPECT_THAT(generateError({.size = 9, .hurst = h}), HasSubstr("Hurst exponent")) << h;
 }
 
 TEST(TerrainDiamondSquare, RejectsBadSizeAndRoughness) {
@@ -148,8 +148,7 @@ TEST(TerrainDiamondSquare, RejectsBadSizeAndRoughness) {
     EXPECT_THAT(generateError({.size = 0}), HasSubstr("is not 2^n + 1"));
     EXPECT_THAT(generateError({.size = 9, .roughness = 0.0f}),
                 HasSubstr("roughness 0 must be in (0, 1e+06]"));
-    EXPECT_THAT(generateError({.size = 9, .roughness = -1.0f}),
-                HasSubstr("must be in (0, 1e+06]"));
+    EXPECT_THAT(generateError({.size = 9, .roughness = -1.0f}), HasSubstr("must be in (0, 1e+06]"));
     EXPECT_THAT(generateError({.size = 9, .roughness = NAN}), HasSubstr("must be in (0, 1e+06]"));
     EXPECT_THAT(generateError({.size = 9, .roughness = 1e38f}), HasSubstr("must be in (0, 1e+06]"));
     EXPECT_EQ(generateDiamondSquare({.size = 3}).width(), 3);

@@ -6,8 +6,8 @@
 #include <sierra/terrain/HeightfieldIO.h>
 
 #include <gdal_priv.h>
-#include <ogr_spatialref.h>
 #include <gtest/gtest.h>
+#include <ogr_spatialref.h>
 
 #include <cmath>
 #include <filesystem>
@@ -24,7 +24,9 @@ std::string writeGeoTiff(const std::string& name, bool projected, bool withNoDat
     GDALDataset* data = driver->Create(path.c_str(), 4, 3, 1, GDT_Float32, nullptr);
     float values[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
     if (withNoData) values[5] = -9999.0f;
-    EXPECT_EQ(data->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 4, 3, values, 4, 3, GDT_Float32, 0, 0), CE_None);
+    EXPECT_EQ(
+        data->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 4, 3, values, 4, 3, GDT_Float32, 0, 0),
+        CE_None);
     if (withNoData) data->GetRasterBand(1)->SetNoDataValue(-9999.0);
     if (projected) {
         double geo[6] = {500000.0, 25.0, 0.0, 4000000.0, 0.0, -25.0};
@@ -76,8 +78,8 @@ std::string writeGeographic(const std::string& name, double latitude, double noD
     GDALDataset* data = driver->Create(path.c_str(), 4, 3, 1, GDT_Float32, nullptr);
     float values[12] = {100, 200, 300, 400, 500, 600, 700, 800, 900, 1000, 1100, 1200};
     values[6] = float(noData);
-    EXPECT_EQ(data->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 4, 3, values, 4, 3, GDT_Float32, 0, 0,
-                                               nullptr),
+    EXPECT_EQ(data->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 4, 3, values, 4, 3, GDT_Float32, 0,
+                                               0, nullptr),
               CE_None);
     data->GetRasterBand(1)->SetNoDataValue(noData);
     const double pixel = 1.0 / 1200.0;  // 3 arc-seconds

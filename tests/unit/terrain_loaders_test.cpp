@@ -31,7 +31,6 @@ using Bytes = std::vector<uint8_t>;
 
 class TerrainLoaders : public test::TempDirTest {
   protected:
-
     // The message of the sierra::Error that loading `file` throws ("" if none).
     static std::string loadError(const std::string& file, const LoadOptions& options = {}) {
         try {
@@ -41,7 +40,6 @@ class TerrainLoaders : public test::TempDirTest {
         }
         return "";
     }
-
 };
 
 void putLe16(Bytes& b, uint16_t v) {
@@ -177,8 +175,8 @@ TEST_F(TerrainLoaders, PgmAsciiAndBinary8And16Bit) {
 
     std::string head = "P5\n3 2\n65535\n";
     Bytes p16(head.begin(), head.end());
-    for (uint16_t v : {uint16_t(0x0102), uint16_t(65535), uint16_t(7), uint16_t(1), uint16_t(2),
-                       uint16_t(3)})
+    for (uint16_t v :
+         {uint16_t(0x0102), uint16_t(65535), uint16_t(7), uint16_t(1), uint16_t(2), uint16_t(3)})
         putBe16(p16, v);
     Heightfield d = loadHeightfield(write("d.pgm", p16));
     EXPECT_EQ(d.at(0, 0), 258.0f);  // big-endian
@@ -334,13 +332,15 @@ TEST_F(TerrainLoaders, MissingFileAndUnknownExtension) {
     EXPECT_THAT(loadError(odd), HasSubstr(".png .pgm .r16 .r32 .hgt .npy"));
     EXPECT_THAT(loadError(write("noext", "x")), HasSubstr("unknown heightfield extension ''"));
 #ifdef SIERRA_WITH_GDAL
-    EXPECT_THAT(loadError(write("a.tif", "x")), HasSubstr("cannot open " + path("a.tif") + " with GDAL"));
+    EXPECT_THAT(loadError(write("a.tif", "x")),
+                HasSubstr("cannot open " + path("a.tif") + " with GDAL"));
 #else
     EXPECT_THAT(loadError(write("a.tif", "x")), HasSubstr("SIERRA_WITH_GDAL"));
 #endif
     fs::create_directory(path("dir.png"));
     EXPECT_THAT(loadError(path("dir.png")),
-                HasSubstr("cannot open " + path("dir.png") + ": it is a directory; expected a regular file"));
+                HasSubstr("cannot open " + path("dir.png") +
+                          ": it is a directory; expected a regular file"));
 }
 
 TEST_F(TerrainLoaders, GarbagePng) {

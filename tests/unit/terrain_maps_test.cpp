@@ -22,7 +22,8 @@ Heightfield plane(int w, int h, float a, float b) {
 Heightfield bumpy(int n) {
     Heightfield f(n, n);
     for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) f.at(i, j) = std::sin(0.21f * float(i)) * 40.0f + std::cos(0.13f * float(j)) * 25.0f;
+        for (int i = 0; i < n; ++i)
+            f.at(i, j) = std::sin(0.21f * float(i)) * 40.0f + std::cos(0.13f * float(j)) * 25.0f;
     return f;
 }
 
@@ -104,12 +105,15 @@ TEST(Maps, AtlasLegendColoursMatchRampAtLabelledHeights) {
     std::vector<LegendTick> ticks = addColourBar(image, ramp, f.verticalScale(), "m", &barX);
     EXPECT_GT(image.width, mapWidth);
     ASSERT_GE(ticks.size(), 3u);
-    const double rowsPerUnit = (image.height - 1) / ((ramp.desc().maxHeight - ramp.desc().minHeight) * 2.5);
+    const double rowsPerUnit =
+        (image.height - 1) / ((ramp.desc().maxHeight - ramp.desc().minHeight) * 2.5);
     for (const auto& t : ticks) {
         Rgb shown = image.at(barX + 2, t.row);
         Rgb expected = ramp.colourAt(float(t.value / 2.5));
         // One row of rounding: the colour may move by what the ramp changes in a row.
-        EXPECT_LE(std::abs(shown.r - expected.r) + std::abs(shown.g - expected.g) + std::abs(shown.b - expected.b), 6)
+        EXPECT_LE(std::abs(shown.r - expected.r) + std::abs(shown.g - expected.g) +
+                      std::abs(shown.b - expected.b),
+                  6)
             << "tick " << t.label << " row " << t.row;
         // The label is the value, in world units.
         EXPECT_NEAR(std::atof(t.label.c_str()), t.value, 1e-6) << t.label;
@@ -137,7 +141,8 @@ TEST(Maps, DigitsAreDrawnWhole) {
                 if (image.at(x, y).r == 0) x0 = std::min(x0, x), x1 = std::max(x1, x);
         ASSERT_LT(x0, x1) << text;
         int left = 0, right = 0;
-        for (int y = 0; y < 20; ++y) left += image.at(x0, y).r == 0, right += image.at(x1, y).r == 0;
+        for (int y = 0; y < 20; ++y)
+            left += image.at(x0, y).r == 0, right += image.at(x1, y).r == 0;
         if (std::string(text) == "0") {
             EXPECT_GE(left, 3);
             EXPECT_GE(right, 3);

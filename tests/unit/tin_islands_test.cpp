@@ -29,10 +29,10 @@ using namespace sierra;
 zones::ZoneMap islandMap() {
     return zones::test::makeMap(64, 64, [](int x, int y) {
         if (y >= 48) return 2;
-        if (y == 6 && x >= 4 && x < 28) return 1;                            // thin strip
-        if (y >= 14 && y < 31 && x - y >= -10 && x - y <= -9) return 1;    // diagonal staircase
-        if (x == 40 && y == 8) return 1;                                     // one pixel
-        if (x >= 36 && x < 46 && y >= 24 && y < 34) return 1;               // fat square
+        if (y == 6 && x >= 4 && x < 28) return 1;                        // thin strip
+        if (y >= 14 && y < 31 && x - y >= -10 && x - y <= -9) return 1;  // diagonal staircase
+        if (x == 40 && y == 8) return 1;                                 // one pixel
+        if (x >= 36 && x < 46 && y >= 24 && y < 34) return 1;            // fat square
         return 0;
     });
 }
@@ -115,7 +115,8 @@ void addLoop(zones::Borderlines& lines, const std::vector<zones::Vertex>& corner
     const uint32_t first = uint32_t(lines.vertices.size());
     for (const auto& c : corners) lines.vertices.push_back(c);
     for (uint32_t k = 0; k < corners.size(); ++k)
-        lines.edges.push_back({first + k, first + (k + 1) % uint32_t(corners.size()), inside, outside});
+        lines.edges.push_back(
+            {first + k, first + (k + 1) % uint32_t(corners.size()), inside, outside});
 }
 
 TEST(TinIslands, AnIslandAroundAKeptBorderlineStays) {
@@ -169,11 +170,12 @@ TEST(TinIslands, TinOfTheRemainingBorderlines) {
     for (double band : {0.0, 3.0}) {
         SCOPED_TRACE(testing::Message() << "band " << band);
         size_t removed = 0;
-        const zones::Borderlines lines =
-            tin::gridBorderlines(map, palette, {.epsilon = 2.0, .bandWidth = band}, 65, 65, &removed);
+        const zones::Borderlines lines = tin::gridBorderlines(
+            map, palette, {.epsilon = 2.0, .bandWidth = band}, 65, 65, &removed);
         EXPECT_EQ(removed, 3u);
         const tin::Constraints c = tin::constraintsFromBorderlines(lines, 65, 65);
-        const tin::TinResult r = tin::buildTin(field, c, {.maxErrorRel = 0.005, .snapDistance = 0.0});
+        const tin::TinResult r =
+            tin::buildTin(field, c, {.maxErrorRel = 0.005, .snapDistance = 0.0});
         EXPECT_EQ(r.stats.zoneConflicts, 0);
         // Each segment's two snapped ends are joined by constrained edges along it.
         std::set<std::pair<int, int>> constrained;

@@ -197,7 +197,8 @@ TEST(TinMesher, MaxErrorWithinBoundOnEverySample) {
 // that closed triangle (its own barycentric loop).
 double planeMaxError(GridPoint a, GridPoint b, GridPoint c, const terrain::Heightfield& field) {
     const double area = double(orient2(a, b, c));
-    const double za = field.worldHeight(a.x, a.y), zb = field.worldHeight(b.x, b.y), zc = field.worldHeight(c.x, c.y);
+    const double za = field.worldHeight(a.x, a.y), zb = field.worldHeight(b.x, b.y),
+                 zc = field.worldHeight(c.x, c.y);
     double worst = 0.0;
     for (int y = std::min({a.y, b.y, c.y}); y <= std::max({a.y, b.y, c.y}); ++y)
         for (int x = std::min({a.x, b.x, c.x}); x <= std::max({a.x, b.x, c.x}); ++x) {
@@ -223,15 +224,21 @@ TEST(TinMesher, CocircularQuadsKeepTheDiagonalOfSmallerError) {
             for (const auto& [e, where] : edges) {
                 const auto twin = edges.find({e.second, e.first});
                 if (e.first > e.second || twin == edges.end()) continue;
-                const GridPoint a = mesh.vertices[size_t(e.first)], b = mesh.vertices[size_t(e.second)];
-                const GridPoint p = mesh.vertices[size_t(mesh.triangles[size_t(where.first)][size_t((where.second + 2) % 3)])];
+                const GridPoint a = mesh.vertices[size_t(e.first)],
+                                b = mesh.vertices[size_t(e.second)];
+                const GridPoint p = mesh.vertices[size_t(
+                    mesh.triangles[size_t(where.first)][size_t((where.second + 2) % 3)])];
                 const GridPoint d =
-                    mesh.vertices[size_t(mesh.triangles[size_t(twin->second.first)][size_t((twin->second.second + 2) % 3)])];
+                    mesh.vertices[size_t(mesh.triangles[size_t(twin->second.first)]
+                                                       [size_t((twin->second.second + 2) % 3)])];
                 if (strictlyInCircle(a, b, p, d) || strictlyInCircle(b, a, d, p)) continue;
-                if (strictlyInCircle(p, a, d, b) || strictlyInCircle(d, b, p, a)) continue;  // not on the circle
+                if (strictlyInCircle(p, a, d, b) || strictlyInCircle(d, b, p, a))
+                    continue;  // not on the circle
                 ++cocircular;
-                const double kept = std::max(planeMaxError(a, b, p, field), planeMaxError(b, a, d, field));
-                const double flipped = std::max(planeMaxError(p, a, d, field), planeMaxError(d, b, p, field));
+                const double kept =
+                    std::max(planeMaxError(a, b, p, field), planeMaxError(b, a, d, field));
+                const double flipped =
+                    std::max(planeMaxError(p, a, d, field), planeMaxError(d, b, p, field));
                 other += flipped < kept * (1.0 - 1e-6);
             }
         }

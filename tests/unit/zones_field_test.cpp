@@ -55,7 +55,8 @@ TEST(ZonesField, ZeroOnFigure1BorderlinesAndExactZones) {
         for (int x = 0; x < map.width; ++x) {
             size_t p = size_t(y) * size_t(map.width) + size_t(x);
             if (map.at(x, y) == kBorderlinePixel) {
-                EXPECT_NEAR(f.signedDistance[p], 0.0f, 1e-5f) << x << "," << y;  // float rounding only
+                EXPECT_NEAR(f.signedDistance[p], 0.0f, 1e-5f)
+                    << x << "," << y;  // float rounding only
             } else {
                 EXPECT_EQ(f.zone[p], map.at(x, y)) << x << "," << y;
             }
@@ -63,11 +64,13 @@ TEST(ZonesField, ZeroOnFigure1BorderlinesAndExactZones) {
 }
 
 TEST(ZonesField, MatchesBruteForceWithinHalfATexel) {
-    for (auto [name, map, zones] : {std::tuple{"disc", test::discMap(), 2}, std::tuple{"junction", test::junctionMap(), 3},
-                                   std::tuple{"checker", test::checkerMap(), 2}}) {
+    for (auto [name, map, zones] :
+         {std::tuple{"disc", test::discMap(), 2}, std::tuple{"junction", test::junctionMap(), 3},
+          std::tuple{"checker", test::checkerMap(), 2}}) {
         for (double eps : {0.0, 1.0}) {
             for (int s : {1, 3}) {
-                SCOPED_TRACE(std::string(name) + " eps " + std::to_string(eps) + " s " + std::to_string(s));
+                SCOPED_TRACE(std::string(name) + " eps " + std::to_string(eps) + " s " +
+                             std::to_string(s));
                 Borderlines lines = buildBorderlines(map, testPalette(zones), {.epsilon = eps});
                 BorderField f = buildBorderField(lines, {.texelsPerPixel = s});
                 double worst = 0;
@@ -81,8 +84,10 @@ TEST(ZonesField, MatchesBruteForceWithinHalfATexel) {
                         if (eps == 0.0) wrongZone += f.zone[p] != map.at(int(px), int(py));
                         // The sign says on which side of its pair the texel lies
                         // (either side is right for a texel on the line).
-                        if (f.lowZone[p] != f.highZone[p] && std::abs(f.signedDistance[p]) > 1e-4f) {
-                            EXPECT_EQ(f.zone[p], f.signedDistance[p] < 0 ? f.lowZone[p] : f.highZone[p]);
+                        if (f.lowZone[p] != f.highZone[p] &&
+                            std::abs(f.signedDistance[p]) > 1e-4f) {
+                            EXPECT_EQ(f.zone[p],
+                                      f.signedDistance[p] < 0 ? f.lowZone[p] : f.highZone[p]);
                         }
                     }
                 EXPECT_LE(worst, 0.5);
@@ -105,7 +110,9 @@ TEST(ZonesField, OneZoneHasNoBorder) {
 TEST(ZonesField, RejectsDoubledLines) {
     Borderlines lines = buildBorderlines(test::squareMap(), testPalette(2), {.bandWidth = 2});
     EXPECT_THROW(buildBorderField(lines), Error);
-    EXPECT_THROW(buildBorderField(buildBorderlines(test::squareMap(), testPalette(2)), {.texelsPerPixel = 0}), Error);
+    EXPECT_THROW(buildBorderField(buildBorderlines(test::squareMap(), testPalette(2)),
+                                  {.texelsPerPixel = 0}),
+                 Error);
 }
 
 }  // namespace

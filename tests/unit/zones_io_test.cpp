@@ -29,7 +29,9 @@ class ZonesIo : public sierra::test::TempDirTest {
         write("tiles/a.png", "x");
         write("tiles/b.png", "x");
     }
-    static std::string errorOf(const std::function<void()>& f) { return TempDirTest::errorOf(f, "(no error)"); }
+    static std::string errorOf(const std::function<void()>& f) {
+        return TempDirTest::errorOf(f, "(no error)");
+    }
     const std::string kGood = R"({"zones": [
         {"name": "a", "colour": "#ff0000", "tile": "tiles/a.png", "tileSize": 8},
         {"name": "b", "colour": "#00FF00", "tile": "tiles/b.png", "heightBlend": 0.25}]})";
@@ -49,22 +51,30 @@ TEST_F(ZonesIo, PaletteReadsFieldsAndResolvesTiles) {
 }
 
 TEST_F(ZonesIo, BadPalettesSayWhy) {
-    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", "{zones: oops")); }).find("is not JSON"), std::string::npos);
-    // A number beyond double's range (found by fuzzing): a clear error, not an escaped exception.
-    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", R"({"zones": [], "x": 3e58836})")); }).find("is not JSON"),
+    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", "{zones: oops")); }).find("is not JSON"),
               std::string::npos);
-    std::string missing = R"({"zones": [{"name": "a", "colour": "#ff0000", "tile": "tiles/none.png"}]})";
+    // A number beyond double's range (found by fuzzing): a clear error, not an escaped exception.
+    EXPECT_NE(errorOf([&] {
+                  loadPalette(write("p.json", R"({"zones": [], "x": 3e58836})"));
+              }).find("is not JSON"),
+              std::string::npos);
+    std::string missing =
+        R"({"zones": [{"name": "a", "colour": "#ff0000", "tile": "tiles/none.png"}]})";
     std::string e = errorOf([&] { loadPalette(write("p.json", missing)); });
     EXPECT_NE(e.find("none.png"), std::string::npos) << e;
     EXPECT_NE(e.find("does not exist"), std::string::npos) << e;
     std::string twice = R"({"zones": [{"name": "a", "colour": "#ff0000", "tile": "tiles/a.png"},
                                       {"name": "b", "colour": "#ff0000", "tile": "tiles/b.png"}]})";
-    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", twice)); }).find("used twice"), std::string::npos);
+    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", twice)); }).find("used twice"),
+              std::string::npos);
     std::string badColour = R"({"zones": [{"name": "a", "colour": "red", "tile": "tiles/a.png"}]})";
-    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", badColour)); }).find("#rrggbb"), std::string::npos);
+    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", badColour)); }).find("#rrggbb"),
+              std::string::npos);
     std::string black = R"({"zones": [{"name": "a", "colour": "#000000", "tile": "tiles/a.png"}]})";
-    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", black)); }).find("borderline colour"), std::string::npos);
-    EXPECT_NE(errorOf([&] { loadPalette((dir_ / "absent.json").string()); }).find("cannot open"), std::string::npos);
+    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", black)); }).find("borderline colour"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] { loadPalette((dir_ / "absent.json").string()); }).find("cannot open"),
+              std::string::npos);
 }
 
 TEST_F(ZonesIo, ZoneMapRoundTripsThroughPng) {
@@ -126,18 +136,26 @@ TEST_F(ZonesIo, NotAnImageIsReported) {
     Palette p = loadPalette(write("p.json", kGood));
     std::string e = errorOf([&] { loadZoneMap(write("map.png", "this is not a PNG"), p); });
     EXPECT_NE(e.find("is not an image"), std::string::npos) << e;
-    EXPECT_NE(errorOf([&] { loadZoneMap((dir_ / "none.png").string(), p); }).find("cannot open"), std::string::npos);
+    EXPECT_NE(errorOf([&] { loadZoneMap((dir_ / "none.png").string(), p); }).find("cannot open"),
+              std::string::npos);
 }
 
 TEST(ZonesAuto, BandsByHeightAndSlope) {
     Palette p;
-    for (const std::string& name : tileNames()) p.surfaces.push_back({name, Colour(p.surfaces.size() + 1), "", 16, 0.5});
+    for (const std::string& name : tileNames())
+        p.surfaces.push_back({name, Colour(p.surfaces.size() + 1), "", 16, 0.5});
     // A gentle ramp from -10 up to 5.8, a cliff rising 0.7 per sample (35
     // degrees) to 12.3, then a flat plateau at 13.
     terrain::Heightfield field(101, 21);
     for (int j = 0; j < 21; ++j)
-        for (int i = 0; i < 101; ++i) field.at(i, j) = i < 80 ? -10.0f + 0.2f * i : i < 90 ? 6.0f + 0.7f * (i - 80) : 13.0f;
-    AutoZoneDesc desc{.seaLevel = 0, .deepWater = 0.5f, .sandTop = 0.1f, .snowLine = 0.7f, .rockSlope = 30.0f, .smoothPasses = 0};
+        for (int i = 0; i < 101; ++i)
+            field.at(i, j) = i < 80 ? -10.0f + 0.2f * i : i < 90 ? 6.0f + 0.7f * (i - 80) : 13.0f;
+    AutoZoneDesc desc{.seaLevel = 0,
+                      .deepWater = 0.5f,
+                      .sandTop = 0.1f,
+                      .snowLine = 0.7f,
+                      .rockSlope = 30.0f,
+                      .smoothPasses = 0};
     ZoneMap m = autoZones(field, p, desc);
     ASSERT_EQ(m.layout, ZoneLayout::Touching);
     auto name = [&](int i) { return p.surfaces[size_t(m.at(i, 10))].name; };
@@ -156,7 +174,8 @@ TEST(ZonesAuto, BandsByHeightAndSlope) {
 TEST(ZonesTiles, DeterministicSeamlessWithHeights) {
     for (const std::string& name : tileNames()) {
         SCOPED_TRACE(name);
-        TileImage a = generateTile(name, 64, 7), b = generateTile(name, 64, 7), c = generateTile(name, 64, 8);
+        TileImage a = generateTile(name, 64, 7), b = generateTile(name, 64, 7),
+                  c = generateTile(name, 64, 8);
         EXPECT_EQ(a.rgba, b.rgba);
         EXPECT_NE(a.rgba, c.rgba);
         // Seamless: the step across the wrap (last column to first) is no
@@ -165,14 +184,16 @@ TEST(ZonesTiles, DeterministicSeamlessWithHeights) {
             double sum = 0;
             for (int y = 0; y < 64; ++y)
                 for (int ch = 0; ch < 4; ++ch)
-                    sum += std::abs(int(a.rgba[size_t(y * 64 + x0) * 4 + ch]) - int(a.rgba[size_t(y * 64 + x1) * 4 + ch]));
+                    sum += std::abs(int(a.rgba[size_t(y * 64 + x0) * 4 + ch]) -
+                                    int(a.rgba[size_t(y * 64 + x1) * 4 + ch]));
             return sum;
         };
         auto stepY = [&](int y0, int y1) {
             double sum = 0;
             for (int x = 0; x < 64; ++x)
                 for (int ch = 0; ch < 4; ++ch)
-                    sum += std::abs(int(a.rgba[size_t(y0 * 64 + x) * 4 + ch]) - int(a.rgba[size_t(y1 * 64 + x) * 4 + ch]));
+                    sum += std::abs(int(a.rgba[size_t(y0 * 64 + x) * 4 + ch]) -
+                                    int(a.rgba[size_t(y1 * 64 + x) * 4 + ch]));
             return sum;
         };
         double typical = 0, typicalY = 0;
@@ -181,7 +202,8 @@ TEST(ZonesTiles, DeterministicSeamlessWithHeights) {
         EXPECT_LE(step(63, 0), 2.5 * typical + 64);
         EXPECT_LE(stepY(63, 0), 2.5 * typicalY + 64);
         uint8_t lo = 255, hi = 0;
-        for (size_t k = 3; k < a.rgba.size(); k += 4) lo = std::min(lo, a.rgba[k]), hi = std::max(hi, a.rgba[k]);
+        for (size_t k = 3; k < a.rgba.size(); k += 4)
+            lo = std::min(lo, a.rgba[k]), hi = std::max(hi, a.rgba[k]);
         EXPECT_GT(hi - lo, 8) << "the height channel varies";
     }
     EXPECT_THROW(generateTile("lava"), Error);

@@ -26,13 +26,15 @@ inline ZoneMap makeMap(int w, int h, const std::function<int(int, int)>& zoneAt)
     m.height = h;
     m.ids.resize(size_t(w) * size_t(h));
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) m.ids[size_t(y) * size_t(w) + size_t(x)] = int16_t(zoneAt(x, y));
+        for (int x = 0; x < w; ++x)
+            m.ids[size_t(y) * size_t(w) + size_t(x)] = int16_t(zoneAt(x, y));
     return m;
 }
 
 // The four shapes of the tests, Touching layout.
 inline ZoneMap squareMap() {
-    return makeMap(32, 32, [](int x, int y) { return x >= 8 && x < 20 && y >= 10 && y < 24 ? 1 : 0; });
+    return makeMap(32, 32,
+                   [](int x, int y) { return x >= 8 && x < 20 && y >= 10 && y < 24 ? 1 : 0; });
 }
 inline ZoneMap discMap() {
     return makeMap(64, 64, [](int x, int y) {

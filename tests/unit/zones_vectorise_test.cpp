@@ -32,7 +32,10 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-    return {{"square", squareMap(), 2}, {"disc", discMap(), 2}, {"checker", checkerMap(), 2}, {"junction", junctionMap(), 3}};
+    return {{"square", squareMap(), 2},
+            {"disc", discMap(), 2},
+            {"checker", checkerMap(), 2},
+            {"junction", junctionMap(), 3}};
 }
 
 std::vector<int64_t> pixelCounts(const ZoneMap& map, int zones) {
@@ -52,7 +55,8 @@ double segmentDistance(const Vertex& p, const Vertex& a, const Vertex& b) {
 // zone left of the next: no sector is claimed by two zones or by none. With
 // no crossing edges this means the zones tile the frame with no gap or overlap.
 void expectConsistentFaces(const Borderlines& lines) {
-    std::vector<std::vector<std::pair<double, std::pair<int32_t, int32_t>>>> around(lines.vertices.size());
+    std::vector<std::vector<std::pair<double, std::pair<int32_t, int32_t>>>> around(
+        lines.vertices.size());
     for (const Edge& e : lines.edges) {
         const Vertex& a = lines.vertices[e.from];
         const Vertex& b = lines.vertices[e.to];
@@ -62,14 +66,17 @@ void expectConsistentFaces(const Borderlines& lines) {
     }
     for (size_t v = 0; v < around.size(); ++v) {
         auto& list = around[v];
-        ASSERT_GE(list.size(), 2u) << "dangling vertex " << v << " at " << lines.vertices[v].x << "," << lines.vertices[v].y;
+        ASSERT_GE(list.size(), 2u) << "dangling vertex " << v << " at " << lines.vertices[v].x
+                                   << "," << lines.vertices[v].y;
         std::sort(list.begin(), list.end());
         for (size_t k = 0; k < list.size(); ++k) {
             const auto& cur = list[k];
             const auto& next = list[(k + 1) % list.size()];
-            ASSERT_NE(cur.first, next.first) << "two edges leave vertex " << v << " in the same direction";
+            ASSERT_NE(cur.first, next.first)
+                << "two edges leave vertex " << v << " in the same direction";
             ASSERT_EQ(cur.second.second, next.second.first)
-                << "zones disagree around vertex " << v << " (" << lines.vertices[v].x << ", " << lines.vertices[v].y << ")";
+                << "zones disagree around vertex " << v << " (" << lines.vertices[v].x << ", "
+                << lines.vertices[v].y << ")";
         }
     }
 }
@@ -92,14 +99,17 @@ void expectNoCrossings(const Borderlines& lines) {
     auto lowX = [&](const Edge& e) { return std::min(v[e.from].x, v[e.to].x); };
     std::vector<size_t> order(edges.size());
     std::iota(order.begin(), order.end(), size_t(0));
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return lowX(edges[a]) < lowX(edges[b]); });
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return lowX(edges[a]) < lowX(edges[b]); });
     for (size_t k = 0; k < order.size(); ++k) {
         const Edge& e = edges[order[k]];
         const double highX = std::max(v[e.from].x, v[e.to].x);
-        const double lowY = std::min(v[e.from].y, v[e.to].y), highY = std::max(v[e.from].y, v[e.to].y);
+        const double lowY = std::min(v[e.from].y, v[e.to].y),
+                     highY = std::max(v[e.from].y, v[e.to].y);
         for (size_t m = k + 1; m < order.size() && lowX(edges[order[m]]) <= highX; ++m) {
             const Edge& f = edges[order[m]];
-            if (std::max(v[f.from].y, v[f.to].y) < lowY || std::min(v[f.from].y, v[f.to].y) > highY) continue;
+            if (std::max(v[f.from].y, v[f.to].y) < lowY || std::min(v[f.from].y, v[f.to].y) > highY)
+                continue;
             if (properlyCross(v[e.from], v[e.to], v[f.from], v[f.to])) {
                 ADD_FAILURE() << "edges " << order[k] << " and " << order[m] << " cross";
                 return;
@@ -125,7 +135,8 @@ TEST(ZonesVectorise, TouchingAreasEqualPixelCountsAtEpsilonZero) {
         Borderlines lines = buildBorderlines(c.map, testPalette(c.zones));
         auto areas = zoneAreas(lines);
         auto counts = pixelCounts(c.map, c.zones);
-        for (int z = 0; z < c.zones; ++z) EXPECT_EQ(areas[size_t(z)], double(counts[size_t(z)])) << "zone " << z;
+        for (int z = 0; z < c.zones; ++z)
+            EXPECT_EQ(areas[size_t(z)], double(counts[size_t(z)])) << "zone " << z;
         expectConsistentFaces(lines);
         expectNoCrossings(lines);
     }
@@ -172,8 +183,8 @@ TEST(ZonesVectorise, Figure1AreasFollowPicksTheorem) {
                         stack.pop_back();
                         for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
                             int qx = px + dx, qy = py + dy;
-                            if (qx < 0 || qy < 0 || qx >= m.width || qy >= m.height || m.at(qx, qy) != z ||
-                                seen[size_t(qy * m.width + qx)])
+                            if (qx < 0 || qy < 0 || qx >= m.width || qy >= m.height ||
+                                m.at(qx, qy) != z || seen[size_t(qy * m.width + qx)])
                                 continue;
                             seen[size_t(qy * m.width + qx)] = 1;
                             stack.push_back({qx, qy});
@@ -188,7 +199,8 @@ TEST(ZonesVectorise, Figure1AreasFollowPicksTheorem) {
                 const Vertex& b = lines.vertices[e.to];
                 boundary += std::gcd(std::abs(int(b.x - a.x)), std::abs(int(b.y - a.y)));
             }
-            double expected = double(inside) + double(boundary) / 2 - (components - t.holes[size_t(z)]);
+            double expected =
+                double(inside) + double(boundary) / 2 - (components - t.holes[size_t(z)]);
             EXPECT_EQ(areas[size_t(z)], expected) << "zone " << z;
         }
         double total = std::accumulate(areas.begin(), areas.end(), 0.0);
@@ -284,7 +296,8 @@ TEST(ZonesVectorise, SimplifiedArcsStayWithinEpsilonAndTheAreaBound) {
     for (double eps : {0.5, 1.0, 2.5}) {
         for (bool figure1 : {false, true}) {
             for (auto& c : cases()) {
-                SCOPED_TRACE(std::string(c.name) + (figure1 ? " figure1" : " touching") + " eps " + std::to_string(eps));
+                SCOPED_TRACE(std::string(c.name) + (figure1 ? " figure1" : " touching") + " eps " +
+                             std::to_string(eps));
                 ZoneMap map = figure1 ? drawBorderlines(c.map) : c.map;
                 Borderlines exact = buildBorderlines(map, testPalette(c.zones));
                 Borderlines simple = buildBorderlines(map, testPalette(c.zones), {.epsilon = eps});
@@ -296,7 +309,8 @@ TEST(ZonesVectorise, SimplifiedArcsStayWithinEpsilonAndTheAreaBound) {
                         double best = 1e30;
                         for (const Edge& f : simple.edges)
                             if (std::minmax(f.left, f.right) == std::minmax(e.left, e.right))
-                                best = std::min(best, segmentDistance(exact.vertices[v], simple.vertices[f.from],
+                                best = std::min(best, segmentDistance(exact.vertices[v],
+                                                                      simple.vertices[f.from],
                                                                       simple.vertices[f.to]));
                         ASSERT_LE(best, eps + 1e-9);
                     }
@@ -311,11 +325,14 @@ TEST(ZonesVectorise, SimplifiedArcsStayWithinEpsilonAndTheAreaBound) {
                             const Vertex &a = simple.vertices[f.from], &b = simple.vertices[f.to];
                             bound += 2 * eps * std::hypot(b.x - a.x, b.y - a.y) + M_PI * eps * eps;
                         }
-                    EXPECT_LE(std::abs(a1[size_t(z)] - a0[size_t(z)]), bound + 1e-9) << "zone " << z;
+                    EXPECT_LE(std::abs(a1[size_t(z)] - a0[size_t(z)]), bound + 1e-9)
+                        << "zone " << z;
                 }
                 double total = 0;
                 for (double a : a1) total += a;
-                EXPECT_NEAR(total, (simple.frameX1 - simple.frameX0) * (simple.frameY1 - simple.frameY0), 1e-9);
+                EXPECT_NEAR(total,
+                            (simple.frameX1 - simple.frameX0) * (simple.frameY1 - simple.frameY0),
+                            1e-9);
                 expectConsistentFaces(simple);
                 expectNoCrossings(simple);
             }
@@ -359,10 +376,13 @@ TEST(ZonesVectorise, BandOfTheAskedWidth) {
     Borderlines base = buildBorderlines(squareMap(), testPalette(2));
     for (const Edge& e : lines.edges) {
         if (e.left != 2 && e.right != 2) continue;
-        Vertex mid{(lines.vertices[e.from].x + lines.vertices[e.to].x) / 2, (lines.vertices[e.from].y + lines.vertices[e.to].y) / 2};
+        Vertex mid{(lines.vertices[e.from].x + lines.vertices[e.to].x) / 2,
+                   (lines.vertices[e.from].y + lines.vertices[e.to].y) / 2};
         double best = 1e30;
         for (const Edge& f : base.edges)
-            if (f.left >= 0 && f.right >= 0) best = std::min(best, segmentDistance(mid, base.vertices[f.from], base.vertices[f.to]));
+            if (f.left >= 0 && f.right >= 0)
+                best = std::min(best,
+                                segmentDistance(mid, base.vertices[f.from], base.vertices[f.to]));
         EXPECT_NEAR(best, width / 2, 1e-9);
     }
     expectConsistentFaces(lines);
@@ -372,7 +392,8 @@ TEST(ZonesVectorise, BandOfTheAskedWidth) {
 TEST(ZonesVectorise, BandsNarrowToJunctionsAndKeepTheWidthBetween) {
     for (auto& c : cases()) {
         SCOPED_TRACE(c.name);
-        Borderlines lines = buildBorderlines(drawBorderlines(c.map), testPalette(c.zones), {.epsilon = 0.5, .bandWidth = 1.0});
+        Borderlines lines = buildBorderlines(drawBorderlines(c.map), testPalette(c.zones),
+                                             {.epsilon = 0.5, .bandWidth = 1.0});
         expectConsistentFaces(lines);
         expectNoCrossings(lines);
         double total = 0;
@@ -400,48 +421,52 @@ TEST(ZonesVectorise, BandsNarrowToJunctionsAndKeepTheWidthBetween) {
 // junctions), in both layouts, exact and simplified.
 TEST(ZonesVectorise, AutoZonedTerrainTilesTheFrame) {
     Palette p;
-    for (const std::string& name : tileNames()) p.surfaces.push_back({name, Colour(p.surfaces.size() + 1), "", 16, 0.5});
-  for (uint64_t seed : {3, 4, 5}) {
-    auto field = terrain::generateDiamondSquare({.size = 129, .seed = seed});
-    auto [lo, hi] = field.range();
-    field.setVerticalScale(0.2f * 128 / (hi - lo));
-    ZoneMap touching = autoZones(field, p, {.rockSlope = 20.0f, .smoothPasses = 0});
-    for (bool figure1 : {false, true}) {
-        ZoneMap map = figure1 ? drawBorderlines(touching) : touching;
-        for (double eps : {0.0, 0.7, 1.5, 4.0}) {
-            SCOPED_TRACE(std::string(figure1 ? "figure1" : "touching") + " eps " + std::to_string(eps) + " seed " +
-                         std::to_string(seed));
-            Borderlines lines = buildBorderlines(map, p, {.epsilon = eps});
-            auto areas = zoneAreas(lines);
-            double total = 0;
-            for (double a : areas) {
-                EXPECT_GE(a, 0.0);
-                total += a;
+    for (const std::string& name : tileNames())
+        p.surfaces.push_back({name, Colour(p.surfaces.size() + 1), "", 16, 0.5});
+    for (uint64_t seed : {3, 4, 5}) {
+        auto field = terrain::generateDiamondSquare({.size = 129, .seed = seed});
+        auto [lo, hi] = field.range();
+        field.setVerticalScale(0.2f * 128 / (hi - lo));
+        ZoneMap touching = autoZones(field, p, {.rockSlope = 20.0f, .smoothPasses = 0});
+        for (bool figure1 : {false, true}) {
+            ZoneMap map = figure1 ? drawBorderlines(touching) : touching;
+            for (double eps : {0.0, 0.7, 1.5, 4.0}) {
+                SCOPED_TRACE(std::string(figure1 ? "figure1" : "touching") + " eps " +
+                             std::to_string(eps) + " seed " + std::to_string(seed));
+                Borderlines lines = buildBorderlines(map, p, {.epsilon = eps});
+                auto areas = zoneAreas(lines);
+                double total = 0;
+                for (double a : areas) {
+                    EXPECT_GE(a, 0.0);
+                    total += a;
+                }
+                EXPECT_NEAR(
+                    total, (lines.frameX1 - lines.frameX0) * (lines.frameY1 - lines.frameY0), 1e-6);
+                if (!figure1 && eps == 0.0) {
+                    auto counts = pixelCounts(map, int(p.surfaces.size()));
+                    for (size_t z = 0; z < counts.size(); ++z)
+                        EXPECT_EQ(areas[z], double(counts[z]));
+                }
+                expectConsistentFaces(lines);
+                expectNoCrossings(lines);
             }
-            EXPECT_NEAR(total, (lines.frameX1 - lines.frameX0) * (lines.frameY1 - lines.frameY0), 1e-6);
-            if (!figure1 && eps == 0.0) {
-                auto counts = pixelCounts(map, int(p.surfaces.size()));
-                for (size_t z = 0; z < counts.size(); ++z) EXPECT_EQ(areas[z], double(counts[z]));
+            // Bands wider than many strips and bends: narrowed where they do not fit.
+            for (double width : {2.0, 5.0}) {
+                SCOPED_TRACE(std::string(figure1 ? "figure1" : "touching") + " band " +
+                             std::to_string(width) + " seed " + std::to_string(seed));
+                Borderlines lines = buildBorderlines(map, p, {.epsilon = 0.7, .bandWidth = width});
+                double total = 0;
+                for (double a : zoneAreas(lines)) {
+                    EXPECT_GE(a, 0.0);
+                    total += a;
+                }
+                EXPECT_NEAR(
+                    total, (lines.frameX1 - lines.frameX0) * (lines.frameY1 - lines.frameY0), 1e-6);
+                expectConsistentFaces(lines);
+                expectNoCrossings(lines);
             }
-            expectConsistentFaces(lines);
-            expectNoCrossings(lines);
-        }
-        // Bands wider than many strips and bends: narrowed where they do not fit.
-        for (double width : {2.0, 5.0}) {
-            SCOPED_TRACE(std::string(figure1 ? "figure1" : "touching") + " band " + std::to_string(width) + " seed " +
-                         std::to_string(seed));
-            Borderlines lines = buildBorderlines(map, p, {.epsilon = 0.7, .bandWidth = width});
-            double total = 0;
-            for (double a : zoneAreas(lines)) {
-                EXPECT_GE(a, 0.0);
-                total += a;
-            }
-            EXPECT_NEAR(total, (lines.frameX1 - lines.frameX0) * (lines.frameY1 - lines.frameY0), 1e-6);
-            expectConsistentFaces(lines);
-            expectNoCrossings(lines);
         }
     }
-  }
 }
 
 }  // namespace

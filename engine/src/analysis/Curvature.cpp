@@ -11,10 +11,14 @@ namespace sierra::analysis {
 
 const char* curvatureMethodName(CurvatureMethod method) {
     switch (method) {
-        case CurvatureMethod::TwoNormal: return "two-normal";
-        case CurvatureMethod::ThreeNormal: return "three-normal";
-        case CurvatureMethod::ThreeVertex: return "three-vertex";
-        case CurvatureMethod::EdgeAngle: return "edge-angle";
+        case CurvatureMethod::TwoNormal:
+            return "two-normal";
+        case CurvatureMethod::ThreeNormal:
+            return "three-normal";
+        case CurvatureMethod::ThreeVertex:
+            return "three-vertex";
+        case CurvatureMethod::EdgeAngle:
+            return "edge-angle";
     }
     return "?";
 }
@@ -29,26 +33,28 @@ CurvatureMethod parseCurvatureMethod(const std::string& name) {
 }
 
 void validate(const CurvatureOptions& o) {
-    SIERRA_CHECK(o.distance >= 1, "curvature: reinforcement distance must be an integer >= 1 (1 = none), got ",
+    SIERRA_CHECK(o.distance >= 1,
+                 "curvature: reinforcement distance must be an integer >= 1 (1 = none), got ",
                  o.distance);
     SIERRA_CHECK(o.method != CurvatureMethod::TwoNormal || o.distance == 1,
                  "curvature: two-normal has no reinforcement (distance must be 1, got ", o.distance,
                  "); use three-normal for a reinforcement distance");
-    SIERRA_CHECK(std::isfinite(o.scale) && o.scale >= 0.0f, "curvature: scale must be finite and >= 0, got ",
-                 o.scale);
+    SIERRA_CHECK(std::isfinite(o.scale) && o.scale >= 0.0f,
+                 "curvature: scale must be finite and >= 0, got ", o.scale);
     if (o.levels.enabled) {
         SIERRA_CHECK(std::isfinite(o.levels.black) && o.levels.black >= 0.0f,
                      "curvature: levels black point must be finite and >= 0, got ", o.levels.black);
         SIERRA_CHECK(std::isfinite(o.levels.white) && o.levels.white > o.levels.black,
-                     "curvature: levels white point must be finite and above the black point (", o.levels.black,
-                     "), got ", o.levels.white);
+                     "curvature: levels white point must be finite and above the black point (",
+                     o.levels.black, "), got ", o.levels.white);
         SIERRA_CHECK(std::isfinite(o.levels.gamma) && o.levels.gamma > 0.0f,
                      "curvature: levels gamma must be finite and > 0, got ", o.levels.gamma);
     }
     if (o.output == CurvatureOutput::SecondDerivative) {
         SIERRA_CHECK(o.method != CurvatureMethod::EdgeAngle,
                      "curvature: edge-angle has no second derivative (it does not use Equation 1)");
-        SIERRA_CHECK(o.distance == 1, "curvature: the second-derivative output takes no reinforcement (distance ",
+        SIERRA_CHECK(o.distance == 1,
+                     "curvature: the second-derivative output takes no reinforcement (distance ",
                      o.distance, ")");
     }
 }
@@ -168,15 +174,24 @@ struct Kernel {
     DirectionSetup dir[kDirectionCount];
 
     View view(const DirectionSetup& d) const {
-        return {.raw = g->raw, .yScale = g->scale, .gx = gx, .gz = gz, .gradBase = gradBase, .offset = d.offset,
-                .invLength = d.invLength, .ux = d.ux, .uz = d.uz, .hx = float(d.di) * g->spacingX,
+        return {.raw = g->raw,
+                .yScale = g->scale,
+                .gx = gx,
+                .gz = gz,
+                .gradBase = gradBase,
+                .offset = d.offset,
+                .invLength = d.invLength,
+                .ux = d.ux,
+                .uz = d.uz,
+                .hx = float(d.di) * g->spacingX,
                 .hz = float(d.dj) * g->spacingZ};
     }
 
     // Level control and sign on a finished magnitude.
     float finish(float value, float ypp) const {
         if (opt.levels.enabled) {
-            float t = std::clamp((value - opt.levels.black) / (opt.levels.white - opt.levels.black), 0.0f, 1.0f);
+            float t = std::clamp((value - opt.levels.black) / (opt.levels.white - opt.levels.black),
+                                 0.0f, 1.0f);
             value = std::pow(t, 1.0f / opt.levels.gamma);
         }
         return opt.signedValues && ypp < 0.0f ? -value : value;
@@ -256,7 +271,8 @@ struct Kernel {
                 if (std::isnan(g->raw[size_t(j) * size_t(w) + size_t(i)])) {
                     for (int d = 0; d < kDirectionCount; ++d) o[i * kDirectionCount + d] = NAN;
                 } else {
-                    for (int d = 0; d < kDirectionCount; ++d) o[i * kDirectionCount + d] = buf[size_t(d) * size_t(w) + size_t(i)];
+                    for (int d = 0; d < kDirectionCount; ++d)
+                        o[i * kDirectionCount + d] = buf[size_t(d) * size_t(w) + size_t(i)];
                 }
             }
         }
@@ -267,19 +283,22 @@ struct Kernel {
 
 }  // namespace
 
-CurvatureField computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options) {
+CurvatureField computeCurvature(const terrain::Heightfield& field,
+                                const CurvatureOptions& options) {
     CurvatureField out;
     computeCurvature(field, options, out);
     return out;
 }
 
-void computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options, CurvatureField& out) {
+void computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options,
+                      CurvatureField& out) {
     validate(options);
     SIERRA_CHECK(!field.empty(), "curvature: the heightfield is empty");
     const int minSide = 2 * options.distance + 1;
     SIERRA_CHECK(field.width() >= std::max(3, minSide) && field.height() >= std::max(3, minSide),
-                 "curvature: a ", field.width(), "x", field.height(), " grid is too small for reinforcement distance ",
-                 options.distance, " (each side needs at least ", std::max(3, minSide), " samples)");
+                 "curvature: a ", field.width(), "x", field.height(),
+                 " grid is too small for reinforcement distance ", options.distance,
+                 " (each side needs at least ", std::max(3, minSide), " samples)");
 
     const int threads = options.threads;
     detail::WorldGrid g;
@@ -312,8 +331,8 @@ void computeCurvature(const terrain::Heightfield& field, const CurvatureOptions&
     out.spacingZ = g.spacingZ;
     out.values.resize(size_t(field.sampleCount()) * kDirectionCount);
     float* data = out.values.data();
-    const bool normalBased =
-        options.method == CurvatureMethod::TwoNormal || options.method == CurvatureMethod::ThreeNormal;
+    const bool normalBased = options.method == CurvatureMethod::TwoNormal ||
+                             options.method == CurvatureMethod::ThreeNormal;
 
     auto run = [&]<CurvatureMethod kMethod>() {
         detail::forRows(w, h, threads, [&](int j0, int j1) {
@@ -355,10 +374,18 @@ void computeCurvature(const terrain::Heightfield& field, const CurvatureOptions&
         });
     };
     switch (options.method) {
-        case CurvatureMethod::TwoNormal: run.template operator()<CurvatureMethod::TwoNormal>(); break;
-        case CurvatureMethod::ThreeNormal: run.template operator()<CurvatureMethod::ThreeNormal>(); break;
-        case CurvatureMethod::ThreeVertex: run.template operator()<CurvatureMethod::ThreeVertex>(); break;
-        case CurvatureMethod::EdgeAngle: run.template operator()<CurvatureMethod::EdgeAngle>(); break;
+        case CurvatureMethod::TwoNormal:
+            run.template operator()<CurvatureMethod::TwoNormal>();
+            break;
+        case CurvatureMethod::ThreeNormal:
+            run.template operator()<CurvatureMethod::ThreeNormal>();
+            break;
+        case CurvatureMethod::ThreeVertex:
+            run.template operator()<CurvatureMethod::ThreeVertex>();
+            break;
+        case CurvatureMethod::EdgeAngle:
+            run.template operator()<CurvatureMethod::EdgeAngle>();
+            break;
     }
 }
 

@@ -45,8 +45,12 @@ void forRows(int width, int height, int threads, const Body& body);
 struct V3 {
     float x, y, z;
 };
-inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline V3 operator+(V3 a, V3 b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline V3 cross(V3 a, V3 b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 inline V3 normalized(V3 a) {
     float inv = 1.0f / std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
     return {a.x * inv, a.y * inv, a.z * inv};
@@ -59,7 +63,9 @@ inline constexpr int kRingDj[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 
 // Upward unit normal of the triangle (centre, centre + a, centre + b) where b
 // follows a counter-clockwise.
-inline V3 triangleNormal(V3 a, V3 b) { return normalized(cross(b, a)); }
+inline V3 triangleNormal(V3 a, V3 b) {
+    return normalized(cross(b, a));
+}
 
 // Unnormalised normal direction at (i, j). kChecked: neighbours may be outside
 // the grid or NaN (no data) and are then left out; otherwise all 8 exist.
@@ -71,11 +77,14 @@ inline V3 normalSum(const WorldGrid& g, int i, int j) {
     for (int k = 0; k < 8; ++k) {
         int ni = i + kRingDi[k], nj = j + kRingDj[k];
         if constexpr (kChecked) {
-            ok[k] = ni >= 0 && nj >= 0 && ni < g.width && nj < g.height && !std::isnan(g.at(ni, nj));
-            e[k] = {float(kRingDi[k]) * g.spacingX, ok[k] ? g.at(ni, nj) - yc : 0.0f, float(kRingDj[k]) * g.spacingZ};
+            ok[k] =
+                ni >= 0 && nj >= 0 && ni < g.width && nj < g.height && !std::isnan(g.at(ni, nj));
+            e[k] = {float(kRingDi[k]) * g.spacingX, ok[k] ? g.at(ni, nj) - yc : 0.0f,
+                    float(kRingDj[k]) * g.spacingZ};
         } else {
             ok[k] = true;
-            e[k] = {float(kRingDi[k]) * g.spacingX, g.at(ni, nj) - yc, float(kRingDj[k]) * g.spacingZ};
+            e[k] = {float(kRingDi[k]) * g.spacingX, g.at(ni, nj) - yc,
+                    float(kRingDj[k]) * g.spacingZ};
         }
     }
     if constexpr (kMethod == NormalMethod::Edge) {
@@ -83,8 +92,14 @@ inline V3 normalSum(const WorldGrid& g, int i, int j) {
         auto axisSlope = [&](int plus, int minus, float step) {
             float sum = 0.0f;
             int n = 0;
-            if (ok[plus]) { sum += e[plus].y / step; ++n; }
-            if (ok[minus]) { sum -= e[minus].y / step; ++n; }
+            if (ok[plus]) {
+                sum += e[plus].y / step;
+                ++n;
+            }
+            if (ok[minus]) {
+                sum -= e[minus].y / step;
+                ++n;
+            }
             return n ? sum / float(n) : 0.0f;
         };
         float sx = axisSlope(0, 4, g.spacingX);
@@ -127,7 +142,8 @@ inline void interiorNormalSums(const WorldGrid& g, int j, int iLo, int iHi, floa
         if constexpr (kMethod == NormalMethod::Edge) {
             sum = {-(e.y - w.y) / (2.0f * hx), 1.0f, -(n.y - s.y) / (2.0f * hz)};
         } else if constexpr (kMethod == NormalMethod::Triangle) {
-            sum = triangleNormal(e, n) + triangleNormal(n, w) + triangleNormal(w, s) + triangleNormal(s, e);
+            sum = triangleNormal(e, n) + triangleNormal(n, w) + triangleNormal(w, s) +
+                  triangleNormal(s, e);
         } else {
             const V3 ne{hx, yn[i + 1] * k - c, hz}, nw{-hx, yn[i - 1] * k - c, hz};
             const V3 sw{-hx, ys[i - 1] * k - c, -hz}, se{hx, ys[i + 1] * k - c, -hz};
@@ -175,9 +191,15 @@ inline void forNormalRows(const WorldGrid& g, int j0, int j1, const Fn& row) {
 template <typename Fn>
 inline void dispatchNormalMethod(NormalMethod method, const Fn& fn) {
     switch (method) {
-        case NormalMethod::Edge: fn.template operator()<NormalMethod::Edge>(); break;
-        case NormalMethod::Triangle: fn.template operator()<NormalMethod::Triangle>(); break;
-        case NormalMethod::Quad: fn.template operator()<NormalMethod::Quad>(); break;
+        case NormalMethod::Edge:
+            fn.template operator()<NormalMethod::Edge>();
+            break;
+        case NormalMethod::Triangle:
+            fn.template operator()<NormalMethod::Triangle>();
+            break;
+        case NormalMethod::Quad:
+            fn.template operator()<NormalMethod::Quad>();
+            break;
     }
 }
 
@@ -195,7 +217,8 @@ void forRows(int width, int height, int threads, const Body& body) {
     // at least 64 rows each: a chunk recomputes the normals of a few rows
     // beyond its ends. Chunks run in order on one thread when threads = 1.
     int chunks = std::max(1, std::min(threads * 8, height / 64));
-    parallelChunks(0, height, chunks, [&](int64_t lo, int64_t hi, int) { body(int(lo), int(hi)); }, threads);
+    parallelChunks(
+        0, height, chunks, [&](int64_t lo, int64_t hi, int) { body(int(lo), int(hi)); }, threads);
 }
 
 }  // namespace sierra::analysis::detail

@@ -8,9 +8,12 @@ namespace sierra::analysis {
 
 const char* normalMethodName(NormalMethod method) {
     switch (method) {
-        case NormalMethod::Edge: return "edge";
-        case NormalMethod::Triangle: return "triangle";
-        case NormalMethod::Quad: return "quad";
+        case NormalMethod::Edge:
+            return "edge";
+        case NormalMethod::Triangle:
+            return "triangle";
+        case NormalMethod::Quad:
+            return "quad";
     }
     return "?";
 }
@@ -57,13 +60,14 @@ NormalField computeNormals(const terrain::Heightfield& field, NormalMethod metho
     out.normals.resize(size_t(field.sampleCount()));
     detail::dispatchNormalMethod(method, [&]<NormalMethod kMethod>() {
         detail::forRows(g.width, g.height, threads, [&](int j0, int j1) {
-            detail::forNormalRows<kMethod>(g, j0, j1, [&](int j, const float* ox, const float* oy, const float* oz) {
-                Vec3* o = out.normals.data() + size_t(j) * size_t(g.width);
-                for (int i = 0; i < g.width; ++i) {
-                    detail::V3 n = detail::normalized({ox[i], oy[i], oz[i]});
-                    o[i] = {n.x, n.y, n.z};
-                }
-            });
+            detail::forNormalRows<kMethod>(
+                g, j0, j1, [&](int j, const float* ox, const float* oy, const float* oz) {
+                    Vec3* o = out.normals.data() + size_t(j) * size_t(g.width);
+                    for (int i = 0; i < g.width; ++i) {
+                        detail::V3 n = detail::normalized({ox[i], oy[i], oz[i]});
+                        o[i] = {n.x, n.y, n.z};
+                    }
+                });
         });
     });
     return out;

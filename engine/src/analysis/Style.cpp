@@ -18,7 +18,7 @@ namespace {
 // Reads one object, checking types and rejecting unknown keys; every message
 // starts with "<source>: <path>".
 class Reader {
-public:
+  public:
     Reader(const json& object, std::string source, std::string path)
         : j_(object), source_(std::move(source)), path_(std::move(path)) {
         if (!j_.is_object()) fail(path_, msg("must be an object, got ", typeName(j_)));
@@ -57,7 +57,8 @@ public:
         const json& v = j_.at(name);
         if (!v.is_number()) fail(key(name), msg("must be ", rule, ", got ", typeName(v)));
         double d = v.get<double>();
-        if (d != std::floor(d) || std::fabs(d) > 1e9) fail(key(name), msg("must be ", rule, ", got ", v.dump()));
+        if (d != std::floor(d) || std::fabs(d) > 1e9)
+            fail(key(name), msg("must be ", rule, ", got ", v.dump()));
         return int(d);
     }
 
@@ -95,7 +96,7 @@ public:
         return std::string(v.type_name()) + " " + v.dump();
     }
 
-private:
+  private:
     const json& j_;
     std::string source_;
     std::string path_;
@@ -123,9 +124,11 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
         o.method = c.choice("method", o.method, parseCurvatureMethod);
         o.distance = c.integer("distance", o.distance, "an integer >= 1 (1 = no reinforcement)");
         if (o.distance < 1)
-            c.fail(c.key("distance"), msg("must be an integer >= 1 (1 = no reinforcement), got ", o.distance));
+            c.fail(c.key("distance"),
+                   msg("must be an integer >= 1 (1 = no reinforcement), got ", o.distance));
         if (o.method == CurvatureMethod::TwoNormal && o.distance != 1)
-            c.fail(c.key("distance"), msg("must be 1 for two-normal (it has no reinforcement), got ", o.distance));
+            c.fail(c.key("distance"),
+                   msg("must be 1 for two-normal (it has no reinforcement), got ", o.distance));
         o.scale = float(c.number("scale", o.scale));
         if (o.scale < 0.0f) c.fail(c.key("scale"), msg("must be >= 0, got ", o.scale));
         o.normals = c.choice("normals", o.normals, parseNormalMethod);
@@ -137,10 +140,13 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
             o.levels.black = float(l.number("black", o.levels.black));
             o.levels.white = float(l.number("white", o.levels.white));
             o.levels.gamma = float(l.number("gamma", o.levels.gamma));
-            if (o.levels.black < 0.0f) l.fail(l.key("black"), msg("must be >= 0, got ", o.levels.black));
+            if (o.levels.black < 0.0f)
+                l.fail(l.key("black"), msg("must be >= 0, got ", o.levels.black));
             if (!(o.levels.white > o.levels.black))
-                l.fail(l.key("white"), msg("must be above the black point ", o.levels.black, ", got ", o.levels.white));
-            if (!(o.levels.gamma > 0.0f)) l.fail(l.key("gamma"), msg("must be > 0, got ", o.levels.gamma));
+                l.fail(l.key("white"), msg("must be above the black point ", o.levels.black,
+                                           ", got ", o.levels.white));
+            if (!(o.levels.gamma > 0.0f))
+                l.fail(l.key("gamma"), msg("must be > 0, got ", o.levels.gamma));
         }
         try {
             validate(o);
@@ -154,7 +160,9 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
         l.allowOnly({"min_length", "width", "threshold", "polarity", "blended"});
         LineStyle& s = out.lines;
         s.minLength = l.integer("min_length", s.minLength, "an integer >= 2 (vertices)");
-        if (s.minLength < 2) l.fail(l.key("min_length"), msg("must be an integer >= 2 (vertices), got ", s.minLength));
+        if (s.minLength < 2)
+            l.fail(l.key("min_length"),
+                   msg("must be an integer >= 2 (vertices), got ", s.minLength));
         s.width = float(l.number("width", s.width));
         if (!(s.width > 0.0f)) l.fail(l.key("width"), msg("must be > 0 (pixels), got ", s.width));
         s.threshold = float(l.number("threshold", s.threshold));
@@ -168,7 +176,8 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
         h.allowOnly({"length", "width", "direction"});
         HatchStyle& s = out.hatch;
         s.length = float(h.number("length", s.length));
-        if (!(s.length > 0.0f)) h.fail(h.key("length"), msg("must be > 0 (grid units), got ", s.length));
+        if (!(s.length > 0.0f))
+            h.fail(h.key("length"), msg("must be > 0 (grid units), got ", s.length));
         s.width = float(h.number("width", s.width));
         if (!(s.width > 0.0f)) h.fail(h.key("width"), msg("must be > 0 (pixels), got ", s.width));
         s.direction = h.choice("direction", s.direction, parseHatchDirection);
@@ -182,13 +191,17 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
         layers = {.shaded = false};
         for (const json& item : list) {
             std::string name = item.is_string() ? item.get<std::string>() : item.dump();
-            if (name == "shaded") layers.shaded = true;
-            else if (name == "lines") layers.lines = true;
-            else if (name == "hatch") layers.hatch = true;
-            else if (name == "contours") layers.contours = true;
+            if (name == "shaded")
+                layers.shaded = true;
+            else if (name == "lines")
+                layers.lines = true;
+            else if (name == "hatch")
+                layers.hatch = true;
+            else if (name == "contours")
+                layers.contours = true;
             else
-                r.fail(r.key("styles"),
-                       msg("has an unknown style ", item.dump(), " (expected shaded, lines, hatch or contours)"));
+                r.fail(r.key("styles"), msg("has an unknown style ", item.dump(),
+                                            " (expected shaded, lines, hatch or contours)"));
         }
     } else {
         layers.lines = r.has("lines");

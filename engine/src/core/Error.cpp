@@ -8,7 +8,8 @@ void throwCheckFailed(const char* condition, const char* file, int line,
                       const std::string& message) {
     // The user sees the message; where the check sits is for developers.
     log::debug("check '", condition, "' failed at ", file, ":", line);
-    if (message.empty()) throw Error(msg("internal check failed: ", condition, " at ", file, ":", line));
+    if (message.empty())
+        throw Error(msg("internal check failed: ", condition, " at ", file, ":", line));
     throw Error(message);
 }
 

@@ -26,18 +26,27 @@ std::atomic<Level>& currentLevel() {
 
 const char* tag(Level level) {
     switch (level) {
-        case Level::Debug: return "debug";
-        case Level::Info: return "info";
-        case Level::Warn: return "warning";
-        case Level::Error: return "error";
-        default: return "";
+        case Level::Debug:
+            return "debug";
+        case Level::Info:
+            return "info";
+        case Level::Warn:
+            return "warning";
+        case Level::Error:
+            return "error";
+        default:
+            return "";
     }
 }
 
 }  // namespace
 
-void setLevel(Level level) { currentLevel() = level; }
-Level level() { return currentLevel(); }
+void setLevel(Level level) {
+    currentLevel() = level;
+}
+Level level() {
+    return currentLevel();
+}
 
 void write(Level level, const std::string& text) {
     static std::mutex mutex;

@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
-#include <memory>
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <system_error>
 #include <thread>
@@ -20,13 +20,14 @@ namespace sierra {
 namespace {
 
 int initialThreadCount() {
-    const int hardware = int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(kMaxThreads)));
+    const int hardware =
+        int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(kMaxThreads)));
     const char* env = std::getenv("SIERRA_THREADS");
     if (!env) return hardware;
     const int n = parseThreadCount(env);
     if (n == 0) {
-        log::warn("SIERRA_THREADS=", env, " is not a thread count in 1..", kMaxThreads,
-                  "; using ", hardware, " (the hardware concurrency)");
+        log::warn("SIERRA_THREADS=", env, " is not a thread count in 1..", kMaxThreads, "; using ",
+                  hardware, " (the hardware concurrency)");
         return hardware;
     }
     return n;
@@ -97,8 +98,10 @@ struct Job {
     // Slot 0 of chunk c, unless the caller has taken it over or finished it.
     void runFirst(int c, double stallSeconds) {
         uint8_t expected = kPending;
-        if (!states[c].compare_exchange_strong(expected, kStarted, std::memory_order_acq_rel)) return;
-        if (stallSeconds > 0) std::this_thread::sleep_for(std::chrono::duration<double>(stallSeconds));
+        if (!states[c].compare_exchange_strong(expected, kStarted, std::memory_order_acq_rel))
+            return;
+        if (stallSeconds > 0)
+            std::this_thread::sleep_for(std::chrono::duration<double>(stallSeconds));
         runSlot(c, 0);
     }
     // The first run of chunk c to finish publishes its slot.
@@ -109,7 +112,8 @@ struct Job {
             fail();
         }
         uint8_t expected = kStarted;
-        states[c].compare_exchange_strong(expected, uint8_t(kDoneFirst + slot), std::memory_order_acq_rel);
+        states[c].compare_exchange_strong(expected, uint8_t(kDoneFirst + slot),
+                                          std::memory_order_acq_rel);
     }
 
     static constexpr uint8_t kPending = 0, kStarted = 1, kDoneFirst = 2, kDoneRescue = 3;
@@ -128,7 +132,7 @@ thread_local bool tInsideParallel = false;
 // Helper threads and the claim counter. One parallel call at a time (others
 // run serially in their caller).
 class Pool {
-public:
+  public:
     static Pool& instance() {
         static Pool pool;
         return pool;
@@ -188,7 +192,8 @@ public:
             job.states = std::make_unique<std::atomic<uint8_t>[]>(size_t(chunkCount));
             job.stateCapacity = chunkCount;
         }
-        for (int c = 0; c < chunkCount; ++c) job.states[c].store(Job::kPending, std::memory_order_relaxed);
+        for (int c = 0; c < chunkCount; ++c)
+            job.states[c].store(Job::kPending, std::memory_order_relaxed);
         job.rescued = true;
         job.rescuedBody = body;
         job.chunkCount = chunkCount;
@@ -230,7 +235,7 @@ public:
             inFlight_.wait(n, std::memory_order_acquire);
     }
 
-private:
+  private:
     Pool() = default;
 
     // The next unit of the current call (its job through `job`), or -1 when all
@@ -255,7 +260,8 @@ private:
         const uint32_t seen = wake_.load(std::memory_order_acquire);
         try {
             while (int(workers_.size()) < helpers)
-                workers_.emplace_back([this, index = int(workers_.size()), seen] { loop(index, seen); });
+                workers_.emplace_back(
+                    [this, index = int(workers_.size()), seen] { loop(index, seen); });
         } catch (const std::system_error&) {
             // no more threads to be had: the ones there (or the caller alone) do the work
         }
@@ -295,7 +301,7 @@ private:
     std::atomic<uint64_t> state_{0};
     std::atomic<Job*> job_{nullptr};
     std::atomic<int> helpers_{0};
-    std::atomic<int> done_{0};  // units finished in this call
+    std::atomic<int> done_{0};      // units finished in this call
     std::atomic<int> inFlight_{0};  // helpers between waking for a call and running out of chunks
     Job rescueJob_;                 // the job of parallelRescuedChunks
     std::atomic<uint32_t> wake_{0};
@@ -313,8 +319,12 @@ int parseThreadCount(const char* text) {
     return int(n);
 }
 
-int defaultThreadCount() { return threadCount(); }
-void setDefaultThreadCount(int threads) { threadCount() = std::clamp(threads, 1, kMaxThreads); }
+int defaultThreadCount() {
+    return threadCount();
+}
+void setDefaultThreadCount(int threads) {
+    threadCount() = std::clamp(threads, 1, kMaxThreads);
+}
 
 void parallelChunks(int64_t begin, int64_t end, int chunkCount,
                     const std::function<void(int64_t, int64_t, int)>& body, int threads) {
@@ -353,10 +363,18 @@ bool parallelRescuedChunks(int chunkCount, const RescuedBody& body, int threads,
     return false;
 }
 
-int64_t parallelRescueCount() { return gRescues.load(std::memory_order_relaxed); }
-bool parallelHelpersIdle() { return Pool::instance().idle(); }
-void waitParallelHelpers() { Pool::instance().waitIdle(); }
-void setHelperStallForTesting(double seconds) { gHelperStall = std::max(0.0, seconds); }
+int64_t parallelRescueCount() {
+    return gRescues.load(std::memory_order_relaxed);
+}
+bool parallelHelpersIdle() {
+    return Pool::instance().idle();
+}
+void waitParallelHelpers() {
+    Pool::instance().waitIdle();
+}
+void setHelperStallForTesting(double seconds) {
+    gHelperStall = std::max(0.0, seconds);
+}
 
 void parallelFor(int64_t begin, int64_t end, const std::function<void(int64_t)>& body,
                  int threads) {

@@ -15,26 +15,43 @@
 namespace sierra::gpu {
 namespace {
 
-constexpr const char* kEglPackages = "libegl1 libegl-mesa0 libgl1-mesa-dri (and libegl-dev to build)";
+constexpr const char* kEglPackages =
+    "libegl1 libegl-mesa0 libgl1-mesa-dri (and libegl-dev to build)";
 
 std::string eglErrorName(EGLint error) {
     switch (error) {
-        case EGL_SUCCESS: return "EGL_SUCCESS";
-        case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-        case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-        case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-        case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-        case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-        case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-        case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
-        case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-        case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-        case EGL_BAD_NATIVE_PIXMAP: return "EGL_BAD_NATIVE_PIXMAP";
-        case EGL_BAD_NATIVE_WINDOW: return "EGL_BAD_NATIVE_WINDOW";
-        case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-        case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-        case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
-        default: return msg("EGL error 0x", std::hex, error);
+        case EGL_SUCCESS:
+            return "EGL_SUCCESS";
+        case EGL_NOT_INITIALIZED:
+            return "EGL_NOT_INITIALIZED";
+        case EGL_BAD_ACCESS:
+            return "EGL_BAD_ACCESS";
+        case EGL_BAD_ALLOC:
+            return "EGL_BAD_ALLOC";
+        case EGL_BAD_ATTRIBUTE:
+            return "EGL_BAD_ATTRIBUTE";
+        case EGL_BAD_CONFIG:
+            return "EGL_BAD_CONFIG";
+        case EGL_BAD_CONTEXT:
+            return "EGL_BAD_CONTEXT";
+        case EGL_BAD_CURRENT_SURFACE:
+            return "EGL_BAD_CURRENT_SURFACE";
+        case EGL_BAD_DISPLAY:
+            return "EGL_BAD_DISPLAY";
+        case EGL_BAD_MATCH:
+            return "EGL_BAD_MATCH";
+        case EGL_BAD_NATIVE_PIXMAP:
+            return "EGL_BAD_NATIVE_PIXMAP";
+        case EGL_BAD_NATIVE_WINDOW:
+            return "EGL_BAD_NATIVE_WINDOW";
+        case EGL_BAD_PARAMETER:
+            return "EGL_BAD_PARAMETER";
+        case EGL_BAD_SURFACE:
+            return "EGL_BAD_SURFACE";
+        case EGL_CONTEXT_LOST:
+            return "EGL_CONTEXT_LOST";
+        default:
+            return msg("EGL error 0x", std::hex, error);
     }
 }
 
@@ -129,7 +146,7 @@ struct EglContext::State {
 namespace {
 
 void APIENTRY debugCallback(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei,
-                              const GLchar* message, const void* user) {
+                            const GLchar* message, const void* user) {
     // user points at the context's error counter.
     auto* errorCount = static_cast<int*>(const_cast<void*>(user));
     if (type == GL_DEBUG_TYPE_ERROR) {
@@ -155,7 +172,8 @@ EGLDisplay openDisplay(const DeviceApi& api, int requested, std::string& platfor
         }
     auto tryDevice = [&](int index) -> EGLDisplay {
         if (!api.getPlatformDisplay) return EGL_NO_DISPLAY;
-        EGLDisplay d = api.getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[size_t(index)], nullptr);
+        EGLDisplay d =
+            api.getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[size_t(index)], nullptr);
         if (d == EGL_NO_DISPLAY) return d;
         EGLint major = 0, minor = 0;
         if (!eglInitialize(d, &major, &minor)) return EGL_NO_DISPLAY;
@@ -181,7 +199,8 @@ EGLDisplay openDisplay(const DeviceApi& api, int requested, std::string& platfor
             if (d != EGL_NO_DISPLAY) return d;
         }
     if (api.getPlatformDisplay) {
-        EGLDisplay d = api.getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        EGLDisplay d =
+            api.getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         EGLint major = 0, minor = 0;
         if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) {
             platform = msg("Mesa surfaceless platform, EGL ", major, ".", minor);
@@ -208,30 +227,49 @@ EglContext EglContext::create(const ContextDesc& desc) {
     DeviceApi api = DeviceApi::load();
     state->display = openDisplay(api, desc.device, state->platform);
 
-    if (!eglBindAPI(EGL_OPENGL_API)) failEgl("eglBindAPI(EGL_OPENGL_API)", "this EGL has no desktop OpenGL");
+    if (!eglBindAPI(EGL_OPENGL_API))
+        failEgl("eglBindAPI(EGL_OPENGL_API)", "this EGL has no desktop OpenGL");
 
-    const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                                    EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                    EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8,
-                                    EGL_ALPHA_SIZE, 8, EGL_DEPTH_SIZE, 24, EGL_NONE};
+    const EGLint configAttribs[] = {EGL_SURFACE_TYPE,
+                                    EGL_PBUFFER_BIT,
+                                    EGL_RENDERABLE_TYPE,
+                                    EGL_OPENGL_BIT,
+                                    EGL_RED_SIZE,
+                                    8,
+                                    EGL_GREEN_SIZE,
+                                    8,
+                                    EGL_BLUE_SIZE,
+                                    8,
+                                    EGL_ALPHA_SIZE,
+                                    8,
+                                    EGL_DEPTH_SIZE,
+                                    24,
+                                    EGL_NONE};
     EGLConfig config = nullptr;
     EGLint configCount = 0;
-    if (!eglChooseConfig(state->display, configAttribs, &config, 1, &configCount) || configCount < 1)
+    if (!eglChooseConfig(state->display, configAttribs, &config, 1, &configCount) ||
+        configCount < 1)
         throw Error(msg("no EGL config with an RGBA8 + depth24 pbuffer for desktop OpenGL on ",
                         state->platform));
 
     bool debug = desc.debug;
-    if (const char* env = std::getenv("SIERRA_GL_DEBUG")) debug = debug || std::strcmp(env, "0") != 0;
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                     EGL_CONTEXT_MINOR_VERSION, 5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+    if (const char* env = std::getenv("SIERRA_GL_DEBUG"))
+        debug = debug || std::strcmp(env, "0") != 0;
+    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_CONTEXT_OPENGL_DEBUG,
+                                     debug ? EGL_TRUE : EGL_FALSE,
                                      EGL_NONE};
     state->context = eglCreateContext(state->display, config, EGL_NO_CONTEXT, contextAttribs);
     if (state->context == EGL_NO_CONTEXT)
-        failEgl(msg("eglCreateContext (OpenGL 4.5 core) on ", state->platform),
-                "the driver does not offer OpenGL 4.5 core; Mesa >= 20 (libgl1-mesa-dri) gives it on "
-                "the CPU through llvmpipe");
+        failEgl(
+            msg("eglCreateContext (OpenGL 4.5 core) on ", state->platform),
+            "the driver does not offer OpenGL 4.5 core; Mesa >= 20 (libgl1-mesa-dri) gives it on "
+            "the CPU through llvmpipe");
 
     const EGLint surfaceAttribs[] = {EGL_WIDTH, desc.width, EGL_HEIGHT, desc.height, EGL_NONE};
     state->surface = eglCreatePbufferSurface(state->display, config, surfaceAttribs);
@@ -270,7 +308,8 @@ std::vector<EglDeviceInfo> EglContext::listDevices() {
     DeviceApi api = DeviceApi::load();
     std::vector<EglDeviceInfo> result;
     std::vector<EGLDeviceEXT> devices = queryDevices(api);
-    for (int k = 0; k < int(devices.size()); ++k) result.push_back(describe(api, devices[size_t(k)], k));
+    for (int k = 0; k < int(devices.size()); ++k)
+        result.push_back(describe(api, devices[size_t(k)], k));
     return result;
 }
 
@@ -283,13 +322,29 @@ void EglContext::makeCurrent() {
     if (!eglMakeCurrent(state_->display, state_->surface, state_->surface, state_->context))
         failEgl("eglMakeCurrent");
 }
-int EglContext::width() const { return state_->width; }
-int EglContext::height() const { return state_->height; }
-const std::string& EglContext::renderer() const { return state_->renderer; }
-const std::string& EglContext::vendor() const { return state_->vendor; }
-const std::string& EglContext::version() const { return state_->version; }
-const std::string& EglContext::platform() const { return state_->platform; }
-int EglContext::glErrorCount() const { return state_->glErrors; }
-void EglContext::resetGlErrorCount() { state_->glErrors = 0; }
+int EglContext::width() const {
+    return state_->width;
+}
+int EglContext::height() const {
+    return state_->height;
+}
+const std::string& EglContext::renderer() const {
+    return state_->renderer;
+}
+const std::string& EglContext::vendor() const {
+    return state_->vendor;
+}
+const std::string& EglContext::version() const {
+    return state_->version;
+}
+const std::string& EglContext::platform() const {
+    return state_->platform;
+}
+int EglContext::glErrorCount() const {
+    return state_->glErrors;
+}
+void EglContext::resetGlErrorCount() {
+    state_->glErrors = 0;
+}
 
 }  // namespace sierra::gpu

@@ -6,22 +6,42 @@ namespace sierra::gpu {
 
 namespace {
 
-constexpr std::array<GLenum, 14> kCapabilities = {
-    GL_DEPTH_TEST,          GL_CULL_FACE,           GL_BLEND,
-    GL_SCISSOR_TEST,        GL_STENCIL_TEST,        GL_PRIMITIVE_RESTART,
-    GL_PRIMITIVE_RESTART_FIXED_INDEX, GL_POLYGON_OFFSET_FILL, GL_POLYGON_OFFSET_LINE,
-    GL_SAMPLE_ALPHA_TO_COVERAGE, GL_PROGRAM_POINT_SIZE, GL_FRAMEBUFFER_SRGB,
-    GL_MULTISAMPLE,         GL_LINE_SMOOTH};
-constexpr std::array<const char*, 14> kCapabilityNames = {
-    "DEPTH_TEST",     "CULL_FACE",           "BLEND",               "SCISSOR_TEST",
-    "STENCIL_TEST",   "PRIMITIVE_RESTART",   "PRIMITIVE_RESTART_FIXED_INDEX",
-    "POLYGON_OFFSET_FILL", "POLYGON_OFFSET_LINE", "SAMPLE_ALPHA_TO_COVERAGE",
-    "PROGRAM_POINT_SIZE", "FRAMEBUFFER_SRGB", "MULTISAMPLE", "LINE_SMOOTH"};
-constexpr std::array<GLenum, 3> kTextureTargets = {GL_TEXTURE_1D, GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY};
+constexpr std::array<GLenum, 14> kCapabilities = {GL_DEPTH_TEST,
+                                                  GL_CULL_FACE,
+                                                  GL_BLEND,
+                                                  GL_SCISSOR_TEST,
+                                                  GL_STENCIL_TEST,
+                                                  GL_PRIMITIVE_RESTART,
+                                                  GL_PRIMITIVE_RESTART_FIXED_INDEX,
+                                                  GL_POLYGON_OFFSET_FILL,
+                                                  GL_POLYGON_OFFSET_LINE,
+                                                  GL_SAMPLE_ALPHA_TO_COVERAGE,
+                                                  GL_PROGRAM_POINT_SIZE,
+                                                  GL_FRAMEBUFFER_SRGB,
+                                                  GL_MULTISAMPLE,
+                                                  GL_LINE_SMOOTH};
+constexpr std::array<const char*, 14> kCapabilityNames = {"DEPTH_TEST",
+                                                          "CULL_FACE",
+                                                          "BLEND",
+                                                          "SCISSOR_TEST",
+                                                          "STENCIL_TEST",
+                                                          "PRIMITIVE_RESTART",
+                                                          "PRIMITIVE_RESTART_FIXED_INDEX",
+                                                          "POLYGON_OFFSET_FILL",
+                                                          "POLYGON_OFFSET_LINE",
+                                                          "SAMPLE_ALPHA_TO_COVERAGE",
+                                                          "PROGRAM_POINT_SIZE",
+                                                          "FRAMEBUFFER_SRGB",
+                                                          "MULTISAMPLE",
+                                                          "LINE_SMOOTH"};
+constexpr std::array<GLenum, 3> kTextureTargets = {GL_TEXTURE_1D, GL_TEXTURE_2D,
+                                                   GL_TEXTURE_2D_ARRAY};
 constexpr std::array<GLenum, 3> kTextureBindings = {GL_TEXTURE_BINDING_1D, GL_TEXTURE_BINDING_2D,
                                                     GL_TEXTURE_BINDING_2D_ARRAY};
 
-void setEnabled(GLenum cap, GLboolean on) { on ? glEnable(cap) : glDisable(cap); }
+void setEnabled(GLenum cap, GLboolean on) {
+    on ? glEnable(cap) : glDisable(cap);
+}
 
 template <typename T, size_t N>
 std::string list(const std::array<T, N>& a) {
@@ -113,7 +133,8 @@ std::string GlState::differences(const GlState& o) const {
     auto array = [&](const char* name, const auto& a, const auto& b) {
         if (!(a == b)) out += msg(name, ": ", list(a), " -> ", list(b), "\n");
     };
-    for (size_t k = 0; k < enabled.size(); ++k) field(kCapabilityNames[k], int(enabled[k]), int(o.enabled[k]));
+    for (size_t k = 0; k < enabled.size(); ++k)
+        field(kCapabilityNames[k], int(enabled[k]), int(o.enabled[k]));
     field("depth func", depthFunc, o.depthFunc);
     field("depth mask", int(depthMask), int(o.depthMask));
     array("colour mask", colourMask, o.colourMask);
@@ -131,8 +152,8 @@ std::string GlState::differences(const GlState& o) const {
     field("active texture", activeTexture, o.activeTexture);
     for (int unit = 0; unit < kTextureUnits; ++unit)
         if (textures[size_t(unit)] != o.textures[size_t(unit)])
-            out += msg("texture unit ", unit, " (1D,2D,2D array): ", list(textures[size_t(unit)]), " -> ",
-                       list(o.textures[size_t(unit)]), "\n");
+            out += msg("texture unit ", unit, " (1D,2D,2D array): ", list(textures[size_t(unit)]),
+                       " -> ", list(o.textures[size_t(unit)]), "\n");
     field("pack alignment", packAlignment, o.packAlignment);
     field("unpack alignment", unpackAlignment, o.unpackAlignment);
     array("viewport", viewport, o.viewport);

@@ -5,12 +5,24 @@
 namespace sierra::gpu {
 
 namespace detail {
-void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
-void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
-void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-void deleteProgram(GLuint id) { glDeleteProgram(id); }
-void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
+void deleteBuffer(GLuint id) {
+    glDeleteBuffers(1, &id);
+}
+void deleteVertexArray(GLuint id) {
+    glDeleteVertexArrays(1, &id);
+}
+void deleteTexture(GLuint id) {
+    glDeleteTextures(1, &id);
+}
+void deleteFramebuffer(GLuint id) {
+    glDeleteFramebuffers(1, &id);
+}
+void deleteProgram(GLuint id) {
+    glDeleteProgram(id);
+}
+void deleteQuery(GLuint id) {
+    glDeleteQueries(1, &id);
+}
 }  // namespace detail
 
 Buffer Buffer::create(const BufferDesc& desc) {
@@ -40,7 +52,9 @@ Texture Texture::create(const TextureDesc& desc) {
     texture.target_ = desc.target;
     texture.layers_ = desc.target == GL_TEXTURE_2D_ARRAY ? desc.layers : 1;
     switch (desc.target) {
-        case GL_TEXTURE_1D: glTextureStorage1D(id, desc.levels, desc.format, desc.width); break;
+        case GL_TEXTURE_1D:
+            glTextureStorage1D(id, desc.levels, desc.format, desc.width);
+            break;
         case GL_TEXTURE_2D:
             glTextureStorage2D(id, desc.levels, desc.format, desc.width, desc.height);
             break;
@@ -52,12 +66,14 @@ Texture Texture::create(const TextureDesc& desc) {
             glTextureStorage2DMultisample(id, desc.samples, desc.format, desc.width, desc.height,
                                           GL_TRUE);
             break;
-        default: throw Error(msg("unsupported texture target 0x", std::hex, desc.target));
+        default:
+            throw Error(msg("unsupported texture target 0x", std::hex, desc.target));
     }
     if (desc.target != GL_TEXTURE_2D_MULTISAMPLE) {
         // With mip levels the minification filter is trilinear; the magnification
         // filter never uses mips.
-        GLenum minFilter = desc.levels > 1 && desc.filter == GL_LINEAR ? GL_LINEAR_MIPMAP_LINEAR : desc.filter;
+        GLenum minFilter =
+            desc.levels > 1 && desc.filter == GL_LINEAR ? GL_LINEAR_MIPMAP_LINEAR : desc.filter;
         glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(minFilter));
         glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(desc.filter));
         glTextureParameteri(id, GL_TEXTURE_WRAP_S, GLint(desc.wrap));

@@ -54,7 +54,8 @@ void appendFile(Preprocessed& out, std::string_view file, std::string_view defin
     }
 }
 
-Preprocessed preprocess(std::string_view file, std::string_view defines, std::span<const IncludeAlias> aliases) {
+Preprocessed preprocess(std::string_view file, std::string_view defines,
+                        std::span<const IncludeAlias> aliases) {
     Preprocessed out;
     appendFile(out, file, defines, aliases, 0);
     return out;
@@ -142,7 +143,8 @@ Program Program::create(const ProgramDesc& desc) {
     GLint ok = 0;
     glGetProgramiv(id, GL_LINK_STATUS, &ok);
     if (!ok)
-        throw Error(msg("program ", names, " failed to link:\n", infoLog(id, glGetProgramiv, glGetProgramInfoLog)));
+        throw Error(msg("program ", names, " failed to link:\n",
+                        infoLog(id, glGetProgramiv, glGetProgramInfoLog)));
     return program;
 }
 

@@ -34,7 +34,8 @@ PixelReader::PixelReader(int width, int height) : width_(width), height_(height)
 void PixelReader::collect(int slot, Image& out) {
     fences_[slot].wait();
     size_t bytes = size_t(width_) * height_ * 4;
-    const void* data = glMapNamedBufferRange(pbos_[slot].id(), 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
+    const void* data =
+        glMapNamedBufferRange(pbos_[slot].id(), 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
     if (!data) throw Error("glMapNamedBufferRange failed on a read-back pixel buffer");
     out.width = width_;
     out.height = height_;

@@ -15,8 +15,9 @@ namespace sierra::render {
 glm::vec3 Camera::forward() const {
     glm::vec3 d = target - position;
     float len = glm::length(d);
-    SIERRA_CHECK(len > 0.0f && std::isfinite(len), "the camera position and target must differ, got (",
-                 position.x, ", ", position.y, ", ", position.z, ") for both");
+    SIERRA_CHECK(len > 0.0f && std::isfinite(len),
+                 "the camera position and target must differ, got (", position.x, ", ", position.y,
+                 ", ", position.z, ") for both");
     return d / len;
 }
 
@@ -27,7 +28,9 @@ glm::vec3 Camera::up() const {
     return std::abs(f.y) > 0.999f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
-glm::mat4 Camera::view() const { return glm::lookAt(position, target, up()); }
+glm::mat4 Camera::view() const {
+    return glm::lookAt(position, target, up());
+}
 
 glm::mat4 Camera::projectionMatrix(float aspect) const {
     if (projection == Projection::Orthographic) {
@@ -43,7 +46,8 @@ std::array<glm::vec4, 6> Camera::frustumPlanes(float aspect) const {
     glm::mat4 m = viewProjection(aspect);
     std::array<sbt::Plane, 6> sbtPlanes = sbt::frustumPlanes(glm::value_ptr(m));
     std::array<glm::vec4, 6> planes;
-    for (size_t k = 0; k < 6; ++k) planes[k] = {sbtPlanes[k].a, sbtPlanes[k].b, sbtPlanes[k].c, sbtPlanes[k].d};
+    for (size_t k = 0; k < 6; ++k)
+        planes[k] = {sbtPlanes[k].a, sbtPlanes[k].b, sbtPlanes[k].c, sbtPlanes[k].d};
     return planes;
 }
 
@@ -60,7 +64,8 @@ LodView Camera::lodView(int viewportHeight) const {
 
 std::array<glm::vec3, 8> SceneBounds::corners() const {
     std::array<glm::vec3, 8> c;
-    for (int k = 0; k < 8; ++k) c[size_t(k)] = {k & 1 ? max.x : min.x, k & 2 ? max.y : min.y, k & 4 ? max.z : min.z};
+    for (int k = 0; k < 8; ++k)
+        c[size_t(k)] = {k & 1 ? max.x : min.x, k & 2 ? max.y : min.y, k & 4 ? max.z : min.z};
     return c;
 }
 
@@ -114,7 +119,8 @@ Basis basisFor(glm::vec3 dir) {
 
 // The smallest distance from the target along dir at which every corner lies
 // inside the frame with the margin.
-float fitDistance(const SceneBounds& b, glm::vec3 target, const Basis& basis, float fovY, float aspect) {
+float fitDistance(const SceneBounds& b, glm::vec3 target, const Basis& basis, float fovY,
+                  float aspect) {
     float tanY = std::tan(glm::radians(fovY) * 0.5f) * (1.0f - kFrameMargin);
     float tanX = tanY * aspect;
     float distance = 0.0f;
@@ -132,7 +138,8 @@ float fitOrthoHeight(const SceneBounds& b, glm::vec3 target, const Basis& basis,
     float half = 0.0f;
     for (const glm::vec3& c : b.framePoints()) {
         glm::vec3 q = c - target;
-        half = std::max({half, std::abs(glm::dot(q, basis.up)), std::abs(glm::dot(q, basis.right)) / aspect});
+        half = std::max(
+            {half, std::abs(glm::dot(q, basis.up)), std::abs(glm::dot(q, basis.right)) / aspect});
     }
     return std::max(2.0f * half / (1.0f - kFrameMargin), 1e-3f);
 }
@@ -141,8 +148,8 @@ float fitOrthoHeight(const SceneBounds& b, glm::vec3 target, const Basis& basis,
 
 Camera framedCamera(const SceneBounds& bounds, const FramingDesc& desc) {
     SIERRA_CHECK(desc.aspect > 0.0f, "frame aspect ratio must be positive");
-    SIERRA_CHECK(desc.fovYDegrees > 0.0f && desc.fovYDegrees < 180.0f, "field of view must be in (0, 180) degrees, got ",
-                 desc.fovYDegrees);
+    SIERRA_CHECK(desc.fovYDegrees > 0.0f && desc.fovYDegrees < 180.0f,
+                 "field of view must be in (0, 180) degrees, got ", desc.fovYDegrees);
     glm::vec3 dir = compassDirection(desc.azimuthDeg, desc.elevationDeg);
     Basis basis = basisFor(dir);
     Camera c;
@@ -156,7 +163,8 @@ Camera framedCamera(const SceneBounds& bounds, const FramingDesc& desc) {
         // Far enough to have the whole box in front; the distance does not change the picture.
         if (distance <= 0.0f) distance = 2.0f * extent;
     } else if (distance <= 0.0f) {
-        distance = std::max(fitDistance(bounds, desc.target, basis, desc.fovYDegrees, desc.aspect), 1e-3f * extent);
+        distance = std::max(fitDistance(bounds, desc.target, basis, desc.fovYDegrees, desc.aspect),
+                            1e-3f * extent);
     }
     c.position = desc.target + dir * distance;
     fitClipPlanes(c, bounds);
@@ -167,24 +175,30 @@ Camera defaultCamera(const SceneBounds& bounds, float aspect, float fovYDegrees)
     return orbitPath(bounds, 1, aspect, fovYDegrees).front();
 }
 
-std::vector<Camera> orbitPath(const SceneBounds& bounds, int frames, float aspect, float fovYDegrees,
-                              float elevationDeg) {
+std::vector<Camera> orbitPath(const SceneBounds& bounds, int frames, float aspect,
+                              float fovYDegrees, float elevationDeg) {
     SIERRA_CHECK(frames > 0, "a camera path needs at least one frame, got ", frames);
     glm::vec3 target = defaultTarget(bounds);
     auto azimuth = [&](int k) { return 225.0f + 360.0f * float(k) / float(frames); };
     // One radius for the whole orbit: the largest any of its azimuths needs.
     float distance = 0.0f;
     for (int k = 0; k < frames; ++k) {
-        Camera c = framedCamera(bounds, {.target = target, .azimuthDeg = azimuth(k), .elevationDeg = elevationDeg,
-                                         .fovYDegrees = fovYDegrees, .aspect = aspect});
+        Camera c = framedCamera(bounds, {.target = target,
+                                         .azimuthDeg = azimuth(k),
+                                         .elevationDeg = elevationDeg,
+                                         .fovYDegrees = fovYDegrees,
+                                         .aspect = aspect});
         distance = std::max(distance, glm::distance(c.position, c.target));
     }
     std::vector<Camera> path;
     path.reserve(size_t(frames));
     for (int k = 0; k < frames; ++k)
-        path.push_back(framedCamera(bounds, {.target = target, .azimuthDeg = azimuth(k),
-                                             .elevationDeg = elevationDeg, .fovYDegrees = fovYDegrees,
-                                             .aspect = aspect, .distance = distance}));
+        path.push_back(framedCamera(bounds, {.target = target,
+                                             .azimuthDeg = azimuth(k),
+                                             .elevationDeg = elevationDeg,
+                                             .fovYDegrees = fovYDegrees,
+                                             .aspect = aspect,
+                                             .distance = distance}));
     return path;
 }
 
@@ -217,13 +231,13 @@ glm::vec3 catmullRom(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, flo
 }
 }  // namespace
 
-std::vector<Camera> keyframePath(const SceneBounds& bounds, const std::vector<Keyframe>& keys, int frames,
-                                 float fovYDegrees) {
+std::vector<Camera> keyframePath(const SceneBounds& bounds, const std::vector<Keyframe>& keys,
+                                 int frames, float fovYDegrees) {
     SIERRA_CHECK(frames > 0, "a camera path needs at least one frame, got ", frames);
     SIERRA_CHECK(!keys.empty(), "a keyframe path needs at least one keyframe");
     for (size_t k = 1; k < keys.size(); ++k)
-        SIERRA_CHECK(keys[k].time > keys[k - 1].time, "keyframe times must increase: keyframe ", k, " at ",
-                     keys[k].time, " follows ", keys[k - 1].time);
+        SIERRA_CHECK(keys[k].time > keys[k - 1].time, "keyframe times must increase: keyframe ", k,
+                     " at ", keys[k].time, " follows ", keys[k - 1].time);
     std::vector<Camera> path;
     path.reserve(size_t(frames));
     size_t last = keys.size() - 1;
@@ -238,10 +252,12 @@ std::vector<Camera> keyframePath(const SceneBounds& bounds, const std::vector<Ke
             c.position = keys[0].position;
             c.target = keys[0].target;
         } else {
-            float t = std::clamp((time - keys[i].time) / (keys[i + 1].time - keys[i].time), 0.0f, 1.0f);
+            float t =
+                std::clamp((time - keys[i].time) / (keys[i + 1].time - keys[i].time), 0.0f, 1.0f);
             const Keyframe& k0 = keys[i == 0 ? 0 : i - 1];
             const Keyframe& k3 = keys[std::min(i + 2, last)];
-            c.position = catmullRom(k0.position, keys[i].position, keys[i + 1].position, k3.position, t);
+            c.position =
+                catmullRom(k0.position, keys[i].position, keys[i + 1].position, k3.position, t);
             c.target = catmullRom(k0.target, keys[i].target, keys[i + 1].target, k3.target, t);
         }
         fitClipPlanes(c, bounds);

@@ -21,11 +21,14 @@ void writePng(const std::string& path, const gpu::Image& image, bool alpha) {
     fs::path target(path);
     std::error_code ec;
     if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-    if (ec) throw Error(msg("cannot create directory ", target.parent_path().string(), ": ", ec.message()));
+    if (ec)
+        throw Error(
+            msg("cannot create directory ", target.parent_path().string(), ": ", ec.message()));
     const int channels = alpha ? 4 : 3;
     std::vector<uint8_t> rgb(size_t(image.width) * image.height * size_t(channels));
     for (size_t p = 0, n = size_t(image.width) * image.height; p < n; ++p)
-        for (int c = 0; c < channels; ++c) rgb[p * size_t(channels) + size_t(c)] = image.rgba[p * 4 + size_t(c)];
+        for (int c = 0; c < channels; ++c)
+            rgb[p * size_t(channels) + size_t(c)] = image.rgba[p * 4 + size_t(c)];
     std::vector<uint8_t> png;
     auto append = [](void* context, void* data, int size) {
         auto* out = static_cast<std::vector<uint8_t>*>(context);

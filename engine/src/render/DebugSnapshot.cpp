@@ -13,7 +13,8 @@ namespace sierra::render {
 namespace {
 
 std::string vec(const glm::vec3& v, int decimals = 1) {
-    return msg("(", fixed(v.x, decimals), ", ", fixed(v.y, decimals), ", ", fixed(v.z, decimals), ")");
+    return msg("(", fixed(v.x, decimals), ", ", fixed(v.y, decimals), ", ", fixed(v.z, decimals),
+               ")");
 }
 
 std::string bytes(double b) {
@@ -29,7 +30,8 @@ int debugColumnWidth(int width) {
 }
 
 DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
-    SIERRA_CHECK(f.scene && f.field && f.renderer && !f.frames.empty(), "debug panel: missing facts");
+    SIERRA_CHECK(f.scene && f.field && f.renderer && !f.frames.empty(),
+                 "debug panel: missing facts");
     const scene::Scene& s = *f.scene;
     const terrain::Heightfield& field = *f.field;
     TerrainGpu& gpu = f.renderer->terrain();
@@ -45,7 +47,8 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         realW = realH = 0;
         for (int j = 0; j < field.height(); ++j)
             for (int i = 0; i < field.width(); ++i)
-                if (field.valid(i, j)) realW = std::max(realW, i + 1), realH = std::max(realH, j + 1);
+                if (field.valid(i, j))
+                    realW = std::max(realW, i + 1), realH = std::max(realH, j + 1);
         for (int j = 0; j < realH; ++j)
             for (int i = 0; i < realW; ++i) noData += field.valid(i, j) ? 0 : 1;
     }
@@ -53,15 +56,17 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     DebugSection source{.title = "Source"};
     source.rows = {
         {"file", s.terrain.heightmap.empty()
-                     ? msg("generated ", s.terrain.generateSize, "^2, seed ", s.terrain.seed, ", roughness ",
-                           s.terrain.roughness)
+                     ? msg("generated ", s.terrain.generateSize, "^2, seed ", s.terrain.seed,
+                           ", roughness ", s.terrain.roughness)
                      : s.terrain.heightmap},
         {"real size", msg(realW, " x ", realH, " samples")},
         {"padded size", msg(field.width(), " x ", field.height(), " samples")},
-        {"spacing", msg(fixed(field.spacingX(), 2), " x ", fixed(field.spacingZ(), 2), " world units")},
+        {"spacing",
+         msg(fixed(field.spacingX(), 2), " x ", fixed(field.spacingZ(), 2), " world units")},
         {"vertical scale", msg(fixed(field.verticalScale(), 4), " world / stored")},
         {"height range", msg(fixed(range.x, 1), " .. ", fixed(range.y, 1), " world units")},
-        {"sea level", gpu.hasWater() ? msg(fixed(gpu.worldSeaLevel(), 1), " world units") : "no water"},
+        {"sea level",
+         gpu.hasWater() ? msg(fixed(gpu.worldSeaLevel(), 1), " world units") : "no water"},
         {"no-data samples", msg(noData)},
     };
     panel.sections.push_back(std::move(source));
@@ -83,16 +88,17 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         {"position", vec(f.camera.position)},
         {"target", vec(f.camera.target)},
         {"fov", msg(fixed(f.camera.fovYDegrees, 1), " deg")},
-        {"level of detail", msg(lodName(f.draw.lod), f.draw.lod == Lod::Sbt
-                                                         ? msg(", geomorph ", f.draw.geomorph ? "on" : "off",
-                                                               ", culling ", f.draw.cull ? "on" : "off")
-                                                         : "")},
+        {"level of detail",
+         msg(lodName(f.draw.lod), f.draw.lod == Lod::Sbt
+                                      ? msg(", geomorph ", f.draw.geomorph ? "on" : "off",
+                                            ", culling ", f.draw.cull ? "on" : "off")
+                                      : "")},
     };
     panel.sections.push_back(std::move(camera));
 
     DebugSection times{.title = "Frame time", .column = 1};
-    StageSeries refine{.name = "refine + strip"}, upload{.name = "upload"}, draw{.name = "draw (GL timer)"},
-        frame{.name = "frame (wall clock)"};
+    StageSeries refine{.name = "refine + strip"}, upload{.name = "upload"},
+        draw{.name = "draw (GL timer)"}, frame{.name = "frame (wall clock)"};
     for (const DrawStats& st : f.frames) {
         refine.values.push_back(float(st.refineMs));
         upload.values.push_back(float(st.uploadMs));
@@ -100,23 +106,26 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     }
     frame.values = f.frameMs;
     times.series = {refine, upload, draw, frame};
-    times.rows = {{"error pass", deterministic ? std::string("-- ms") : msg(fixed(gpu.errorPassMs(), 1), " ms")},
+    times.rows = {{"error pass",
+                   deterministic ? std::string("-- ms") : msg(fixed(gpu.errorPassMs(), 1), " ms")},
                   {"read-back", "in the frame time"}};
     panel.sections.push_back(std::move(times));
 
     const DrawStats& last = f.frames.back();
     DebugSection mesh{.title = "Mesh", .column = 1};
     if (f.draw.lod == Lod::Sbt) {
-        MeshInspection m = inspectMesh(gpu, f.camera, f.frameWidth, f.height, f.draw.tau, f.draw.cull, f.draw.threads,
-                                       f.draw.geomorph);
+        MeshInspection m = inspectMesh(gpu, f.camera, f.frameWidth, f.height, f.draw.tau,
+                                       f.draw.cull, f.draw.threads, f.draw.geomorph);
         mesh.rows = {
             {"triangles", msg(m.triangles)},
             {"distinct vertices", msg(m.distinctVertices)},
-            {"indices / triangle", fixed(m.triangles ? double(m.indices) / double(m.triangles) : 0.0, 3)},
+            {"indices / triangle",
+             fixed(m.triangles ? double(m.indices) / double(m.triangles) : 0.0, 3)},
             {"bytes uploaded", msg(m.indices * 4, " (", bytes(double(m.indices) * 4.0), ")")},
             {"tau, lambda", msg(fixed(m.tau, 2), " px, ", fixed(m.lambda, 1), " px")},
             {"max screen error", msg(fixed(m.maxProjectedErrorPx, 3), " px")},
-            {"culled subtrees", f.draw.cull ? msg(m.culledSubtrees, " (frustum)") : std::string("0 (culling off)")},
+            {"culled subtrees",
+             f.draw.cull ? msg(m.culledSubtrees, " (frustum)") : std::string("0 (culling off)")},
         };
         Histogram h{.name = "leaves per level", .binLabel = "level"};
         h.counts.assign(m.levelCounts.begin(), m.levelCounts.end());
@@ -138,7 +147,8 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         {"CPU strip", bytes(double(last.indices) * 4.0)},
         {"GPU data RGBA32F", bytes(samples * 16.0)},
         {"GPU heights R32F", bytes(samples * 4.0)},
-        {"GPU index ring", msg(gpu::StreamRing::kRegions, " x >= ", bytes(4.0 * 1024 * 1024), " regions")},
+        {"GPU index ring",
+         msg(gpu::StreamRing::kRegions, " x >= ", bytes(4.0 * 1024 * 1024), " regions")},
         {"GPU colour ramp", bytes(1024.0 * 4.0)},
     };
     memory.note = "from the layouts; the ring grows to the largest frame";
@@ -147,12 +157,24 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     DebugSection style{.title = "Style", .column = 1};
     style.params = {
         {.kind = StyleParam::Kind::Flag, .name = "wireframe", .flag = s.style.wireframe},
-        {.kind = StyleParam::Kind::Number, .name = "tree line", .value = s.style.treeLine, .min = 0.0f,
-         .max = 9000.0f, .text = "m"},
-        {.kind = StyleParam::Kind::Number, .name = "snow line", .value = s.style.snowLine, .min = 0.0f,
-         .max = 9000.0f, .text = "m"},
+        {.kind = StyleParam::Kind::Number,
+         .name = "tree line",
+         .value = s.style.treeLine,
+         .min = 0.0f,
+         .max = 9000.0f,
+         .text = "m"},
+        {.kind = StyleParam::Kind::Number,
+         .name = "snow line",
+         .value = s.style.snowLine,
+         .min = 0.0f,
+         .max = 9000.0f,
+         .text = "m"},
         {.kind = StyleParam::Kind::Text, .name = "colour table", .text = s.style.cpt},
-        {.kind = StyleParam::Kind::Number, .name = "tau", .value = f.draw.tau, .min = 0.0f, .max = 16.0f,
+        {.kind = StyleParam::Kind::Number,
+         .name = "tau",
+         .value = f.draw.tau,
+         .min = 0.0f,
+         .max = 16.0f,
          .text = "px"},
     };
     if (s.style.colourBy == "error") {
@@ -180,7 +202,8 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         }
         style.note = "colour: each triangle's SBT level";
     }
-    style.params.push_back({.kind = StyleParam::Kind::Text, .name = "colour by", .text = s.style.colourBy});
+    style.params.push_back(
+        {.kind = StyleParam::Kind::Text, .name = "colour by", .text = s.style.colourBy});
     panel.sections.push_back(std::move(style));
     return panel;
 }

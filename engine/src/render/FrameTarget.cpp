@@ -12,10 +12,13 @@ FrameTarget FrameTarget::create(const FrameTargetDesc& desc) {
     if (desc.samples > 0) {
         GLint maxSamples = 0;
         glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-        SIERRA_CHECK(desc.samples <= maxSamples, desc.samples, "x multisampling requested; this GL offers at most ",
-                     maxSamples);
-        gpu::TextureDesc t{.target = GL_TEXTURE_2D_MULTISAMPLE, .format = GL_RGBA8,
-                           .width = desc.width, .height = desc.height, .samples = desc.samples};
+        SIERRA_CHECK(desc.samples <= maxSamples, desc.samples,
+                     "x multisampling requested; this GL offers at most ", maxSamples);
+        gpu::TextureDesc t{.target = GL_TEXTURE_2D_MULTISAMPLE,
+                           .format = GL_RGBA8,
+                           .width = desc.width,
+                           .height = desc.height,
+                           .samples = desc.samples};
         target.colour_ = gpu::Texture::create(t);
         t.format = GL_DEPTH_COMPONENT32F;
         target.depth_ = gpu::Texture::create(t);

@@ -2,11 +2,13 @@
 
 namespace sierra::render {
 
-static_assert(sizeof(FrameUniformData) == 64 + 7 * 16, "FrameUniformData must match std140 `uniform Frame`");
+static_assert(sizeof(FrameUniformData) == 64 + 7 * 16,
+              "FrameUniformData must match std140 `uniform Frame`");
 
 FrameUniforms FrameUniforms::create() {
     FrameUniforms u;
-    u.buffer_ = gpu::Buffer::create({.size = sizeof(FrameUniformData), .flags = GL_DYNAMIC_STORAGE_BIT});
+    u.buffer_ =
+        gpu::Buffer::create({.size = sizeof(FrameUniformData), .flags = GL_DYNAMIC_STORAGE_BIT});
     return u;
 }
 

@@ -25,8 +25,8 @@ int triangleLevel(uint32_t a, uint32_t b, uint32_t c, int side) {
     return std::countr_zero(ratio);
 }
 
-MeshInspection inspectMesh(TerrainGpu& terrain, const Camera& camera, int width, int height, float tau, bool cull,
-                           int threads, bool geomorph) {
+MeshInspection inspectMesh(TerrainGpu& terrain, const Camera& camera, int width, int height,
+                           float tau, bool cull, int threads, bool geomorph) {
     // The same view as SbtStream::prepare builds.
     const LodView lv = camera.lodView(height);
     SbtView view;
@@ -78,7 +78,8 @@ MeshInspection inspectMesh(TerrainGpu& terrain, const Camera& camera, int width,
         // The split vertex where the refiner measures its distance: on the
         // refined surface (water flattened to sea level).
         const int mi = int(si / 2), mj = int(sj / 2);
-        const glm::vec3 world(float(mi) * spacing.x, surface.worldHeight(mi, mj), float(mj) * spacing.y);
+        const glm::vec3 world(float(mi) * spacing.x, surface.worldHeight(mi, mj),
+                              float(mj) * spacing.y);
         const double d = glm::length(world - lv.eye) - radii[m];
         const double px = d > 0.0 ? lv.lambda * e / d : INFINITY;
         worst = std::max(worst, px);

@@ -15,19 +15,31 @@ struct SbtBridge::State {
     const terrain::Heightfield* field = nullptr;
 };
 
-SbtBridge::SbtBridge(const terrain::Heightfield& field, int threads) : state_(std::make_unique<State>()) {
+SbtBridge::SbtBridge(const terrain::Heightfield& field, int threads)
+    : state_(std::make_unique<State>()) {
     state_->field = &field;
     state_->errors = sbt::computeVertexErrors(field, threads);
     state_->morphBase = sbt::buildMorphBase(field, threads);
-    state_->refiner = std::make_unique<sbt::Refiner>(field, state_->errors, sbt::RefinerDesc{.threads = threads});
+    state_->refiner =
+        std::make_unique<sbt::Refiner>(field, state_->errors, sbt::RefinerDesc{.threads = threads});
 }
 
 SbtBridge::~SbtBridge() = default;
-std::span<const float> SbtBridge::errors() const { return state_->errors.error; }
-const terrain::Heightfield& SbtBridge::field() const { return *state_->field; }
-std::span<const float> SbtBridge::radii() const { return state_->errors.radius; }
-std::span<const float> SbtBridge::morphBase() const { return state_->morphBase; }
-void SbtBridge::releaseMorphBase() { std::vector<float>().swap(state_->morphBase); }
+std::span<const float> SbtBridge::errors() const {
+    return state_->errors.error;
+}
+const terrain::Heightfield& SbtBridge::field() const {
+    return *state_->field;
+}
+std::span<const float> SbtBridge::radii() const {
+    return state_->errors.radius;
+}
+std::span<const float> SbtBridge::morphBase() const {
+    return state_->morphBase;
+}
+void SbtBridge::releaseMorphBase() {
+    std::vector<float>().swap(state_->morphBase);
+}
 
 uint64_t SbtBridge::refineView(const SbtView& view, std::vector<uint32_t>& out, int threads) {
     sbt::ViewParams params;
@@ -46,7 +58,9 @@ uint64_t SbtBridge::refineView(const SbtView& view, std::vector<uint32_t>& out, 
     return uint64_t(state_->mesh.triangleCount);
 }
 
-int64_t SbtBridge::lastCulledSubtrees() const { return state_->mesh.culledSubtrees; }
+int64_t SbtBridge::lastCulledSubtrees() const {
+    return state_->mesh.culledSubtrees;
+}
 
 std::vector<uint32_t> SbtBridge::fullGridTriangles() const {
     sbt::StripMesh full;

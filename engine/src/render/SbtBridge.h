@@ -27,14 +27,14 @@ struct SbtView {
 };
 
 class SbtBridge {
-public:
+  public:
     SbtBridge(const terrain::Heightfield& field, int threads);
     ~SbtBridge();
 
-    std::span<const float> errors() const;     // world units, per sample
-    std::span<const float> radii() const;      // world units, per sample
+    std::span<const float> errors() const;      // world units, per sample
+    std::span<const float> radii() const;       // world units, per sample
     const terrain::Heightfield& field() const;  // the refined surface (outlives the bridge)
-    std::span<const float> morphBase() const;  // world heights, per sample
+    std::span<const float> morphBase() const;   // world heights, per sample
     // Frees the morph base once it is on the GPU (4 bytes per sample).
     void releaseMorphBase();
 
@@ -48,7 +48,7 @@ public:
     // diagonals of the SBT's finest level.
     std::vector<uint32_t> fullGridTriangles() const;
 
-private:
+  private:
     struct State;
     std::unique_ptr<State> state_;
 };

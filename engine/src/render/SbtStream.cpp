@@ -1,9 +1,9 @@
 #include <sierra/render/SbtStream.h>
 
+#include "render/SbtBridge.h"
 #include <sierra/core/Error.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/TerrainGpu.h>
-#include "render/SbtBridge.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,13 +17,16 @@ Lod parseLod(const std::string& name) {
     throw Error(msg("unknown level of detail '", name, "': use sbt or full"));
 }
 
-const char* lodName(Lod lod) { return lod == Lod::Sbt ? "sbt" : lod == Lod::Full ? "full" : "tin"; }
+const char* lodName(Lod lod) {
+    return lod == Lod::Sbt ? "sbt" : lod == Lod::Full ? "full" : "tin";
+}
 
 void MeshDraw::draw() const {
     glVertexArrayElementBuffer(vertexArray, elementBuffer);
     glBindVertexArray(vertexArray);
     glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);  // 0xFFFFFFFF joins strips
-    GL_CHECK(glDrawElements(mode, count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(byteOffset)));
+    GL_CHECK(
+        glDrawElements(mode, count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(byteOffset)));
 }
 
 SbtStream SbtStream::create() {
@@ -35,8 +38,8 @@ SbtStream SbtStream::create() {
 
 MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width, int height,
                             const LodSettings& lod, MeshStats& stats) {
-    SIERRA_CHECK(lod.tau > 0.0f && std::isfinite(lod.tau), "tau must be a positive number of pixels, got ",
-                 lod.tau);
+    SIERRA_CHECK(lod.tau > 0.0f && std::isfinite(lod.tau),
+                 "tau must be a positive number of pixels, got ", lod.tau);
     SIERRA_CHECK(!pending_, "SbtStream::prepare called twice without finishFrame");
     MeshDraw mesh;
     mesh.vertexArray = vao_.id();
@@ -66,7 +69,8 @@ MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width
         mesh.count = GLsizei(strip_.size());
         pending_ = true;
     } else if (lod.lod == Lod::Mesh) {
-        SIERRA_CHECK(terrain.meshIndexCount() > 0, "level of detail 'tin' needs a mesh (TerrainGpu::setMesh)");
+        SIERRA_CHECK(terrain.meshIndexCount() > 0,
+                     "level of detail 'tin' needs a mesh (TerrainGpu::setMesh)");
         mesh.elementBuffer = terrain.meshIndices().id();
         mesh.count = GLsizei(terrain.meshIndexCount());
         stats.indices = terrain.meshIndexCount();

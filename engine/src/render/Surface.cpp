@@ -11,24 +11,26 @@ namespace {
 constexpr int kRampEntries = 1024;
 
 class RampSurface final : public Surface {
-public:
+  public:
     explicit RampSurface(gpu::Texture ramp) : ramp_(std::move(ramp)) {}
     std::string shaderFile() const override { return "surface_hypsometric.glsl"; }
     void bind() const override { glBindTextureUnit(1, ramp_.id()); }
 
-private:
+  private:
     gpu::Texture ramp_;
 };
 
 class PaperSurface final : public Surface {
-public:
+  public:
     std::string shaderFile() const override { return "surface_paper.glsl"; }
     void bind() const override {}
 };
 
 }  // namespace
 
-std::unique_ptr<Surface> makePaperSurface() { return std::make_unique<PaperSurface>(); }
+std::unique_ptr<Surface> makePaperSurface() {
+    return std::make_unique<PaperSurface>();
+}
 
 std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
     // The ramp spans the terrain's heights in stored units (the shader looks it
@@ -38,15 +40,18 @@ std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSu
     // Without water the ramp's sea level sits below the lowest height, so no
     // sample is coloured as sea or beach.
     float sea = terrain.hasWater() ? terrain.seaLevel() : range.x - (range.y - range.x);
-    terrain::ColourRamp ramp({.scheme = desc.metric ? terrain::RampScheme::Elevation : terrain::RampScheme::Hypsometric,
-                              .minHeight = range.x,
-                              .maxHeight = range.y,
-                              .seaLevel = sea,
-                              .treeLine = desc.treeLine,
-                              .snowLine = desc.snowLine});
-    std::vector<uint8_t> table = desc.cpt.empty() ? ramp.table(kRampEntries)
-                                                  : terrain::readCpt(desc.cpt).ramp(range.x, range.y).table(kRampEntries);
-    gpu::Texture texture = gpu::Texture::create({.target = GL_TEXTURE_1D, .format = GL_RGBA8, .width = kRampEntries});
+    terrain::ColourRamp ramp(
+        {.scheme = desc.metric ? terrain::RampScheme::Elevation : terrain::RampScheme::Hypsometric,
+         .minHeight = range.x,
+         .maxHeight = range.y,
+         .seaLevel = sea,
+         .treeLine = desc.treeLine,
+         .snowLine = desc.snowLine});
+    std::vector<uint8_t> table =
+        desc.cpt.empty() ? ramp.table(kRampEntries)
+                         : terrain::readCpt(desc.cpt).ramp(range.x, range.y).table(kRampEntries);
+    gpu::Texture texture =
+        gpu::Texture::create({.target = GL_TEXTURE_1D, .format = GL_RGBA8, .width = kRampEntries});
     texture.upload(GL_RGBA, GL_UNSIGNED_BYTE, table.data());
     return std::make_unique<RampSurface>(std::move(texture));
 }

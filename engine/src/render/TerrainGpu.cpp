@@ -1,11 +1,11 @@
 #include <sierra/render/TerrainGpu.h>
 
+#include "render/SbtBridge.h"
 #include <sierra/core/Error.h>
 #include <sierra/core/Log.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/FrameUniforms.h>
 #include <sierra/terrain/HeightfieldIO.h>
-#include "render/SbtBridge.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,8 +24,9 @@ constexpr int kOutlineBlocks = 16;
 std::vector<glm::vec3> outlineOf(const terrain::Heightfield& field, glm::ivec2 last) {
     const int blocks = kOutlineBlocks;
     auto edge = [&](int b, int lastIndex) { return int(int64_t(b) * lastIndex / blocks); };
-    std::vector<glm::vec2> range(size_t(blocks * blocks), glm::vec2(std::numeric_limits<float>::max(),
-                                                                     std::numeric_limits<float>::lowest()));
+    std::vector<glm::vec2> range(
+        size_t(blocks * blocks),
+        glm::vec2(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()));
     for (int bj = 0; bj < blocks; ++bj)
         for (int bi = 0; bi < blocks; ++bi) {
             glm::vec2& r = range[size_t(bj * blocks + bi)];
@@ -45,7 +46,8 @@ std::vector<glm::vec3> outlineOf(const terrain::Heightfield& field, glm::ivec2 l
                     glm::vec2 b = range[size_t(bj * blocks + bi)];
                     r = {std::min(r.x, b.x), std::max(r.y, b.y)};
                 }
-            float x = float(edge(ci, last.x)) * field.spacingX(), z = float(edge(cj, last.y)) * field.spacingZ();
+            float x = float(edge(ci, last.x)) * field.spacingX(),
+                  z = float(edge(cj, last.y)) * field.spacingZ();
             points.push_back({x, r.x, z});
             points.push_back({x, r.y, z});
         }
@@ -56,9 +58,11 @@ std::vector<glm::vec3> outlineOf(const terrain::Heightfield& field, glm::ivec2 l
 struct TerrainUniformData {
     glm::ivec4 grid{0};         // x: samples per side
     glm::vec4 spacingValid{0};  // xy: spacing; zw: world x, z of the last real sample
-    glm::vec4 heights{0};       // x: world sea level; y: 1 with water; z, w: lowest and highest world height
+    glm::vec4 heights{
+        0};  // x: world sea level; y: 1 with water; z, w: lowest and highest world height
 };
-static_assert(sizeof(TerrainUniformData) == 48, "TerrainUniformData must match std140 `uniform Terrain`");
+static_assert(sizeof(TerrainUniformData) == 48,
+              "TerrainUniformData must match std140 `uniform Terrain`");
 }  // namespace
 
 struct TerrainGpu::State {
@@ -87,7 +91,8 @@ int TerrainGpu::maxGridSide() {
     GLint maxTexture = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
     int side = 3;
-    while (side <= terrain::kDefaultMaxPaddedSide && 2 * side - 1 <= maxTexture) side = 2 * side - 1;
+    while (side <= terrain::kDefaultMaxPaddedSide && 2 * side - 1 <= maxTexture)
+        side = 2 * side - 1;
     return std::min(side, terrain::kDefaultMaxPaddedSide);
 }
 
@@ -96,13 +101,14 @@ TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
     const terrain::Heightfield& field = *desc.field;
     int side = field.width();
     SIERRA_CHECK(field.width() == field.height() && side >= 3 && ((side - 1) & (side - 2)) == 0,
-                 "the terrain renderer needs a (2^n+1)^2 grid, got ", field.width(), "x", field.height(),
-                 " (pad it with padToPowerOfTwoPlusOne)");
+                 "the terrain renderer needs a (2^n+1)^2 grid, got ", field.width(), "x",
+                 field.height(), " (pad it with padToPowerOfTwoPlusOne)");
     GLint maxTexture = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
     SIERRA_CHECK(side <= maxTexture, "a ", side, "x", side, " grid needs ", side,
-                 "-texel textures; this GL (", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
-                 ") allows at most ", maxTexture, " per side");
+                 "-texel textures; this GL (",
+                 reinterpret_cast<const char*>(glGetString(GL_RENDERER)), ") allows at most ",
+                 maxTexture, " per side");
     auto s = std::make_unique<State>();
     s->side = side;
     s->spacing = {field.spacingX(), field.spacingZ()};
@@ -112,7 +118,8 @@ TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
     if (hi <= lo) hi = lo + 1.0f;
     float vs = field.verticalScale();
     bool water = !std::isnan(desc.seaLevel);
-    SIERRA_CHECK(!water || std::isfinite(desc.seaLevel), "sea level must be finite, got ", desc.seaLevel);
+    SIERRA_CHECK(!water || std::isfinite(desc.seaLevel), "sea level must be finite, got ",
+                 desc.seaLevel);
     s->seaLevel = desc.seaLevel;
     s->worldSeaLevel = water ? desc.seaLevel * vs : desc.seaLevel;
     s->worldRange = {lo * vs, hi * vs};
@@ -129,8 +136,8 @@ TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
     glm::vec2 validMax{float(lastReal.x) * field.spacingX(), float(lastReal.y) * field.spacingZ()};
     s->bounds.min = {0.0f, lo * vs, 0.0f};
     s->bounds.max = {validMax.x, hi * vs, validMax.y};
-    s->summary = msg(side, "x", side, " samples, spacing ", field.spacingX(), "x", field.spacingZ(), ", heights ",
-                     lo * vs, "..", hi * vs, " (world units), ",
+    s->summary = msg(side, "x", side, " samples, spacing ", field.spacingX(), "x", field.spacingZ(),
+                     ", heights ", lo * vs, "..", hi * vs, " (world units), ",
                      water ? msg("sea level ", s->worldSeaLevel) : std::string("no water"));
 
     // The drawn surface: water is flat at sea level. The SBT is built on it, so
@@ -156,7 +163,8 @@ TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
             texels[k * 4 + 2] = err[k];
             texels[k * 4 + 3] = rad[k];
         }
-        s->data = gpu::Texture::create({.format = GL_RGBA32F, .width = side, .height = side, .filter = GL_NEAREST});
+        s->data = gpu::Texture::create(
+            {.format = GL_RGBA32F, .width = side, .height = side, .filter = GL_NEAREST});
         s->data.upload(GL_RGBA, GL_FLOAT, texels.data());
         s->sbt->releaseMorphBase();
         std::vector<float> heights(field.samples().begin(), field.samples().end());
@@ -167,7 +175,8 @@ TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
     TerrainUniformData u;
     u.grid = {side, 0, 0, 0};
     u.spacingValid = {field.spacingX(), field.spacingZ(), validMax.x, validMax.y};
-    u.heights = {water ? s->worldSeaLevel : 0.0f, water ? 1.0f : 0.0f, s->worldRange.x, s->worldRange.y};
+    u.heights = {water ? s->worldSeaLevel : 0.0f, water ? 1.0f : 0.0f, s->worldRange.x,
+                 s->worldRange.y};
     s->uniforms = gpu::Buffer::create({.size = sizeof(u), .data = &u});
     return TerrainGpu(std::move(s));
 }
@@ -183,7 +192,9 @@ void TerrainGpu::bind() const {
     glBindBufferBase(GL_UNIFORM_BUFFER, kTerrainUniformBinding, state_->uniforms.id());
 }
 
-SbtBridge& TerrainGpu::sbt() { return *state_->sbt; }
+SbtBridge& TerrainGpu::sbt() {
+    return *state_->sbt;
+}
 
 const gpu::Buffer& TerrainGpu::fullGridIndices() {
     State& s = *state_;
@@ -191,36 +202,65 @@ const gpu::Buffer& TerrainGpu::fullGridIndices() {
         Stopwatch sw;
         std::vector<uint32_t> triangles = s.sbt->fullGridTriangles();
         s.fullIndexCount = triangles.size();
-        s.fullIndices = gpu::Buffer::create({.size = triangles.size() * sizeof(uint32_t), .data = triangles.data()});
+        s.fullIndices = gpu::Buffer::create(
+            {.size = triangles.size() * sizeof(uint32_t), .data = triangles.data()});
         log::debug("full grid: ", s.fullIndexCount / 3, " triangles built in ", sw.ms(), " ms");
     }
     return s.fullIndices;
 }
 
-uint64_t TerrainGpu::fullGridIndexCount() const { return state_->fullIndexCount; }
+uint64_t TerrainGpu::fullGridIndexCount() const {
+    return state_->fullIndexCount;
+}
 
 void TerrainGpu::setMesh(const std::vector<uint32_t>& triangles) {
     State& s = *state_;
-    SIERRA_CHECK(!triangles.empty() && triangles.size() % 3 == 0, "a terrain mesh needs whole triangles, got ",
-                 triangles.size(), " indices");
+    SIERRA_CHECK(!triangles.empty() && triangles.size() % 3 == 0,
+                 "a terrain mesh needs whole triangles, got ", triangles.size(), " indices");
     const uint64_t samples = uint64_t(s.side) * uint64_t(s.side);
     for (uint32_t index : triangles)
-        SIERRA_CHECK(index < samples, "a terrain mesh index ", index, " is outside the ", s.side, "^2 grid");
-    s.meshIndices = gpu::Buffer::create({.size = triangles.size() * sizeof(uint32_t), .data = triangles.data()});
+        SIERRA_CHECK(index < samples, "a terrain mesh index ", index, " is outside the ", s.side,
+                     "^2 grid");
+    s.meshIndices = gpu::Buffer::create(
+        {.size = triangles.size() * sizeof(uint32_t), .data = triangles.data()});
     s.meshIndexCount = triangles.size();
 }
 
-const gpu::Buffer& TerrainGpu::meshIndices() const { return state_->meshIndices; }
-uint64_t TerrainGpu::meshIndexCount() const { return state_->meshIndexCount; }
-SceneBounds TerrainGpu::bounds() const { return state_->bounds; }
-glm::vec2 TerrainGpu::worldRange() const { return state_->worldRange; }
-bool TerrainGpu::hasWater() const { return !std::isnan(state_->seaLevel); }
-float TerrainGpu::seaLevel() const { return state_->seaLevel; }
-float TerrainGpu::worldSeaLevel() const { return state_->worldSeaLevel; }
-int TerrainGpu::side() const { return state_->side; }
-glm::vec2 TerrainGpu::spacing() const { return state_->spacing; }
-float TerrainGpu::verticalScale() const { return state_->verticalScale; }
-double TerrainGpu::errorPassMs() const { return state_->errorPassMs; }
-const std::string& TerrainGpu::summary() const { return state_->summary; }
+const gpu::Buffer& TerrainGpu::meshIndices() const {
+    return state_->meshIndices;
+}
+uint64_t TerrainGpu::meshIndexCount() const {
+    return state_->meshIndexCount;
+}
+SceneBounds TerrainGpu::bounds() const {
+    return state_->bounds;
+}
+glm::vec2 TerrainGpu::worldRange() const {
+    return state_->worldRange;
+}
+bool TerrainGpu::hasWater() const {
+    return !std::isnan(state_->seaLevel);
+}
+float TerrainGpu::seaLevel() const {
+    return state_->seaLevel;
+}
+float TerrainGpu::worldSeaLevel() const {
+    return state_->worldSeaLevel;
+}
+int TerrainGpu::side() const {
+    return state_->side;
+}
+glm::vec2 TerrainGpu::spacing() const {
+    return state_->spacing;
+}
+float TerrainGpu::verticalScale() const {
+    return state_->verticalScale;
+}
+double TerrainGpu::errorPassMs() const {
+    return state_->errorPassMs;
+}
+const std::string& TerrainGpu::summary() const {
+    return state_->summary;
+}
 
 }  // namespace sierra::render

@@ -2,9 +2,9 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Timer.h>
-#include <sierra/render/passes/TerrainPass.h>
 #include <sierra/render/passes/DebugColourPass.h>
 #include <sierra/render/passes/PointsPass.h>
+#include <sierra/render/passes/TerrainPass.h>
 #include <sierra/render/passes/WireframePass.h>
 
 #include <algorithm>
@@ -16,20 +16,23 @@ struct TerrainRenderer::State {
     TerrainGpu terrain;
     SbtStream stream;
     FrameUniforms uniforms;
-    std::unique_ptr<TerrainPass> shaded;  // replaced by setSurface()
-    std::unique_ptr<WireframePass> wireframe;  // built on first use
-    std::unique_ptr<PointsPass> points;        // built on first use
+    std::unique_ptr<TerrainPass> shaded;           // replaced by setSurface()
+    std::unique_ptr<WireframePass> wireframe;      // built on first use
+    std::unique_ptr<PointsPass> points;            // built on first use
     std::unique_ptr<DebugColourPass> debugColour;  // built on first use
     std::vector<std::unique_ptr<Pass>> extra;
-    std::unique_ptr<DepthPass> depth;          // built on first use, per frame size
+    std::unique_ptr<DepthPass> depth;  // built on first use, per frame size
     gpu::Query timer;
     bool timerPending = false;
 };
 
 TerrainRenderer TerrainRenderer::create(const TerrainDesc& desc) {
-    TerrainGpu terrain = TerrainGpu::create({.field = desc.field, .seaLevel = desc.seaLevel, .threads = desc.threads});
-    auto shaded = TerrainPass::create(makeRampSurface(
-        terrain, {.metric = desc.metric, .treeLine = desc.treeLine, .snowLine = desc.snowLine, .cpt = desc.cpt}));
+    TerrainGpu terrain = TerrainGpu::create(
+        {.field = desc.field, .seaLevel = desc.seaLevel, .threads = desc.threads});
+    auto shaded = TerrainPass::create(makeRampSurface(terrain, {.metric = desc.metric,
+                                                                .treeLine = desc.treeLine,
+                                                                .snowLine = desc.snowLine,
+                                                                .cpt = desc.cpt}));
     auto state = std::unique_ptr<State>(new State{
         .terrain = std::move(terrain),
         .stream = SbtStream::create(),
@@ -60,13 +63,15 @@ FrameUniformData TerrainRenderer::frameUniforms(const Camera& camera, int width,
     // Automatic haze grows with distance from the eye; an orthographic view has
     // no meaningful eye distance (its eye is put anywhere behind the terrain),
     // so maps get none unless asked for.
-    float automaticFog =
-        camera.projection == Projection::Orthographic ? 0.0f : 0.35f / std::max({extent.x, extent.z, 1e-6f});
+    float automaticFog = camera.projection == Projection::Orthographic
+                             ? 0.0f
+                             : 0.35f / std::max({extent.x, extent.z, 1e-6f});
     float fog = light.fogDensity >= 0.0f ? light.fogDensity : automaticFog;
     FrameUniformData u;
     u.viewProj = camera.viewProjection(aspect);
     u.eye = {camera.position, 1.0f};
-    u.lodEye = {lod.eye, options.lod == Lod::Sbt && options.geomorph ? lod.lambda / options.tau : 0.0f};
+    u.lodEye = {lod.eye,
+                options.lod == Lod::Sbt && options.geomorph ? lod.lambda / options.tau : 0.0f};
     u.sun = {glm::normalize(light.sunDirection), light.ambient};
     u.sky = clearColour(light);
     u.frameSize = {float(width), float(height), lod.lambda, options.tau};
@@ -75,13 +80,17 @@ FrameUniformData TerrainRenderer::frameUniforms(const Camera& camera, int width,
     return u;
 }
 
-DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, const DrawOptions& options) {
+DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height,
+                                const DrawOptions& options) {
     State& s = *state_;
     SIERRA_CHECK(width > 0 && height > 0, "frame size must be positive, got ", width, "x", height);
     DrawStats stats;
     MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height,
-                                     {.lod = options.lod, .tau = options.tau, .cull = options.cull,
-                                      .geomorph = options.geomorph, .threads = options.threads},
+                                     {.lod = options.lod,
+                                      .tau = options.tau,
+                                      .cull = options.cull,
+                                      .geomorph = options.geomorph,
+                                      .threads = options.threads},
                                      stats);
     Stopwatch submit;
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
@@ -119,14 +128,18 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height, con
     return stats;
 }
 
-DepthImage TerrainRenderer::renderDepth(const Camera& camera, int width, int height, const DrawOptions& options) {
+DepthImage TerrainRenderer::renderDepth(const Camera& camera, int width, int height,
+                                        const DrawOptions& options) {
     State& s = *state_;
     if (!s.depth || s.depth->width() != width || s.depth->height() != height)
         s.depth = DepthPass::create(width, height);
     MeshStats stats;
     MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height,
-                                     {.lod = options.lod, .tau = options.tau, .cull = options.cull,
-                                      .geomorph = options.geomorph, .threads = options.threads},
+                                     {.lod = options.lod,
+                                      .tau = options.tau,
+                                      .cull = options.cull,
+                                      .geomorph = options.geomorph,
+                                      .threads = options.threads},
                                      stats);
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
     GLint previousBlock = 0;
@@ -161,11 +174,23 @@ std::vector<std::string> TerrainRenderer::addedPassNames() const {
     return names;
 }
 
-TerrainGpu& TerrainRenderer::terrain() { return state_->terrain; }
-SceneBounds TerrainRenderer::bounds() const { return state_->terrain.bounds(); }
-float TerrainRenderer::seaLevel() const { return state_->terrain.seaLevel(); }
-int TerrainRenderer::side() const { return state_->terrain.side(); }
-double TerrainRenderer::errorPassMs() const { return state_->terrain.errorPassMs(); }
-const std::string& TerrainRenderer::summary() const { return state_->terrain.summary(); }
+TerrainGpu& TerrainRenderer::terrain() {
+    return state_->terrain;
+}
+SceneBounds TerrainRenderer::bounds() const {
+    return state_->terrain.bounds();
+}
+float TerrainRenderer::seaLevel() const {
+    return state_->terrain.seaLevel();
+}
+int TerrainRenderer::side() const {
+    return state_->terrain.side();
+}
+double TerrainRenderer::errorPassMs() const {
+    return state_->terrain.errorPassMs();
+}
+const std::string& TerrainRenderer::summary() const {
+    return state_->terrain.summary();
+}
 
 }  // namespace sierra::render

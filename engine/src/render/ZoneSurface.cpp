@@ -28,9 +28,11 @@ constexpr GLenum kMaxAnisotropyLimit = 0x84FF;
 
 // Field for field the layout of `uniform Zones` in shaders/surface_zones.glsl.
 struct ZoneUniformData {
-    glm::vec4 map{0.0f};    // xy: zone-map size in pixels; z: field texels per pixel; w: band width in pixels
+    glm::vec4 map{
+        0.0f};  // xy: zone-map size in pixels; z: field texels per pixel; w: band width in pixels
     glm::vec4 field{0.0f};  // xy: 1 / the field's size in texels
-    std::array<glm::vec4, kMaxZones> tile{};    // x: 1 / zone-map pixels per tile repetition; y: height blend 0..1
+    std::array<glm::vec4, kMaxZones>
+        tile{};  // x: 1 / zone-map pixels per tile repetition; y: height blend 0..1
     std::array<glm::vec4, kMaxZones> colour{};  // rgb: the zone's colour in the palette
 };
 
@@ -38,7 +40,9 @@ bool hasExtension(const char* name) {
     GLint count = 0;
     glGetIntegerv(GL_NUM_EXTENSIONS, &count);
     for (GLint k = 0; k < count; ++k)
-        if (std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(k))), name) == 0) return true;
+        if (std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(k))),
+                        name) == 0)
+            return true;
     return false;
 }
 
@@ -58,7 +62,7 @@ terrain::Heightfield realSamples(const terrain::Heightfield& field, const Terrai
 }
 
 class ZoneSurface final : public Surface {
-public:
+  public:
     std::string shaderFile() const override { return "surface_zones.glsl"; }
     std::string defines() const override {
         // The options are compiled in (see surface_zones.glsl): on llvmpipe
@@ -87,12 +91,14 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrain::Heightfield& field,
+std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
+                                         const terrain::Heightfield& field,
                                          const ZoneSurfaceDesc& desc, ZoneSurfaceInfo* info) {
     Stopwatch sw;
     zones::Palette palette = zones::loadPalette(desc.palette);
-    SIERRA_CHECK(!palette.surfaces.empty() && palette.surfaces.size() <= size_t(kMaxZones), desc.palette, ": ",
-                 palette.surfaces.size(), " surface types; the renderer takes 1..", kMaxZones);
+    SIERRA_CHECK(!palette.surfaces.empty() && palette.surfaces.size() <= size_t(kMaxZones),
+                 desc.palette, ": ", palette.surfaces.size(),
+                 " surface types; the renderer takes 1..", kMaxZones);
     zones::ZoneMap map;
     if (desc.map == "auto")
         map = zones::autoZones(realSamples(field, terrain), palette, desc.autoZones);
@@ -103,7 +109,8 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
     // of a pixel or two stay smooth on screen.
     int maxSide = std::max(map.width, map.height);
     int texelsPerPixel = std::clamp(2048 / std::max(maxSide, 1), 1, 4);
-    zones::Borderlines lines = zones::buildBorderlines(map, palette, {.epsilon = desc.epsilon, .bandWidth = 0.0});
+    zones::Borderlines lines =
+        zones::buildBorderlines(map, palette, {.epsilon = desc.epsilon, .bandWidth = 0.0});
     zones::BorderField f = zones::buildBorderField(lines, {.texelsPerPixel = texelsPerPixel});
 
     auto surface = std::make_unique<ZoneSurface>();
@@ -116,14 +123,15 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
     for (size_t k = 0; k < f.zone.size(); ++k) {
         // Where the map has no borderline the field holds 1e9: the largest half.
         const float d = std::clamp(f.signedDistance[k], -65504.0f, 65504.0f);
-        packed[k] = uint32_t(f.lowZone[k]) | uint32_t(f.highZone[k]) << 8 | uint32_t(glm::packHalf1x16(d)) << 16;
+        packed[k] = uint32_t(f.lowZone[k]) | uint32_t(f.highZone[k]) << 8 |
+                    uint32_t(glm::packHalf1x16(d)) << 16;
         const bool negative = (packed[k] & 0x80000000u) != 0;
-        SIERRA_CHECK(f.zone[k] == (negative ? f.lowZone[k] : f.highZone[k]), "zone field texel ", k, ": zone ",
-                     int(f.zone[k]), " is not the side of its pair (", int(f.lowZone[k]), ", ", int(f.highZone[k]),
-                     ") at distance ", f.signedDistance[k]);
+        SIERRA_CHECK(f.zone[k] == (negative ? f.lowZone[k] : f.highZone[k]), "zone field texel ", k,
+                     ": zone ", int(f.zone[k]), " is not the side of its pair (", int(f.lowZone[k]),
+                     ", ", int(f.highZone[k]), ") at distance ", f.signedDistance[k]);
     }
-    surface->field_ = gpu::Texture::create({.format = GL_R32UI, .width = f.width, .height = f.height,
-                                            .filter = GL_NEAREST});
+    surface->field_ = gpu::Texture::create(
+        {.format = GL_R32UI, .width = f.width, .height = f.height, .filter = GL_NEAREST});
     surface->field_.upload(GL_RED_INTEGER, GL_UNSIGNED_INT, packed.data());
 
     // Tiles: one layer per surface type, all of one square size.
@@ -132,14 +140,19 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
     for (const zones::SurfaceType& s : palette.surfaces) {
         gpu::Image image = readPng(s.tile);
         if (tileSize == 0) tileSize = image.width;
-        SIERRA_CHECK(image.width == tileSize && image.height == tileSize, "tile ", s.tile, " is ", image.width, "x",
-                     image.height, "; every tile of ", desc.palette, " must be ", tileSize, "x", tileSize);
+        SIERRA_CHECK(image.width == tileSize && image.height == tileSize, "tile ", s.tile, " is ",
+                     image.width, "x", image.height, "; every tile of ", desc.palette, " must be ",
+                     tileSize, "x", tileSize);
         images.push_back(std::move(image));
     }
     int levels = 1;
     while ((tileSize >> levels) > 0) ++levels;
-    surface->tiles_ = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY, .format = GL_RGBA8, .width = tileSize,
-                                            .height = tileSize, .layers = int(images.size()), .levels = levels,
+    surface->tiles_ = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY,
+                                            .format = GL_RGBA8,
+                                            .width = tileSize,
+                                            .height = tileSize,
+                                            .layers = int(images.size()),
+                                            .levels = levels,
                                             .wrap = GL_REPEAT});
     for (size_t k = 0; k < images.size(); ++k)
         surface->tiles_.uploadLayer(int(k), GL_RGBA, GL_UNSIGNED_BYTE, images[k].rgba.data());
@@ -150,9 +163,10 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
     // frame took minutes, and bilinear lookups of the nearest mip level cost
     // fewer instructions than trilinear ones (docs/zones.md, "Frame cost").
     // Other drivers: trilinear, anisotropy 8 (or the driver's limit).
-    if (llvmpipe && levels > 1) glTextureParameteri(surface->tiles_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    if (!llvmpipe &&
-        (hasExtension("GL_EXT_texture_filter_anisotropic") || hasExtension("GL_ARB_texture_filter_anisotropic"))) {
+    if (llvmpipe && levels > 1)
+        glTextureParameteri(surface->tiles_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    if (!llvmpipe && (hasExtension("GL_EXT_texture_filter_anisotropic") ||
+                      hasExtension("GL_ARB_texture_filter_anisotropic"))) {
         float limit = 1.0f;
         glGetFloatv(kMaxAnisotropyLimit, &limit);
         glTextureParameterf(surface->tiles_.id(), kMaxAnisotropy, std::min(8.0f, limit));
@@ -168,8 +182,9 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrai
     for (size_t k = 0; k < palette.surfaces.size(); ++k) {
         const zones::SurfaceType& s = palette.surfaces[k];
         u->tile[k] = {1.0f / std::max(s.tileSize, 1e-3f), s.heightBlend, 0.0f, 0.0f};
-        u->colour[k] = {float((s.colour >> 16) & 255) / 255.0f, float((s.colour >> 8) & 255) / 255.0f,
-                        float(s.colour & 255) / 255.0f, 1.0f};
+        u->colour[k] = {float((s.colour >> 16) & 255) / 255.0f,
+                        float((s.colour >> 8) & 255) / 255.0f, float(s.colour & 255) / 255.0f,
+                        1.0f};
     }
     surface->uniforms_ = gpu::Buffer::create({.size = sizeof(ZoneUniformData), .data = u.get()});
     if (info) {

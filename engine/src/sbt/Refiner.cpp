@@ -3,7 +3,6 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Parallel.h>
 
-
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -25,15 +24,15 @@ namespace sierra::sbt {
 struct Refiner::Op {
     enum Kind : uint8_t { kSubtree, kLeaf, kAppend, kBreak };
     Kind kind;
-    uint8_t level;   // level of the triangle, or the parity of an append
-    uint8_t mask;    // planes still to test below (view mode)
+    uint8_t level;     // level of the triangle, or the parity of an append
+    uint8_t mask;      // planes still to test below (view mode)
     uint64_t a, q, b;  // vertices (linear index in fixed mode, packed (i, j) in view mode)
     uint64_t node;     // tree index of the triangle (see splitKeys_), subtrees only
 };
 
 struct Refiner::Chunk {
-    std::vector<uint32_t> buffer;    // strip indices, capacity reused
-    std::vector<uint32_t> starts;    // offset of every strip in buffer
+    std::vector<uint32_t> buffer;  // strip indices, capacity reused
+    std::vector<uint32_t> starts;  // offset of every strip in buffer
     int64_t used = 0;
     int64_t leaves = 0;
     int64_t culled = 0;  // subtrees culled in this chunk (view mode)
@@ -57,7 +56,9 @@ constexpr unsigned kCulled = 0x80;
 // 8 exponent bits, 7 mantissa bits: bfloat16 rounded towards zero). The map is
 // monotone, so for e, eps >= 0:  key(e) > key(eps) implies e > eps and
 // key(e) < key(eps) implies e <= eps; only equal keys need the exact float.
-inline uint32_t floatKey(float x) { return std::bit_cast<uint32_t>(x) >> 16; }
+inline uint32_t floatKey(float x) {
+    return std::bit_cast<uint32_t>(x) >> 16;
+}
 
 // The key epsilon is compared with, as a signed int so that "everything
 // splits" (eps < 0) and "nothing splits" (eps NaN) need no special case in the
@@ -92,8 +93,8 @@ struct Walker {
     // fast view path (kFast): the view in float, and the guard bands below
     // which the float result could differ from the double one.
     float fex, fey, fez, fsx, fsz, fkE, fvs;
-    float distanceSlack;     // absolute slack on squared distances (world units^2)
-    float planeSlack[6];     // absolute slack on plane distances (world units)
+    float distanceSlack;  // absolute slack on squared distances (world units^2)
+    float planeSlack[6];  // absolute slack on plane distances (world units)
     // view keys (Refiner::viewKeys_), null when there are none: 3 per tree node
     const uint16_t* viewKeys;
     float keyYBase, keyYStep, keyYError;  // world y = keyYBase + key * keyYStep, +- keyYError
@@ -107,8 +108,8 @@ struct Walker {
     Refiner::Chunk* chunk;
     uint32_t* base;
     uint32_t* out;
-    uint32_t* cap;   // where ensure() calls grow(): the buffer's end, or before it (stop)
-    uint32_t* end;   // the buffer's end
+    uint32_t* cap;  // where ensure() calls grow(): the buffer's end, or before it (stop)
+    uint32_t* end;  // the buffer's end
     const sierra::ChunkStop* stop;  // this run's stop request; null: none
     int parity = -1;
     bool needStart = true;
@@ -246,7 +247,6 @@ struct Walker {
         ++leaves;
     }
 
-
     // --- fast view path -------------------------------------------------
     // The same decisions as refine() (the double-precision baseline), taken in
     // float where the float result is certain: a float value v of a quantity
@@ -339,8 +339,10 @@ struct Walker {
             ++leaves;
             return;
         }
-        if (mask == 0 && viewKeys) walkKeyed(a, q, b, l, m, k);
-        else split(a, q, b, l, mask, m, k);
+        if (mask == 0 && viewKeys)
+            walkKeyed(a, q, b, l, m, k);
+        else
+            split(a, q, b, l, mask, m, k);
     }
 
     void split(V a, V q, V b, int l, unsigned mask, V m, uint64_t k) {
@@ -450,7 +452,8 @@ struct Walker {
         // scalar test; the vertices in neither sure band go to activeExact.
 #if SIERRA_SBT_SSE2
         const __m128 vkE = _mm_set1_ps(kE), vErr = _mm_set1_ps(yErr), vSlack = _mm_set1_ps(slack),
-                     vStep = _mm_set1_ps(yStep), vDy0 = _mm_set1_ps(dy0), vGrow = _mm_set1_ps(grow2);
+                     vStep = _mm_set1_ps(yStep), vDy0 = _mm_set1_ps(dy0),
+                     vGrow = _mm_set1_ps(grow2);
         __m128 vBand = _mm_set1_ps(0x1.0p-15f);
         const __m128i one = _mm_set1_epi32(0x10000);
         // Opaque to the compiler: a constant it knows is rebuilt in the loop
@@ -476,23 +479,27 @@ struct Walker {
             const __m128 yk = _mm_cvtepi32_ps(_mm_srli_epi32(top, 16));
             const __m128 dy = _mm_add_ps(_mm_mul_ps(yk, vStep), vDy0);
             // lanes 2 and 3 are never read (the masks keep bits 0 and 1)
-            const __m128 xz = _mm_add_ps(_mm_unpacklo_ps(_mm_load_ss(xx + uint32_t(vl)), _mm_load_ss(xx + uint32_t(vr))),
-                                         _mm_unpacklo_ps(_mm_load_ss(zz + uint32_t(vl >> 32)),
-                                                         _mm_load_ss(zz + uint32_t(vr >> 32))));
+            const __m128 xz = _mm_add_ps(
+                _mm_unpacklo_ps(_mm_load_ss(xx + uint32_t(vl)), _mm_load_ss(xx + uint32_t(vr))),
+                _mm_unpacklo_ps(_mm_load_ss(zz + uint32_t(vl >> 32)),
+                                _mm_load_ss(zz + uint32_t(vr >> 32))));
             const __m128 d2 = _mm_add_ps(xz, _mm_mul_ps(dy, dy));
             const __m128 lo = _mm_sub_ps(
                 _mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(ek)), _mm_castsi128_ps(rk)), vErr);
-            const __m128 sureMask = _mm_cmpgt_ps(_mm_mul_ps(lo, lo), _mm_add_ps(_mm_mul_ps(d2, vGrow), vSlack));
-            const __m128 hi = _mm_add_ps(_mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(_mm_add_epi32(ek, one))),
-                                                    _mm_castsi128_ps(_mm_add_epi32(rk, one))),
-                                         vErr);
+            const __m128 sureMask =
+                _mm_cmpgt_ps(_mm_mul_ps(lo, lo), _mm_add_ps(_mm_mul_ps(d2, vGrow), vSlack));
+            const __m128 hi =
+                _mm_add_ps(_mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(_mm_add_epi32(ek, one))),
+                                      _mm_castsi128_ps(_mm_add_epi32(rk, one))),
+                           vErr);
             const __m128 hi2 = _mm_mul_ps(hi, hi);
-            const __m128 bound = _mm_sub_ps(
-                d2, _mm_add_ps(_mm_mul_ps(vBand, _mm_add_ps(hi2, d2)), vSlack));
+            const __m128 bound =
+                _mm_sub_ps(d2, _mm_add_ps(_mm_mul_ps(vBand, _mm_add_ps(hi2, d2)), vSlack));
             // both bands at once, no branch: in 64% of the pairs on the orbit
             // case a child is a leaf and needs the second band anyway
             unsigned sure = unsigned(_mm_movemask_ps(sureMask)) & 3u;
-            const unsigned decided = unsigned(_mm_movemask_ps(_mm_or_ps(sureMask, _mm_cmplt_ps(hi2, bound))));
+            const unsigned decided =
+                unsigned(_mm_movemask_ps(_mm_or_ps(sureMask, _mm_cmplt_ps(hi2, bound))));
             const unsigned undecided = ~decided & 3u;
             if (undecided == 0) [[likely]]
                 return sure;
@@ -508,7 +515,8 @@ struct Walker {
                     sure |= 1u << c;
                     continue;
                 }
-                const float hi = kE * std::bit_cast<float>(ek + 0x10000u) + std::bit_cast<float>(rk + 0x10000u) + yErr;
+                const float hi = kE * std::bit_cast<float>(ek + 0x10000u) +
+                                 std::bit_cast<float>(rk + 0x10000u) + yErr;
                 const float hi2 = hi * hi;
                 if (!(hi2 < d2 - (0x1.0p-15f * (hi2 + d2) + slack))) undecided |= 1u << c;
             }
@@ -530,7 +538,8 @@ struct Walker {
                 // no pointer is formed out of range).
                 const uintptr_t p = keyAddress + ((kb + 12) << (kPrefetchDepth - 1)) - 12;
                 __builtin_prefetch(reinterpret_cast<const void*>(p));
-                __builtin_prefetch(reinterpret_cast<const void*>(p + 6 * (uint64_t(1) << kPrefetchDepth) - 1));
+                __builtin_prefetch(
+                    reinterpret_cast<const void*>(p + 6 * (uint64_t(1) << kPrefetchDepth) - 1));
                 const V left = (a + q) >> 1, right = (q + b) >> 1;
                 const unsigned act = activePair(left, right, kb);
                 if (act & 1u) {
@@ -558,7 +567,8 @@ struct Walker {
                 const Pending& pd = *--top;
                 put(idx(pd.q), pd.l & 1);
                 if (pd.right) {
-                    a = pd.q, q = pd.m, b = pd.b, m = (pd.q + pd.b) >> 1, kb = 2 * pd.kb + 24, l = pd.l + 1;
+                    a = pd.q, q = pd.m, b = pd.b, m = (pd.q + pd.b) >> 1, kb = 2 * pd.kb + 24,
+                    l = pd.l + 1;
                     descended = true;
                     break;
                 }
@@ -589,11 +599,15 @@ struct Walker {
     void refineKeyed(uint32_t a, uint32_t q, uint32_t b, int l, uint64_t node) {
         ensure(4);
         if (epsKey < 0) {
-            if (node < splitNodes) descend<true>(a, q, b, l, node);
-            else leaf(q, l);
+            if (node < splitNodes)
+                descend<true>(a, q, b, l, node);
+            else
+                leaf(q, l);
         } else {
-            if (node < splitNodes && splits<false>(node, a, b)) descend<false>(a, q, b, l, node);
-            else leaf(q, l);
+            if (node < splitNodes && splits<false>(node, a, b))
+                descend<false>(a, q, b, l, node);
+            else
+                leaf(q, l);
         }
     }
     // A triangle that splits: children that are leaves are emitted here rather
@@ -624,7 +638,8 @@ struct Walker {
                     if constexpr (kFast) {
                         if (op->level < finest)
                             refineFast(V(op->a), V(op->q), V(op->b), op->level, op->mask, op->node);
-                        else leafFast(V(op->a), V(op->q), op->level);
+                        else
+                            leafFast(V(op->a), V(op->q), op->level);
                     } else if (!kView && keys) {
                         refineKeyed(uint32_t(op->a), uint32_t(op->q), uint32_t(op->b), op->level,
                                     op->node);
@@ -660,8 +675,8 @@ struct TopWalker {
     int chunkLevel;
     std::vector<Refiner::Op>* ops;
 
-    void push(Refiner::Op::Kind kind, int level, unsigned mask, uint64_t a, uint64_t q,
-              uint64_t b, uint64_t node = 0) {
+    void push(Refiner::Op::Kind kind, int level, unsigned mask, uint64_t a, uint64_t q, uint64_t b,
+              uint64_t node = 0) {
         ops->push_back(Refiner::Op{kind, uint8_t(level), uint8_t(mask), a, q, b, node});
     }
 
@@ -710,8 +725,8 @@ int64_t firstTriangle(const uint32_t* s, int64_t count, uint32_t side, int64_t* 
         uint32_t v0 = s[k], v1 = s[k + 1], v2 = s[k + 2];
         if (v0 == v1 || v1 == v2 || v0 == v2) continue;
         *offset = k;
-        int64_t i0 = v0 % side, j0 = v0 / side, i1 = v1 % side, j1 = v1 / side,
-                i2 = v2 % side, j2 = v2 / side;
+        int64_t i0 = v0 % side, j0 = v0 / side, i1 = v1 % side, j1 = v1 / side, i2 = v2 % side,
+                j2 = v2 / side;
         return (i1 - i0) * (j2 - j0) - (j1 - j0) * (i2 - i0);
     }
     return 0;
@@ -722,12 +737,12 @@ int64_t firstTriangle(const uint32_t* s, int64_t count, uint32_t side, int64_t* 
 // One refinement's working data (see Refiner::frames_).
 struct Refiner::Frame {
     std::vector<Op> ops;
-    std::vector<size_t> cuts;        // chunk c runs ops[cuts[c], cuts[c + 1])
-    std::vector<Chunk> chunks[2];    // per slot of parallelRescuedChunks: first runs, rescues
-    std::vector<int> order;          // chunks in the order they are handed out
-    std::vector<uint8_t> winners;    // per place in `order`: the slot whose strip counts
-    std::vector<uint8_t> slotOf;     // per chunk: the slot whose strip counts
-    std::vector<float> eyeTerms;     // view keys: squared eye distances along x, then z
+    std::vector<size_t> cuts;      // chunk c runs ops[cuts[c], cuts[c + 1])
+    std::vector<Chunk> chunks[2];  // per slot of parallelRescuedChunks: first runs, rescues
+    std::vector<int> order;        // chunks in the order they are handed out
+    std::vector<uint8_t> winners;  // per place in `order`: the slot whose strip counts
+    std::vector<uint8_t> slotOf;   // per chunk: the slot whose strip counts
+    std::vector<float> eyeTerms;   // view keys: squared eye distances along x, then z
     // The walker set up for this refinement (a Walker<kView, kFast>, copied per chunk).
     alignas(64) unsigned char walker[1024];
 };
@@ -759,8 +774,9 @@ std::array<Plane, 6> frustumPlanes(const float m[16]) {
     return planes;
 }
 
-ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3>& target, float fovyRadians,
-                      float aspect, float viewportHeightPx, float nearPlane, float farPlane, float tau, bool cull) {
+ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3>& target,
+                      float fovyRadians, float aspect, float viewportHeightPx, float nearPlane,
+                      float farPlane, float tau, bool cull) {
     using V3 = std::array<double, 3>;
     auto dot = [](const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
     auto cross = [](const V3& a, const V3& b) {
@@ -776,11 +792,12 @@ ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3
     SIERRA_CHECK(dot(forward, forward) > 0 && std::abs(normalised(forward)[1]) < 1.0,
                  "lookAtView: the camera must look somewhere other than straight up or down");
     SIERRA_CHECK(aspect > 0 && nearPlane > 0 && farPlane > nearPlane,
-                 "lookAtView: need aspect > 0 and 0 < near < far, got ", aspect, ", ", nearPlane, ", ", farPlane);
+                 "lookAtView: need aspect > 0 and 0 < near < far, got ", aspect, ", ", nearPlane,
+                 ", ", farPlane);
     // The OpenGL look-at view (right-handed, +y up) and perspective projection
     // (clip z in [-w, w]), column-major: m[column * 4 + row].
     const V3 f = normalised(forward), side = normalised(cross(f, V3{0, 1, 0})), up = cross(side, f);
-    double viewM[16] = {side[0], up[0], -f[0], 0, side[1], up[1], -f[1], 0,
+    double viewM[16] = {side[0], up[0], -f[0], 0, side[1],       up[1],       -f[1],     0,
                         side[2], up[2], -f[2], 0, -dot(side, e), -dot(up, e), dot(f, e), 1};
     const double t = std::tan(0.5 * double(fovyRadians)), n = nearPlane, fa = farPlane;
     double proj[16] = {};
@@ -816,12 +833,12 @@ Refiner::Refiner(const terrain::Heightfield& field, const VertexErrors& errors, 
                  "Refiner: the vertex errors do not belong to this ", field.width(), "x",
                  field.height(), " grid");
     SIERRA_CHECK(field.width() <= kMaxSbtSide, "Refiner: a ", field.width(), "x", field.width(),
-                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide, "x",
-                 kMaxSbtSide, ")");
+                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide,
+                 "x", kMaxSbtSide, ")");
     n_ = n;
     side_ = field.width();
-    chunkLevel_ = desc.chunkLevel >= 0 ? std::min(desc.chunkLevel, 2 * n - 1)
-                                       : std::clamp(2 * n - 10, 0, 6);
+    chunkLevel_ =
+        desc.chunkLevel >= 0 ? std::min(desc.chunkLevel, 2 * n - 1) : std::clamp(2 * n - 10, 0, 6);
 }
 
 // Calls visit(node, m) for every triangle of levels 0..2n-1 (tree index, linear
@@ -839,7 +856,10 @@ void Refiner::forEachNode(Visit&& visit) {
     };
     // the top levels serially, recording the triangles of level `cut`
     const int cut = std::min(2 * n_ - 1, 6);
-    struct Sub { uint32_t a, q, b; uint64_t node; };
+    struct Sub {
+        uint32_t a, q, b;
+        uint64_t node;
+    };
     std::vector<Sub> subs;
     auto top = [&](auto&& self, uint32_t a, uint32_t q, uint32_t b, int l, uint64_t node) -> void {
         if (l == cut) {
@@ -857,7 +877,8 @@ void Refiner::forEachNode(Visit&& visit) {
     parallelChunks(
         0, int64_t(subs.size()), int(subs.size()),
         [&](int64_t lo, int64_t hi, int) {
-            for (int64_t k = lo; k < hi; ++k) fill(fill, subs[k].a, subs[k].q, subs[k].b, subs[k].node);
+            for (int64_t k = lo; k < hi; ++k)
+                fill(fill, subs[k].a, subs[k].q, subs[k].b, subs[k].node);
         },
         threads_ > 0 ? threads_ : defaultThreadCount());
 }
@@ -872,7 +893,6 @@ void Refiner::buildSplitKeys() {
     uint16_t* keys = splitKeys_.data();
     forEachNode([&](uint64_t node, uint32_t m) { keys[node] = uint16_t(floatKey(err[m])); });
 }
-
 
 Refiner::~Refiner() {
     // A helper may still be inside a chunk of the last refinement.
@@ -891,13 +911,13 @@ void Refiner::refineFixed(float epsilon, StripMesh& out) {
 
 namespace {
 void checkView(const ViewParams& view) {
-    SIERRA_CHECK(view.tau > 0 && std::isfinite(view.tau), "refineView: tau must be > 0 pixels, got ",
-                 view.tau);
+    SIERRA_CHECK(view.tau > 0 && std::isfinite(view.tau),
+                 "refineView: tau must be > 0 pixels, got ", view.tau);
     SIERRA_CHECK(view.lambda > 0 && std::isfinite(view.lambda),
                  "refineView: lambda must be > 0, got ", view.lambda);
     for (float c : view.eye)
-        SIERRA_CHECK(std::isfinite(c), "refineView: the eye must be finite, got (", view.eye[0], ", ",
-                     view.eye[1], ", ", view.eye[2], ")");
+        SIERRA_CHECK(std::isfinite(c), "refineView: the eye must be finite, got (", view.eye[0],
+                     ", ", view.eye[1], ", ", view.eye[2], ")");
 }
 }  // namespace
 
@@ -911,8 +931,8 @@ void Refiner::measureMagnitude() {
     double maxAbs = 0.0;
     for (size_t k = 0; k < count; ++k)
         maxAbs = std::max({maxAbs, std::fabs(double(h[k])) * vs, double(r[k])});
-    magnitude_ = std::max({maxAbs, double(side_ - 1) * field_->spacingX(),
-                           double(side_ - 1) * field_->spacingZ()});
+    magnitude_ = std::max(
+        {maxAbs, double(side_ - 1) * field_->spacingX(), double(side_ - 1) * field_->spacingZ()});
 }
 
 // View keys of every triangle of levels 0..2n-1 in tree order (see
@@ -925,8 +945,8 @@ void Refiner::buildViewKeys() {
     const float* rad = errors_->radius.data();
     float lo = h[0], hi = h[0];
     for (size_t k = 0; k < count; ++k) {
-        if (!std::isfinite(h[k]) || !(err[k] >= 0.0f) || !(rad[k] >= 0.0f) || std::signbit(err[k]) ||
-            std::signbit(rad[k]) || !std::isfinite(rad[k]))
+        if (!std::isfinite(h[k]) || !(err[k] >= 0.0f) || !(rad[k] >= 0.0f) ||
+            std::signbit(err[k]) || std::signbit(rad[k]) || !std::isfinite(rad[k]))
             return;  // keys would not bound the exact values: exact path only
         lo = std::min(lo, h[k]), hi = std::max(hi, h[k]);
     }
@@ -948,7 +968,8 @@ void Refiner::buildViewKeys() {
         worst = std::max(worst, std::fabs(double(decoded) - exact));
     }
     keyYBase_ = base, keyYStep_ = step;
-    keyYError_ = std::nextafter(float(worst * (1.0 + 0x1.0p-20)), std::numeric_limits<float>::infinity());
+    keyYError_ =
+        std::nextafter(float(worst * (1.0 + 0x1.0p-20)), std::numeric_limits<float>::infinity());
     const uint64_t nodes = (uint64_t(2) << (2 * n_)) - 2;
     viewKeys_.resize(3 * nodes);
     uint16_t* keys = viewKeys_.data();
@@ -981,8 +1002,10 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     static_assert(std::is_trivially_copyable_v<W> && sizeof(W) <= sizeof(Frame::walker));
     // The frame a helper of the last refinement may still read is left alone.
     int frameIndex = 0;
-    if (busyFrame_ >= 0 && !parallelHelpersIdle()) frameIndex = 1 - busyFrame_;
-    else busyFrame_ = -1;
+    if (busyFrame_ >= 0 && !parallelHelpersIdle())
+        frameIndex = 1 - busyFrame_;
+    else
+        busyFrame_ = -1;
     if (!frames_[frameIndex]) frames_[frameIndex] = std::make_unique<Frame>();
     Frame& frame = *frames_[frameIndex];
     W proto{};
@@ -1009,15 +1032,16 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             // then within 3 M 2^-24 of the double one, a squared distance within
             // 2^-18 d^2 + 2^-24 M^2, a plane distance within 2^-24 (18 M + 4 |d|).
             // The slacks below are 4 to 8 times these bounds.
-            const double M = std::max({magnitude_, std::fabs(proto.ex), std::fabs(proto.ey),
-                                       std::fabs(proto.ez), 1.0});
+            const double M = std::max(
+                {magnitude_, std::fabs(proto.ex), std::fabs(proto.ey), std::fabs(proto.ez), 1.0});
             proto.fex = view->eye[0], proto.fey = view->eye[1], proto.fez = view->eye[2];
             proto.fsx = field_->spacingX(), proto.fsz = field_->spacingZ();
             proto.fkE = float(proto.kE);
             proto.fvs = field_->verticalScale();
             proto.distanceSlack = float(0x1.0p-22 * M * M);
             for (int k = 0; k < 6; ++k)
-                proto.planeSlack[k] = float(0x1.0p-19 * (3.0 * M + std::fabs(double(view->planes[k].d))));
+                proto.planeSlack[k] =
+                    float(0x1.0p-19 * (3.0 * M + std::fabs(double(view->planes[k].d))));
             // Keyed path (Walker::activeKeyed): the key bounds are rounded in
             // float like the exact operands, to within 2^-21 of the reach plus
             // keyYError; keyYError is at most M / 65535, so its square is far
@@ -1025,7 +1049,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             if (!viewKeys_.empty()) {
                 proto.viewKeys = viewKeys_.data();
                 proto.keyNodes = viewKeys_.size() / 3;
-                proto.keyYBase = keyYBase_, proto.keyYStep = keyYStep_, proto.keyYError = keyYError_;
+                proto.keyYBase = keyYBase_, proto.keyYStep = keyYStep_,
+                proto.keyYError = keyYError_;
                 proto.keyDy0 = float(double(keyYBase_) - proto.ey);
                 // The column and row terms are rounded once from double; dy is
                 // within 2^-21 M of the decoded height's distance (three
@@ -1084,7 +1109,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     // which a preempted helper may hold or the caller run twice, are the
     // small ones. The output does not depend on the order.
     std::vector<int64_t>& work = kView ? viewChunkWork_ : fixedChunkWork_;
-    const uint64_t levelFirst = (uint64_t(2) << chunkLevel_) - 2;  // first tree node of the chunk level
+    const uint64_t levelFirst =
+        (uint64_t(2) << chunkLevel_) - 2;  // first tree node of the chunk level
     auto workOf = [&](int c) -> int64_t {
         for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
             if (ops[k].kind == Op::kSubtree) {
@@ -1136,7 +1162,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         throw;
     }
     if (pooled) busyFrame_ = frameIndex;
-    for (int u = 0; u < chunkCount; ++u) frame.slotOf[size_t(frame.order[size_t(u)])] = frame.winners[size_t(u)];
+    for (int u = 0; u < chunkCount; ++u)
+        frame.slotOf[size_t(frame.order[size_t(u)])] = frame.winners[size_t(u)];
 
     // Join in chunk order. Every strip starts with its entry vertex twice (a, a);
     // dropping one copy flips the GL parity of the whole strip, which is how each
@@ -1150,7 +1177,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     // full 2049^2 grid they move 56 MB, a seventh of a thread's refinement time.
     copies_.clear();
     int64_t pos = 0, stripStart = 0;
-    uint32_t tail[3] = {kRestartIndex, kRestartIndex, kRestartIndex};  // last, second-last, third-last
+    uint32_t tail[3] = {kRestartIndex, kRestartIndex,
+                        kRestartIndex};  // last, second-last, third-last
     int64_t leaves = 0, culled = 0;
     int strips = 0;
     const uint32_t side = uint32_t(side_);
@@ -1191,7 +1219,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             if (length >= 3) {
                 tail[0] = from[length - 1], tail[1] = from[length - 2], tail[2] = from[length - 3];
             } else {
-                for (int64_t k = 0; k < length; ++k) tail[2] = tail[1], tail[1] = tail[0], tail[0] = from[k];
+                for (int64_t k = 0; k < length; ++k)
+                    tail[2] = tail[1], tail[1] = tail[0], tail[0] = from[k];
             }
             pos += length;
         }
@@ -1223,7 +1252,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         for (int c = 0; c < chunkCount; ++c)
             for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
                 if (ops[k].kind == Op::kSubtree) {
-                    work[size_t(ops[k].node - levelFirst)] = frame.chunks[frame.slotOf[size_t(c)]][size_t(c)].leaves;
+                    work[size_t(ops[k].node - levelFirst)] =
+                        frame.chunks[frame.slotOf[size_t(c)]][size_t(c)].leaves;
                     break;
                 }
     }
@@ -1252,8 +1282,8 @@ int64_t countDistinctVertices(const std::vector<uint32_t>& indices, int side) {
     int64_t count = 0;
     for (uint32_t v : indices) {
         if (v == kRestartIndex) continue;
-        SIERRA_CHECK(v < seen.size(), "countDistinctVertices: index ", v, " outside a ", side,
-                     "x", side, " grid");
+        SIERRA_CHECK(v < seen.size(), "countDistinctVertices: index ", v, " outside a ", side, "x",
+                     side, " grid");
         count += !seen[v];
         seen[v] = 1;
     }
@@ -1263,7 +1293,8 @@ int64_t countDistinctVertices(const std::vector<uint32_t>& indices, int side) {
 double maxVerticalDistance(const terrain::Heightfield& field,
                            const std::vector<std::array<uint32_t, 3>>& triangles, int threads) {
     const int side = field.width();
-    const int64_t chunks = std::max<int64_t>(1, std::min<int64_t>(int64_t(triangles.size()) / 4096 + 1, 256));
+    const int64_t chunks =
+        std::max<int64_t>(1, std::min<int64_t>(int64_t(triangles.size()) / 4096 + 1, 256));
     std::vector<double> best(size_t(chunks), 0.0);
     parallelChunks(
         0, int64_t(triangles.size()), int(chunks),
@@ -1280,18 +1311,24 @@ double maxVerticalDistance(const terrain::Heightfield& field,
                 const int64_t det = int64_t(vi[1] - vi[0]) * (vj[2] - vj[0]) -
                                     int64_t(vj[1] - vj[0]) * (vi[2] - vi[0]);
                 if (det == 0) continue;
-                const int i0 = std::min({vi[0], vi[1], vi[2]}), i1 = std::max({vi[0], vi[1], vi[2]});
-                const int j0 = std::min({vj[0], vj[1], vj[2]}), j1 = std::max({vj[0], vj[1], vj[2]});
+                const int i0 = std::min({vi[0], vi[1], vi[2]}),
+                          i1 = std::max({vi[0], vi[1], vi[2]});
+                const int j0 = std::min({vj[0], vj[1], vj[2]}),
+                          j1 = std::max({vj[0], vj[1], vj[2]});
                 for (int j = j0; j <= j1; ++j)
                     for (int i = i0; i <= i1; ++i) {
                         // barycentric coordinates (exact integers)
-                        int64_t w1 = int64_t(i - vi[0]) * (vj[2] - vj[0]) - int64_t(j - vj[0]) * (vi[2] - vi[0]);
-                        int64_t w2 = int64_t(vi[1] - vi[0]) * (j - vj[0]) - int64_t(vj[1] - vj[0]) * (i - vi[0]);
+                        int64_t w1 = int64_t(i - vi[0]) * (vj[2] - vj[0]) -
+                                     int64_t(j - vj[0]) * (vi[2] - vi[0]);
+                        int64_t w2 = int64_t(vi[1] - vi[0]) * (j - vj[0]) -
+                                     int64_t(vj[1] - vj[0]) * (i - vi[0]);
                         int64_t w0 = det - w1 - w2;
                         bool inside = det > 0 ? (w0 >= 0 && w1 >= 0 && w2 >= 0)
                                               : (w0 <= 0 && w1 <= 0 && w2 <= 0);
                         if (!inside) continue;
-                        double hMesh = (double(w0) * vh[0] + double(w1) * vh[1] + double(w2) * vh[2]) / double(det);
+                        double hMesh =
+                            (double(w0) * vh[0] + double(w1) * vh[1] + double(w2) * vh[2]) /
+                            double(det);
                         worst = std::max(worst, std::fabs(double(field.worldHeight(i, j)) - hMesh));
                     }
             }

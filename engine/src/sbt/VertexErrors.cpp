@@ -17,7 +17,9 @@ float roundUp(double x) {
     return f;
 }
 
-int trailingZeros(int v, int n) { return v == 0 ? n : std::countr_zero(unsigned(v)); }
+int trailingZeros(int v, int n) {
+    return v == 0 ? n : std::countr_zero(unsigned(v));
+}
 
 struct Grid {
     const float* h;
@@ -90,8 +92,8 @@ VertexErrors computeVertexErrors(const terrain::Heightfield& field, int threads)
     SIERRA_CHECK(isSbtGrid(field, &n), "the SBT needs a (2^n+1)^2 grid with n >= 1, got ",
                  field.width(), "x", field.height(), " (pad it with padToPowerOfTwoPlusOne)");
     SIERRA_CHECK(field.width() <= kMaxSbtSide, "a ", field.width(), "x", field.width(),
-                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide, "x",
-                 kMaxSbtSide, ")");
+                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide,
+                 "x", kMaxSbtSide, ")");
     if (threads <= 0) threads = defaultThreadCount();
     const int side = field.width(), S = side - 1;
     VertexErrors out;
@@ -106,8 +108,8 @@ VertexErrors computeVertexErrors(const terrain::Heightfield& field, int threads)
 
     // One vertex: hypotenuse (a, b), children at m + childOff (if any), corners
     // at m + cornerOff; everything out of the domain skipped.
-    auto process = [&](int i, int j, int ai, int aj, int bi, int bj, const int (*childOff)[2],
-                       int childCount, const int (*cornerOff)[2]) {
+    auto process = [&](int i, int j, int ai, int aj, int bi, int bj, const int(*childOff)[2],
+                       int childCount, const int(*cornerOff)[2]) {
         double e = std::fabs(g.y(i, j) - 0.5 * (g.y(ai, aj) + g.y(bi, bj)));
         double r = 0.0;
         float emax = float(e);
@@ -172,8 +174,8 @@ std::vector<float> buildMorphBase(const terrain::Heightfield& field, int threads
     SIERRA_CHECK(isSbtGrid(field, &n), "the SBT needs a (2^n+1)^2 grid with n >= 1, got ",
                  field.width(), "x", field.height(), " (pad it with padToPowerOfTwoPlusOne)");
     SIERRA_CHECK(field.width() <= kMaxSbtSide, "a ", field.width(), "x", field.width(),
-                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide, "x",
-                 kMaxSbtSide, ")");
+                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide,
+                 "x", kMaxSbtSide, ")");
     if (threads <= 0) threads = defaultThreadCount();
     const int side = field.width();
     std::vector<float> base(size_t(side) * side);

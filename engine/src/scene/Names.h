@@ -10,7 +10,8 @@ namespace sierra::scene::detail {
 
 // The value named `text`; throws sierra::Error naming `what` and every accepted name.
 template <typename E, size_t N>
-E parseName(const std::string& text, const std::string& what, const std::pair<const char*, E> (&names)[N]) {
+E parseName(const std::string& text, const std::string& what,
+            const std::pair<const char*, E> (&names)[N]) {
     std::string accepted;
     for (const auto& [name, value] : names) {
         if (text == name) return value;

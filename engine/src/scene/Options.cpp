@@ -15,7 +15,8 @@ namespace {
 
 // Numbers are parsed here rather than by CLI11, so every bad value gets the
 // same kind of message: the option, the text and what was expected.
-float parseFloat(const std::string& text, const std::string& option, const char* expected = "a number") {
+float parseFloat(const std::string& text, const std::string& option,
+                 const char* expected = "a number") {
     char* end = nullptr;
     errno = 0;
     float v = std::strtof(text.c_str(), &end);
@@ -24,7 +25,8 @@ float parseFloat(const std::string& text, const std::string& option, const char*
     return v;
 }
 
-int parseInt(const std::string& text, const std::string& option, const char* expected = "an integer") {
+int parseInt(const std::string& text, const std::string& option,
+             const char* expected = "an integer") {
     char* end = nullptr;
     errno = 0;
     long v = std::strtol(text.c_str(), &end, 10);
@@ -39,13 +41,15 @@ uint64_t parseUnsigned(const std::string& text, const std::string& option) {
     errno = 0;
     unsigned long long v = std::strtoull(text.c_str(), &end, 10);
     if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || errno == ERANGE)
-        throw Error(msg(option, " '", text, "': expected an integer 0..", std::numeric_limits<uint64_t>::max()));
+        throw Error(msg(option, " '", text, "': expected an integer 0..",
+                        std::numeric_limits<uint64_t>::max()));
     return uint64_t(v);
 }
 
 Vec3 parseVec3(const std::vector<std::string>& words, const std::string& option) {
     if (words.size() != 3) throw Error(msg(option, ": expected 3 numbers X Y Z"));
-    return {parseFloat(words[0], option, "a number (X)"), parseFloat(words[1], option, "a number (Y)"),
+    return {parseFloat(words[0], option, "a number (X)"),
+            parseFloat(words[1], option, "a number (Y)"),
             parseFloat(words[2], option, "a number (Z)")};
 }
 
@@ -58,14 +62,20 @@ Rgb parseRgb(const std::string& text, const std::string& option) {
         else
             parts.back() += ch;
     }
-    if (parts.size() != 3) throw Error(msg(option, " '", text, "': expected R,G,B, each 0..1, e.g. 0.62,0.74,0.86"));
-    return {parseFloat(parts[0], option, "R,G,B numbers"), parseFloat(parts[1], option, "R,G,B numbers"),
+    if (parts.size() != 3)
+        throw Error(msg(option, " '", text, "': expected R,G,B, each 0..1, e.g. 0.62,0.74,0.86"));
+    return {parseFloat(parts[0], option, "R,G,B numbers"),
+            parseFloat(parts[1], option, "R,G,B numbers"),
             parseFloat(parts[2], option, "R,G,B numbers")};
 }
 
-std::string show(float v) { return msg(v); }
+std::string show(float v) {
+    return msg(v);
+}
 
-std::string show(const std::optional<float>& v, const char* absent = "auto") { return v ? msg(*v) : absent; }
+std::string show(const std::optional<float>& v, const char* absent = "auto") {
+    return v ? msg(*v) : absent;
+}
 
 std::string show(const std::optional<Vec3>& v, const char* absent = "auto") {
     return v ? msg(v->x, " ", v->y, " ", v->z) : absent;
@@ -74,7 +84,8 @@ std::string show(const std::optional<Vec3>& v, const char* absent = "auto") {
 }  // namespace
 
 CLI::Option* SceneOptions::add(const char* name, const std::string& help, const std::string& group,
-                               const char* typeName, const std::string& defaultText, int values, Setter set) {
+                               const char* typeName, const std::string& defaultText, int values,
+                               Setter set) {
     std::vector<std::string>& storage = values_.emplace_back();
     CLI::Option* option = app_.add_option(name, storage, help);
     // Given twice, the last one counts (as a later word overrides an earlier one).
@@ -85,8 +96,8 @@ CLI::Option* SceneOptions::add(const char* name, const std::string& help, const 
     return option;
 }
 
-CLI::Option* SceneOptions::addFlag(const char* name, const std::string& help, const std::string& group,
-                                   Setter set) {
+CLI::Option* SceneOptions::addFlag(const char* name, const std::string& help,
+                                   const std::string& group, Setter set) {
     CLI::Option* option = app_.add_flag(name)->description(help)->group(group);
     entries_.push_back({option, nullptr, std::move(set)});
     return option;
@@ -97,74 +108,88 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
     const Scene& d = defaults_;
     using Words = const std::vector<std::string>&;
 
-    configOption_ = app_.add_option("--config", config_,
-                                    "Scene file (JSON, see docs/scene.md) loaded first; options given beside it "
-                                    "override it")
-                        ->type_name("FILE.json")
-                        ->group("Scene file");
+    configOption_ =
+        app_.add_option(
+                "--config", config_,
+                "Scene file (JSON, see docs/scene.md) loaded first; options given beside it "
+                "override it")
+            ->type_name("FILE.json")
+            ->group("Scene file");
     printOption_ = app_.add_flag("--print-config")
                        ->description("Print the effective scene as JSON and exit")
                        ->group("Scene file");
 
     if (groups & kTerrainOptions) {
         const std::string g = "Terrain";
-        auto* heightmap = add(
-            "--heightmap",
-            "Heightmap to load: .png (8/16-bit grey), .pgm, .r16/.r32 (with --raw-size), .hgt, .npy, .npz (.tif with GDAL)",
-            g, "FILE", d.terrain.heightmap.empty() ? "" : d.terrain.heightmap, 1,
-            [](Scene& s, Words w) { s.terrain.heightmap = w[0]; });
+        auto* heightmap = add("--heightmap",
+                              "Heightmap to load: .png (8/16-bit grey), .pgm, .r16/.r32 (with "
+                              "--raw-size), .hgt, .npy, .npz (.tif with GDAL)",
+                              g, "FILE", d.terrain.heightmap.empty() ? "" : d.terrain.heightmap, 1,
+                              [](Scene& s, Words w) { s.terrain.heightmap = w[0]; });
         // The check alone, without its "FILE" appended to the type name in --help.
         heightmap->check(CLI::Validator(CLI::ExistingFile).description(""));
-        auto* generate = add("--generate", "Generate a diamond-square terrain of N x N samples, N = 2^n + 1", g, "N",
-                             msg(d.terrain.generateSize), 1, [](Scene& s, Words w) {
-                                 s.terrain.heightmap.clear();
-                                 s.terrain.generateSize = parseInt(w[0], "--generate", "an integer 2^n + 1");
-                             });
+        auto* generate =
+            add("--generate", "Generate a diamond-square terrain of N x N samples, N = 2^n + 1", g,
+                "N", msg(d.terrain.generateSize), 1, [](Scene& s, Words w) {
+                    s.terrain.heightmap.clear();
+                    s.terrain.generateSize = parseInt(w[0], "--generate", "an integer 2^n + 1");
+                });
         generate->excludes(heightmap);
         add("--seed", "Seed of the generated terrain", g, "S", msg(d.terrain.seed), 1,
             [](Scene& s, Words w) { s.terrain.seed = parseUnsigned(w[0], "--seed"); });
         add("--roughness", "Amplitude factor of the generator's random offsets (> 0)", g, "R",
             show(d.terrain.roughness), 1,
             [](Scene& s, Words w) { s.terrain.roughness = parseFloat(w[0], "--roughness"); });
-        add("--hurst", "Generator's per-level amplitude factor 2^-H (default: the generator's own scaling)", g, "H",
-            show(d.terrain.hurst, ""), 1,
+        add("--hurst",
+            "Generator's per-level amplitude factor 2^-H (default: the generator's own scaling)", g,
+            "H", show(d.terrain.hurst, ""), 1,
             [](Scene& s, Words w) { s.terrain.hurst = parseFloat(w[0], "--hurst"); });
-        add("--raw-size", "Samples per row and rows of a .r16/.r32 heightmap (each 1..65537)", g, "WxH",
-            d.terrain.rawWidth ? msg(d.terrain.rawWidth, "x", d.terrain.rawHeight) : "", 1, [](Scene& s, Words w) {
+        add("--raw-size", "Samples per row and rows of a .r16/.r32 heightmap (each 1..65537)", g,
+            "WxH", d.terrain.rawWidth ? msg(d.terrain.rawWidth, "x", d.terrain.rawHeight) : "", 1,
+            [](Scene& s, Words w) {
                 auto [width, height] = parseRawSize(w[0], "--raw-size");
                 s.terrain.rawWidth = width;
                 s.terrain.rawHeight = height;
             });
-        add("--spacing", "World units between samples (0 = the file's: 1; SRTM 90/30 m; GeoTIFF pixel size)", g, "S",
-            show(d.terrain.spacing), 1,
+        add("--spacing",
+            "World units between samples (0 = the file's: 1; SRTM 90/30 m; GeoTIFF pixel size)", g,
+            "S", show(d.terrain.spacing), 1,
             [](Scene& s, Words w) { s.terrain.spacing = parseFloat(w[0], "--spacing"); });
         add("--vertical-scale",
-            "Stored height to world height (0 = automatic: 1 for metres, else relief 20% of the extent)", g, "V",
-            show(d.terrain.verticalScale), 1,
-            [](Scene& s, Words w) { s.terrain.verticalScale = parseFloat(w[0], "--vertical-scale"); });
-        std::string seaDefault = d.terrain.seaLevel.mode == SeaLevel::Mode::Value ? show(d.terrain.seaLevel.value)
-                                                                                   : toString(d.terrain.seaLevel.mode);
-        add("--sea-level", "Water level in stored height units, 'auto' (from the data) or 'none'", g, "H|auto|none",
-            seaDefault, 1, [](Scene& s, Words w) {
+            "Stored height to world height (0 = automatic: 1 for metres, else relief 20% of the "
+            "extent)",
+            g, "V", show(d.terrain.verticalScale), 1, [](Scene& s, Words w) {
+                s.terrain.verticalScale = parseFloat(w[0], "--vertical-scale");
+            });
+        std::string seaDefault = d.terrain.seaLevel.mode == SeaLevel::Mode::Value
+                                     ? show(d.terrain.seaLevel.value)
+                                     : toString(d.terrain.seaLevel.mode);
+        add("--sea-level", "Water level in stored height units, 'auto' (from the data) or 'none'",
+            g, "H|auto|none", seaDefault, 1, [](Scene& s, Words w) {
                 if (w[0] == "auto")
                     s.terrain.seaLevel = {};
                 else if (w[0] == "none")
                     s.terrain.seaLevel = {.mode = SeaLevel::Mode::None};
                 else
-                    s.terrain.seaLevel = {.mode = SeaLevel::Mode::Value,
-                                          .value = parseFloat(w[0], "--sea-level", "a height, 'auto' or 'none'")};
+                    s.terrain.seaLevel = {
+                        .mode = SeaLevel::Mode::Value,
+                        .value = parseFloat(w[0], "--sea-level", "a height, 'auto' or 'none'")};
             });
-        add("--height-units", "What heights measure: auto (metres for SRTM/GeoTIFF), m (metres) or none", g,
-            "auto|m|none", toString(d.terrain.heightUnits), 1,
-            [](Scene& s, Words w) { s.terrain.heightUnits = parseHeightUnits(w[0], "--height-units"); });
-        add("--channel", "Height channel of a colour image: luminance, r, g or b (default: grey images only)", g,
+        add("--height-units",
+            "What heights measure: auto (metres for SRTM/GeoTIFF), m (metres) or none", g,
+            "auto|m|none", toString(d.terrain.heightUnits), 1, [](Scene& s, Words w) {
+                s.terrain.heightUnits = parseHeightUnits(w[0], "--height-units");
+            });
+        add("--channel",
+            "Height channel of a colour image: luminance, r, g or b (default: grey images only)", g,
             "NAME", d.terrain.channel == Channel::Grey ? "" : toString(d.terrain.channel), 1,
             [](Scene& s, Words w) { s.terrain.channel = parseChannel(w[0], "--channel"); });
     }
 
     if (groups & kCameraOptions) {
         const std::string g = "Camera";
-        auto* pos = add("--camera-pos", "Camera position X Y Z in world units (default: fits the whole terrain)", g,
+        auto* pos = add("--camera-pos",
+                        "Camera position X Y Z in world units (default: fits the whole terrain)", g,
                         "X Y Z", show(d.camera.position), 3, [](Scene& s, Words w) {
                             s.camera.position = parseVec3(w, "--camera-pos");
                             // Given here, it replaces a scene file's orbit-style camera.
@@ -172,19 +197,22 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
                             s.camera.elevation.reset();
                             s.camera.distance.reset();
                         });
-        add("--camera-target", "Point the camera looks at, X Y Z (default: the terrain's centre)", g, "X Y Z",
-            show(d.camera.target), 3, [](Scene& s, Words w) { s.camera.target = parseVec3(w, "--camera-target"); });
+        add("--camera-target", "Point the camera looks at, X Y Z (default: the terrain's centre)",
+            g, "X Y Z", show(d.camera.target), 3,
+            [](Scene& s, Words w) { s.camera.target = parseVec3(w, "--camera-target"); });
         // The three angles replace a scene file's position, as --camera-pos replaces them.
-        auto* azimuth = add("--azimuth", "Camera bearing from the target, degrees clockwise from north (-z)", g, "DEG",
-                            show(d.camera.azimuth), 1, [](Scene& s, Words w) {
-                                s.camera.azimuth = parseFloat(w[0], "--azimuth");
-                                s.camera.position.reset();
-                            });
-        auto* elevation = add("--elevation", "Camera elevation above the horizon seen from the target, degrees", g,
-                              "DEG", show(d.camera.elevation), 1, [](Scene& s, Words w) {
-                                  s.camera.elevation = parseFloat(w[0], "--elevation");
-                                  s.camera.position.reset();
-                              });
+        auto* azimuth =
+            add("--azimuth", "Camera bearing from the target, degrees clockwise from north (-z)", g,
+                "DEG", show(d.camera.azimuth), 1, [](Scene& s, Words w) {
+                    s.camera.azimuth = parseFloat(w[0], "--azimuth");
+                    s.camera.position.reset();
+                });
+        auto* elevation =
+            add("--elevation", "Camera elevation above the horizon seen from the target, degrees",
+                g, "DEG", show(d.camera.elevation), 1, [](Scene& s, Words w) {
+                    s.camera.elevation = parseFloat(w[0], "--elevation");
+                    s.camera.position.reset();
+                });
         auto* distance = add("--distance", "Camera distance from the target, world units", g, "D",
                              show(d.camera.distance), 1, [](Scene& s, Words w) {
                                  s.camera.distance = parseFloat(w[0], "--distance");
@@ -199,11 +227,13 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
 
     if (groups & kPathOptions) {
         const std::string g = "Camera path";
-        add("--path", "Camera path over the frames: none, orbit, flyover or keyframes (from --config)", g,
+        add("--path",
+            "Camera path over the frames: none, orbit, flyover or keyframes (from --config)", g,
             "none|orbit|flyover|keyframes", toString(d.path.type), 1,
             [](Scene& s, Words w) { s.path.type = parsePathType(w[0], "--path"); });
         add("--frames",
-            "N frames, or A:B = frames A..B (0-based, inclusive) of the sequence (its count from --frame-count or "
+            "N frames, or A:B = frames A..B (0-based, inclusive) of the sequence (its count from "
+            "--frame-count or "
             "--config), same files and bytes as the whole run",
             g, "N|A:B", msg(d.path.frames), 1, [](Scene& s, Words w) {
                 const std::string& text = w[0];
@@ -213,12 +243,14 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
                     s.path.range.reset();
                 } else {
                     const char* expected = "A:B, two integers 0 <= A <= B";
-                    s.path.range = FrameRange{parseInt(text.substr(0, colon), "--frames", expected),
-                                              parseInt(text.substr(colon + 1), "--frames", expected)};
+                    s.path.range =
+                        FrameRange{parseInt(text.substr(0, colon), "--frames", expected),
+                                   parseInt(text.substr(colon + 1), "--frames", expected)};
                 }
             });
-        frameCountOption_ = add("--frame-count", "Frames in the whole sequence, for --frames A:B", g, "N", "", 1,
-            [](Scene& s, Words w) { s.path.frames = parseInt(w[0], "--frame-count"); });
+        frameCountOption_ =
+            add("--frame-count", "Frames in the whole sequence, for --frames A:B", g, "N", "", 1,
+                [](Scene& s, Words w) { s.path.frames = parseInt(w[0], "--frame-count"); });
     }
 
     if (groups & kLightingOptions) {
@@ -226,12 +258,14 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
         add("--sun-azimuth", "Sun bearing, degrees clockwise from north (-z)", g, "DEG",
             show(d.lighting.sunAzimuth), 1,
             [](Scene& s, Words w) { s.lighting.sunAzimuth = parseFloat(w[0], "--sun-azimuth"); });
-        add("--sun-altitude", "Sun altitude above the horizon, degrees", g, "DEG", show(d.lighting.sunAltitude), 1,
+        add("--sun-altitude", "Sun altitude above the horizon, degrees", g, "DEG",
+            show(d.lighting.sunAltitude), 1,
             [](Scene& s, Words w) { s.lighting.sunAltitude = parseFloat(w[0], "--sun-altitude"); });
-        add("--ambient", "Ambient light, fraction of full light 0..1", g, "A", show(d.lighting.ambient), 1,
+        add("--ambient", "Ambient light, fraction of full light 0..1", g, "A",
+            show(d.lighting.ambient), 1,
             [](Scene& s, Words w) { s.lighting.ambient = parseFloat(w[0], "--ambient"); });
-        add("--fog", "Fog density per world unit; 0 = off, auto = 0.35 / the terrain's extent", g, "D|auto",
-            show(d.lighting.fog), 1, [](Scene& s, Words w) {
+        add("--fog", "Fog density per world unit; 0 = off, auto = 0.35 / the terrain's extent", g,
+            "D|auto", show(d.lighting.fog), 1, [](Scene& s, Words w) {
                 if (w[0] == "auto")
                     s.lighting.fog.reset();
                 else
@@ -244,23 +278,26 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
 
     if (groups & kLodOptions) {
         const std::string g = "Level of detail";
-        add("--lod", "Level of detail: sbt (view-dependent) or full (every grid cell)", g, "sbt|full",
-            toString(d.lod.mode), 1, [](Scene& s, Words w) { s.lod.mode = parseLodMode(w[0], "--lod"); });
-        add("--tau", "SBT screen-space error threshold in pixels (> 0)", g, "PX", show(d.lod.tau), 1,
-            [](Scene& s, Words w) { s.lod.tau = parseFloat(w[0], "--tau"); });
+        add("--lod", "Level of detail: sbt (view-dependent) or full (every grid cell)", g,
+            "sbt|full", toString(d.lod.mode), 1,
+            [](Scene& s, Words w) { s.lod.mode = parseLodMode(w[0], "--lod"); });
+        add("--tau", "SBT screen-space error threshold in pixels (> 0)", g, "PX", show(d.lod.tau),
+            1, [](Scene& s, Words w) { s.lod.tau = parseFloat(w[0], "--tau"); });
         addFlag("--no-geomorph", "Do not blend newly active vertices in", g,
                 [](Scene& s, Words) { s.lod.geomorph = false; });
-        addFlag("--no-cull", "Do not cull against the view frustum", g, [](Scene& s, Words) { s.lod.cull = false; });
+        addFlag("--no-cull", "Do not cull against the view frustum", g,
+                [](Scene& s, Words) { s.lod.cull = false; });
         add("--threads", "CPU threads (0 = all cores)", g, "N", msg(d.lod.threads), 1,
             [](Scene& s, Words w) { s.lod.threads = parseInt(w[0], "--threads"); });
-        add("--mesh", "Draw this TIN (an OBJ from sierra-tin of the same terrain) instead of the SBT", g, "MESH.obj",
-            d.lod.mesh, 1, [](Scene& s, Words w) { s.lod.mesh = w[0]; });
+        add("--mesh",
+            "Draw this TIN (an OBJ from sierra-tin of the same terrain) instead of the SBT", g,
+            "MESH.obj", d.lod.mesh, 1, [](Scene& s, Words w) { s.lod.mesh = w[0]; });
     }
 
     if (groups & kFrameOptions) {
         const std::string g = "Frame";
-        add("--size", "Frame size in pixels", g, "WxH", msg(d.output.width, "x", d.output.height), 1,
-            [](Scene& s, Words w) {
+        add("--size", "Frame size in pixels", g, "WxH", msg(d.output.width, "x", d.output.height),
+            1, [](Scene& s, Words w) {
                 auto [width, height] = parseFrameSize(w[0], "--size");
                 s.output.width = width;
                 s.output.height = height;
@@ -273,95 +310,117 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
         const std::string g = "Output";
         add("--out", "Frame PNG (sequences: NAME_0000.png, ...)", g, "FILE.png", d.output.frame, 1,
             [](Scene& s, Words w) { s.output.frame = w[0]; });
-        add("--depth-out", "Linear eye-space depth per pixel, float32 .npy (NaN where no terrain)", g, "FILE.npy",
-            d.output.depth, 1, [](Scene& s, Words w) { s.output.depth = w[0]; });
-        addFlag("--alpha", "RGBA PNG with a transparent sky", g, [](Scene& s, Words) { s.output.alpha = true; });
+        add("--depth-out", "Linear eye-space depth per pixel, float32 .npy (NaN where no terrain)",
+            g, "FILE.npy", d.output.depth, 1, [](Scene& s, Words w) { s.output.depth = w[0]; });
+        addFlag("--alpha", "RGBA PNG with a transparent sky", g,
+                [](Scene& s, Words) { s.output.alpha = true; });
     }
 
     if (groups & kDebugOptions) {
         const std::string g = "Debug";
-        auto* debugOut = add("--debug-out", "ImGui debug snapshot PNG", g, "FILE.png", d.output.debug, 1,
-                             [](Scene& s, Words w) { s.output.debug = w[0]; });
-        auto* snapshot = add("--snapshot", "ImGui debug snapshot PNG: the UI beside the frame (same as --debug-out)",
-                             g, "FILE.png", "", 1, [](Scene& s, Words w) { s.output.debug = w[0]; });
-        addFlag("--no-debug", "Do not write the debug snapshot", g, [](Scene& s, Words) { s.output.debug.clear(); })
+        auto* debugOut = add("--debug-out", "ImGui debug snapshot PNG", g, "FILE.png",
+                             d.output.debug, 1, [](Scene& s, Words w) { s.output.debug = w[0]; });
+        auto* snapshot = add(
+            "--snapshot", "ImGui debug snapshot PNG: the UI beside the frame (same as --debug-out)",
+            g, "FILE.png", "", 1, [](Scene& s, Words w) { s.output.debug = w[0]; });
+        addFlag("--no-debug", "Do not write the debug snapshot", g,
+                [](Scene& s, Words) { s.output.debug.clear(); })
             ->excludes(debugOut)
             ->excludes(snapshot);
-        add("--snapshot-only", "The debug UI alone on a plain background, as PNG", g, "FILE.png", "", 1,
-            [](Scene& s, Words w) { s.output.snapshotOnly = w[0]; });
-        add("--snapshot-every", "Sequences: a snapshot of every Nth frame (NAME_0000.png); 0 = the last only", g, "N",
-            "0", 1, [](Scene& s, Words w) { s.output.snapshotEvery = parseInt(w[0], "--snapshot-every"); });
-        addFlag("--snapshot-deterministic", "Snapshots show placeholders instead of measured times (golden images)",
-                g, [](Scene& s, Words) { s.output.snapshotDeterministic = true; });
+        add("--snapshot-only", "The debug UI alone on a plain background, as PNG", g, "FILE.png",
+            "", 1, [](Scene& s, Words w) { s.output.snapshotOnly = w[0]; });
+        add("--snapshot-every",
+            "Sequences: a snapshot of every Nth frame (NAME_0000.png); 0 = the last only", g, "N",
+            "0", 1,
+            [](Scene& s, Words w) { s.output.snapshotEvery = parseInt(w[0], "--snapshot-every"); });
+        addFlag("--snapshot-deterministic",
+                "Snapshots show placeholders instead of measured times (golden images)", g,
+                [](Scene& s, Words) { s.output.snapshotDeterministic = true; });
     }
 
     if (groups & kZoneOptions) {
         const std::string g = "Zones";
-        add("--zones", "Zone tiles: auto (from height and slope) or a zone-map PNG", g, "auto|MAP.png", d.zones.map, 1,
-            [](Scene& s, Words w) { s.zones.map = w[0]; });
+        add("--zones", "Zone tiles: auto (from height and slope) or a zone-map PNG", g,
+            "auto|MAP.png", d.zones.map, 1, [](Scene& s, Words w) { s.zones.map = w[0]; });
         add("--palette", "Zone palette JSON (surface types, tiles, blend settings)", g, "P.json",
             d.zones.palette.empty() ? "assets/palettes/default.json" : d.zones.palette, 1,
             [](Scene& s, Words w) { s.zones.palette = w[0]; });
-        add("--band", "Transition band width in zone-map pixels (0 = none; default: the palette's)", g, "W",
-            d.zones.band < 0.0f ? "palette" : show(d.zones.band), 1,
+        add("--band", "Transition band width in zone-map pixels (0 = none; default: the palette's)",
+            g, "W", d.zones.band < 0.0f ? "palette" : show(d.zones.band), 1,
             [](Scene& s, Words w) { s.zones.band = parseFloat(w[0], "--band"); });
-        add("--zone-epsilon", "Borderline simplification distance, zone-map pixels", g, "E", show(d.zones.epsilon), 1,
+        add("--zone-epsilon", "Borderline simplification distance, zone-map pixels", g, "E",
+            show(d.zones.epsilon), 1,
             [](Scene& s, Words w) { s.zones.epsilon = parseFloat(w[0], "--zone-epsilon"); });
         // Auto-zoning thresholds (--zones auto).
-        add("--deep-water", "Auto-zones: deep water below this fraction of the depth range, 0..1", g, "F",
-            show(d.zones.deepWater), 1, [](Scene& s, Words w) { s.zones.deepWater = parseFloat(w[0], "--deep-water"); });
-        add("--sand-top", "Auto-zones: sand up to this fraction of the land relief, 0..1", g, "F", show(d.zones.sandTop),
-            1, [](Scene& s, Words w) { s.zones.sandTop = parseFloat(w[0], "--sand-top"); });
-        add("--zone-snow-line", "Auto-zones: snow above this fraction of the land relief, 0..1", g, "F",
-            show(d.zones.snowLine), 1,
+        add("--deep-water", "Auto-zones: deep water below this fraction of the depth range, 0..1",
+            g, "F", show(d.zones.deepWater), 1,
+            [](Scene& s, Words w) { s.zones.deepWater = parseFloat(w[0], "--deep-water"); });
+        add("--sand-top", "Auto-zones: sand up to this fraction of the land relief, 0..1", g, "F",
+            show(d.zones.sandTop), 1,
+            [](Scene& s, Words w) { s.zones.sandTop = parseFloat(w[0], "--sand-top"); });
+        add("--zone-snow-line", "Auto-zones: snow above this fraction of the land relief, 0..1", g,
+            "F", show(d.zones.snowLine), 1,
             [](Scene& s, Words w) { s.zones.snowLine = parseFloat(w[0], "--zone-snow-line"); });
-        add("--rock-slope", "Auto-zones: rock steeper than this, degrees (0, 90)", g, "DEG", show(d.zones.rockSlope), 1,
+        add("--rock-slope", "Auto-zones: rock steeper than this, degrees (0, 90)", g, "DEG",
+            show(d.zones.rockSlope), 1,
             [](Scene& s, Words w) { s.zones.rockSlope = parseFloat(w[0], "--rock-slope"); });
     }
 
     if (groups & kZoneShadingOptions) {
         const std::string g = "Zones";
-        add("--blend", "Blend across a band: linear (by distance) or height (tile heights move it)", g,
-            "linear|height", d.zones.blend, 1, [](Scene& s, Words w) { s.zones.blend = w[0]; });
+        add("--blend", "Blend across a band: linear (by distance) or height (tile heights move it)",
+            g, "linear|height", d.zones.blend, 1, [](Scene& s, Words w) { s.zones.blend = w[0]; });
         addFlag("--triplanar", "Project tiles along the normal's axes on steep slopes", g,
                 [](Scene& s, Words) { s.zones.triplanar = true; });
-        addFlag("--no-tile-variation", "No slow warp of the tile coordinates against visible repetition", g,
+        addFlag("--no-tile-variation",
+                "No slow warp of the tile coordinates against visible repetition", g,
                 [](Scene& s, Words) { s.zones.variation = false; });
-        add("--debug-view", "Flat zone colours (zones) or the band blend weight (bands)", g, "none|zones|bands",
-            d.zones.debugView, 1, [](Scene& s, Words w) { s.zones.debugView = w[0]; });
+        add("--debug-view", "Flat zone colours (zones) or the band blend weight (bands)", g,
+            "none|zones|bands", d.zones.debugView, 1,
+            [](Scene& s, Words w) { s.zones.debugView = w[0]; });
     }
 
     if (groups & kStyleOptions) {
-        addFlag("--wireframe", "Overlay the triangulation", "Style", [](Scene& s, Words) { s.style.wireframe = true; });
-        add("--colour-by", "Colour the polygons by surface, level (SBT level) or error (screen-space error heat map)",
+        addFlag("--wireframe", "Overlay the triangulation", "Style",
+                [](Scene& s, Words) { s.style.wireframe = true; });
+        add("--colour-by",
+            "Colour the polygons by surface, level (SBT level) or error (screen-space error heat "
+            "map)",
             "Style", "MODE", "surface", 1, [](Scene& s, Words w) { s.style.colourBy = w[0]; });
-        add("--display", "What to draw: any of points, wireframe, polygons, comma-separated", "Style", "LIST",
-            "polygons", 1, [](Scene& s, Words w) {
+        add("--display", "What to draw: any of points, wireframe, polygons, comma-separated",
+            "Style", "LIST", "polygons", 1, [](Scene& s, Words w) {
                 s.style.points = s.style.wireframe = s.style.polygons = false;
                 std::stringstream in(w[0]);
                 for (std::string item; std::getline(in, item, ',');) {
-                    if (item == "points") s.style.points = true;
-                    else if (item == "wireframe") s.style.wireframe = true;
-                    else if (item == "polygons") s.style.polygons = true;
+                    if (item == "points")
+                        s.style.points = true;
+                    else if (item == "wireframe")
+                        s.style.wireframe = true;
+                    else if (item == "polygons")
+                        s.style.polygons = true;
                     else
-                        throw Error(msg("--display: unknown item '", item,
-                                        "'; expected points, wireframe or polygons, comma-separated"));
+                        throw Error(
+                            msg("--display: unknown item '", item,
+                                "'; expected points, wireframe or polygons, comma-separated"));
                 }
             });
-        add("--tree-line", "Metric heights: metres above which rock replaces vegetation", "Style", "M",
-            show(d.style.treeLine), 1, [](Scene& s, Words w) { s.style.treeLine = parseFloat(w[0], "--tree-line"); });
-        add("--snow-line", "Metric heights: metres above which snow lies", "Style", "M", show(d.style.snowLine), 1,
+        add("--tree-line", "Metric heights: metres above which rock replaces vegetation", "Style",
+            "M", show(d.style.treeLine), 1,
+            [](Scene& s, Words w) { s.style.treeLine = parseFloat(w[0], "--tree-line"); });
+        add("--snow-line", "Metric heights: metres above which snow lies", "Style", "M",
+            show(d.style.snowLine), 1,
             [](Scene& s, Words w) { s.style.snowLine = parseFloat(w[0], "--snow-line"); });
         // Curvature overlays (analysis/Style.h). Entries apply in this order,
         // so --preset comes first and the options after it override it.
         const std::string o = "Overlays";
-        add("--preset", "Overlay style preset: fig3a..fig3n (line shading), fig4a..fig4h (hatch shading)", o, "NAME",
-            "", 1, [](Scene& s, Words w) {
+        add("--preset",
+            "Overlay style preset: fig3a..fig3n (line shading), fig4a..fig4h (hatch shading)", o,
+            "NAME", "", 1, [](Scene& s, Words w) {
                 s.style.overlay = loadPreset(w[0]);
                 s.style.preset = w[0];
             });
-        add("--style", "Layers: any of shaded,lines,hatch,contours (without shaded: plain paper)", o, "LIST",
-            "shaded", 1, [](Scene& s, Words w) {
+        add("--style", "Layers: any of shaded,lines,hatch,contours (without shaded: plain paper)",
+            o, "LIST", "shaded", 1, [](Scene& s, Words w) {
                 analysis::StyleLayers layers{.shaded = false};
                 std::string name;
                 for (size_t k = 0; k <= w[0].size(); ++k) {
@@ -369,20 +428,28 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
                         name += w[0][k];
                         continue;
                     }
-                    if (name == "shaded") layers.shaded = true;
-                    else if (name == "lines") layers.lines = true;
-                    else if (name == "hatch") layers.hatch = true;
-                    else if (name == "contours") layers.contours = true;
-                    else throw Error(msg("--style: unknown layer '", name, "' (expected shaded, lines, hatch or contours)"));
+                    if (name == "shaded")
+                        layers.shaded = true;
+                    else if (name == "lines")
+                        layers.lines = true;
+                    else if (name == "hatch")
+                        layers.hatch = true;
+                    else if (name == "contours")
+                        layers.contours = true;
+                    else
+                        throw Error(msg("--style: unknown layer '", name,
+                                        "' (expected shaded, lines, hatch or contours)"));
                     name.clear();
                 }
                 s.style.overlay.layers = layers;
             });
-        add("--curvature", "Curvature method: two-normal, three-normal, three-vertex or edge-angle", o, "METHOD",
-            analysis::curvatureMethodName(d.style.overlay.curvature.method), 1,
-            [](Scene& s, Words w) { s.style.overlay.curvature.method = analysis::parseCurvatureMethod(w[0]); });
-        add("--curvature-distance", "Curvature reinforcement distance in grid steps (1 = none)", o, "D",
-            msg(d.style.overlay.curvature.distance), 1, [](Scene& s, Words w) {
+        add("--curvature", "Curvature method: two-normal, three-normal, three-vertex or edge-angle",
+            o, "METHOD", analysis::curvatureMethodName(d.style.overlay.curvature.method), 1,
+            [](Scene& s, Words w) {
+                s.style.overlay.curvature.method = analysis::parseCurvatureMethod(w[0]);
+            });
+        add("--curvature-distance", "Curvature reinforcement distance in grid steps (1 = none)", o,
+            "D", msg(d.style.overlay.curvature.distance), 1, [](Scene& s, Words w) {
                 s.style.overlay.curvature.distance = parseInt(w[0], "--curvature-distance");
             });
         add("--curvature-scale", "Factor on every curvature value (>= 0)", o, "S",
@@ -391,44 +458,62 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             });
         add("--normals", "Vertex normals of the curvature: edge, triangle or quad", o, "KIND",
             analysis::normalMethodName(d.style.overlay.curvature.normals), 1,
-            [](Scene& s, Words w) { s.style.overlay.curvature.normals = analysis::parseNormalMethod(w[0]); });
+            [](Scene& s, Words w) {
+                s.style.overlay.curvature.normals = analysis::parseNormalMethod(w[0]);
+            });
         addFlag("--signed", "Keep the sign of the curvature (ridges and valleys apart)", o,
                 [](Scene& s, Words) { s.style.overlay.curvature.signedValues = true; });
-        add("--levels", "Curvature level control: black point, white point, gamma", o, "B,W,G", "", 1,
-            [](Scene& s, Words w) {
+        add("--levels", "Curvature level control: black point, white point, gamma", o, "B,W,G", "",
+            1, [](Scene& s, Words w) {
                 std::vector<std::string> parts(1);
                 for (char ch : w[0]) {
-                    if (ch == ',') parts.emplace_back();
-                    else parts.back().push_back(ch);
+                    if (ch == ',')
+                        parts.emplace_back();
+                    else
+                        parts.back().push_back(ch);
                 }
                 if (parts.size() != 3)
-                    throw Error(msg("--levels '", w[0], "': expected BLACK,WHITE,GAMMA, e.g. 0.1,0.9,1.5"));
+                    throw Error(
+                        msg("--levels '", w[0], "': expected BLACK,WHITE,GAMMA, e.g. 0.1,0.9,1.5"));
                 s.style.overlay.curvature.levels = {.enabled = true,
                                                     .black = parseFloat(parts[0], "--levels"),
                                                     .white = parseFloat(parts[1], "--levels"),
                                                     .gamma = parseFloat(parts[2], "--levels")};
             });
-        add("--line-width", "Curvature line width in pixels", o, "PX", show(d.style.overlay.lines.width), 1,
-            [](Scene& s, Words w) { s.style.overlay.lines.width = parseFloat(w[0], "--line-width"); });
+        add("--line-width", "Curvature line width in pixels", o, "PX",
+            show(d.style.overlay.lines.width), 1, [](Scene& s, Words w) {
+                s.style.overlay.lines.width = parseFloat(w[0], "--line-width");
+            });
         add("--min-length", "Shortest curvature line kept, in vertices (>= 2)", o, "N",
-            msg(d.style.overlay.lines.minLength), 1,
-            [](Scene& s, Words w) { s.style.overlay.lines.minLength = parseInt(w[0], "--min-length"); });
+            msg(d.style.overlay.lines.minLength), 1, [](Scene& s, Words w) {
+                s.style.overlay.lines.minLength = parseInt(w[0], "--min-length");
+            });
         add("--line-threshold", "Curvature a vertex needs to be on a line", o, "K",
-            show(d.style.overlay.lines.threshold), 1,
-            [](Scene& s, Words w) { s.style.overlay.lines.threshold = parseFloat(w[0], "--line-threshold"); });
-        add("--hatch-length", "Hatch stroke length in grid units", o, "L", show(d.style.overlay.hatch.length), 1,
-            [](Scene& s, Words w) { s.style.overlay.hatch.length = parseFloat(w[0], "--hatch-length"); });
-        add("--hatch-width", "Hatch stroke width in pixels", o, "PX", show(d.style.overlay.hatch.width), 1,
-            [](Scene& s, Words w) { s.style.overlay.hatch.width = parseFloat(w[0], "--hatch-width"); });
-        add("--hatch-direction", "Hatch strokes along or across the direction of greatest curvature", o, "DIR",
+            show(d.style.overlay.lines.threshold), 1, [](Scene& s, Words w) {
+                s.style.overlay.lines.threshold = parseFloat(w[0], "--line-threshold");
+            });
+        add("--hatch-length", "Hatch stroke length in grid units", o, "L",
+            show(d.style.overlay.hatch.length), 1, [](Scene& s, Words w) {
+                s.style.overlay.hatch.length = parseFloat(w[0], "--hatch-length");
+            });
+        add("--hatch-width", "Hatch stroke width in pixels", o, "PX",
+            show(d.style.overlay.hatch.width), 1, [](Scene& s, Words w) {
+                s.style.overlay.hatch.width = parseFloat(w[0], "--hatch-width");
+            });
+        add("--hatch-direction",
+            "Hatch strokes along or across the direction of greatest curvature", o, "DIR",
             analysis::hatchDirectionName(d.style.overlay.hatch.direction), 1,
-            [](Scene& s, Words w) { s.style.overlay.hatch.direction = analysis::parseHatchDirection(w[0]); });
-        add("--cpt", "Colour the surface with a GMT .cpt table (absolute stored heights)", "Style", "FILE.cpt", "",
-            1, [](Scene& s, Words w) { s.style.cpt = w[0]; });
+            [](Scene& s, Words w) {
+                s.style.overlay.hatch.direction = analysis::parseHatchDirection(w[0]);
+            });
+        add("--cpt", "Colour the surface with a GMT .cpt table (absolute stored heights)", "Style",
+            "FILE.cpt", "", 1, [](Scene& s, Words w) { s.style.cpt = w[0]; });
     }
 }
 
-void SceneOptions::apply() { apply({}); }
+void SceneOptions::apply() {
+    apply({});
+}
 
 void SceneOptions::apply(const std::function<void(Scene&)>& program) {
     Scene scene = defaults_;
@@ -438,12 +523,15 @@ void SceneOptions::apply(const std::function<void(Scene&)>& program) {
         if (e.option->count() > 0) e.set(scene, e.words ? *e.words : noWords);
     if (program) program(scene);
     if (frameCountOption_ && frameCountOption_->count() > 0 && !scene.path.range)
-        throw Error("--frame-count goes with --frames A:B (a part of a sequence); --frames N alone gives the count");
+        throw Error(
+            "--frame-count goes with --frames A:B (a part of a sequence); --frames N alone gives "
+            "the count");
     try {
         validateScene(scene);
     } catch (const Error& e) {
         // The message names the key and the option; say which file the key may come from.
-        if (configOption_->count() > 0) throw Error(msg(config_, " with the command line: ", e.what()));
+        if (configOption_->count() > 0)
+            throw Error(msg(config_, " with the command line: ", e.what()));
         throw;
     }
     scene_ = scene;
@@ -454,6 +542,8 @@ void SceneOptions::apply(const std::function<void(Scene&)>& program) {
     }
 }
 
-bool SceneOptions::printConfigRequested() const { return printOption_->count() > 0; }
+bool SceneOptions::printConfigRequested() const {
+    return printOption_->count() > 0;
+}
 
 }  // namespace sierra::scene

@@ -17,9 +17,13 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
-std::string show(const Vec3& v) { return msg(v.x, " ", v.y, " ", v.z); }
+std::string show(const Vec3& v) {
+    return msg(v.x, " ", v.y, " ", v.z);
+}
 
 // Throws "KEY (OPTION) ...": the same message serves a JSON file and a command line.
 [[noreturn]] void fail(const char* key, const char* option, const std::string& what) {
@@ -28,25 +32,30 @@ std::string show(const Vec3& v) { return msg(v.x, " ", v.y, " ", v.z); }
 
 void validateTerrain(const TerrainSource& t) {
     if (t.heightmap.empty() && t.generateSize < 3)
-        fail("terrain.generate", "--generate", msg("must be 2^n + 1 samples, at least 3, got ", t.generateSize));
+        fail("terrain.generate", "--generate",
+             msg("must be 2^n + 1 samples, at least 3, got ", t.generateSize));
     if (!(t.roughness > 0.0f) || !(t.roughness <= terrain::kMaxRoughness))
         fail("terrain.roughness", "--roughness",
              msg("must be a number in (0, ", terrain::kMaxRoughness,
-                 "] (it sets the generated heights' units; the relief comes from the vertical scale), got ",
+                 "] (it sets the generated heights' units; the relief comes from the vertical "
+                 "scale), got ",
                  t.roughness));
     if (t.hurst && !std::isfinite(*t.hurst))
         fail("terrain.hurst", "--hurst", msg("must be a finite number, got ", *t.hurst));
-    if ((t.rawWidth == 0) != (t.rawHeight == 0) || t.rawWidth < 0 || t.rawHeight < 0 || t.rawWidth > 65537 ||
-        t.rawHeight > 65537)
+    if ((t.rawWidth == 0) != (t.rawHeight == 0) || t.rawWidth < 0 || t.rawHeight < 0 ||
+        t.rawWidth > 65537 || t.rawHeight > 65537)
         fail("terrain.raw_width/raw_height", "--raw-size",
-             msg("must both be 1..65537 or both 0 (guess a square), got ", t.rawWidth, "x", t.rawHeight));
+             msg("must both be 1..65537 or both 0 (guess a square), got ", t.rawWidth, "x",
+                 t.rawHeight));
     if (!(t.spacing >= 0.0f) || !std::isfinite(t.spacing))
-        fail("terrain.spacing", "--spacing", msg("must be >= 0 world units (0 = the file's), got ", t.spacing));
+        fail("terrain.spacing", "--spacing",
+             msg("must be >= 0 world units (0 = the file's), got ", t.spacing));
     if (!(t.verticalScale >= 0.0f) || !std::isfinite(t.verticalScale))
         fail("terrain.vertical_scale", "--vertical-scale",
              msg("must be >= 0 (0 = automatic), got ", t.verticalScale));
     if (t.seaLevel.mode == SeaLevel::Mode::Value && !std::isfinite(t.seaLevel.value))
-        fail("terrain.sea_level", "--sea-level", msg("must be a finite height, 'auto' or 'none', got ", t.seaLevel.value));
+        fail("terrain.sea_level", "--sea-level",
+             msg("must be a finite height, 'auto' or 'none', got ", t.seaLevel.value));
 }
 
 void validateCamera(const CameraDesc& c) {
@@ -56,10 +65,12 @@ void validateCamera(const CameraDesc& c) {
         fail("camera.target", "--camera-target", msg("must be finite, got ", show(*c.target)));
     if (c.position && c.target && *c.position == *c.target)
         fail("camera.position", "--camera-pos",
-             msg("equals camera.target (--camera-target) ", show(*c.target), ": the camera must look somewhere"));
+             msg("equals camera.target (--camera-target) ", show(*c.target),
+                 ": the camera must look somewhere"));
     if (c.position && (c.azimuth || c.elevation || c.distance))
         fail("camera.position", "--camera-pos",
-             "excludes camera.azimuth/elevation/distance (--azimuth/--elevation/--distance): give one or the other");
+             "excludes camera.azimuth/elevation/distance (--azimuth/--elevation/--distance): give "
+             "one or the other");
     if (c.azimuth && !std::isfinite(*c.azimuth))
         fail("camera.azimuth", "--azimuth", msg("must be finite degrees, got ", *c.azimuth));
     if (c.elevation && !(*c.elevation >= -90.0f && *c.elevation <= 90.0f))
@@ -72,26 +83,32 @@ void validateCamera(const CameraDesc& c) {
 
 void validatePath(const PathDesc& p, const CameraDesc& c) {
     if (p.frames < 1) fail("path.frames", "--frames", msg("must be >= 1, got ", p.frames));
-    if (p.range && (p.range->first < 0 || p.range->first > p.range->last || p.range->last >= p.frames))
+    if (p.range &&
+        (p.range->first < 0 || p.range->first > p.range->last || p.range->last >= p.frames))
         fail("path.range", "--frames A:B",
              msg(p.range->first, ":", p.range->last, " must satisfy 0 <= A <= B < ", p.frames,
                  " (the sequence's frame count, path.frames / --frame-count)"));
-    if (p.frames > 1 && p.type == PathType::None && (c.position || c.azimuth || c.elevation || c.distance))
+    if (p.frames > 1 && p.type == PathType::None &&
+        (c.position || c.azimuth || c.elevation || c.distance))
         fail("path.type", "--path",
-             msg("is none with ", p.frames, " frames and a fixed camera: every frame would be the same; use "
+             msg("is none with ", p.frames,
+                 " frames and a fixed camera: every frame would be the same; use "
                  "--path keyframes (keyframes in a --config file) or --path orbit|flyover"));
     if (p.type == PathType::Keyframes) {
         if (p.keyframes.size() < 2)
-            fail("path.keyframes", "--path keyframes",
-                 msg("needs at least 2 keyframes (from a --config file), got ", p.keyframes.size()));
+            fail(
+                "path.keyframes", "--path keyframes",
+                msg("needs at least 2 keyframes (from a --config file), got ", p.keyframes.size()));
         for (size_t k = 0; k < p.keyframes.size(); ++k) {
             const Keyframe& f = p.keyframes[k];
             std::string key = msg("path.keyframes[", k, "]");
             if (!std::isfinite(f.time) || !finite(f.position) || !finite(f.target))
                 throw Error(msg(key, " must have finite time, position and target"));
-            if (f.position == f.target) throw Error(msg(key, ": position equals target ", show(f.target)));
+            if (f.position == f.target)
+                throw Error(msg(key, ": position equals target ", show(f.target)));
             if (k > 0 && !(f.time > p.keyframes[k - 1].time))
-                throw Error(msg(key, ".time ", f.time, " must be greater than the previous keyframe's ",
+                throw Error(msg(key, ".time ", f.time,
+                                " must be greater than the previous keyframe's ",
                                 p.keyframes[k - 1].time));
         }
     }
@@ -99,53 +116,67 @@ void validatePath(const PathDesc& p, const CameraDesc& c) {
 
 void validateLighting(const LightingDesc& l) {
     if (!std::isfinite(l.sunAzimuth))
-        fail("lighting.sun_azimuth", "--sun-azimuth", msg("must be finite degrees, got ", l.sunAzimuth));
+        fail("lighting.sun_azimuth", "--sun-azimuth",
+             msg("must be finite degrees, got ", l.sunAzimuth));
     if (!(l.sunAltitude >= -90.0f && l.sunAltitude <= 90.0f))
-        fail("lighting.sun_altitude", "--sun-altitude", msg("must be -90..90 degrees, got ", l.sunAltitude));
+        fail("lighting.sun_altitude", "--sun-altitude",
+             msg("must be -90..90 degrees, got ", l.sunAltitude));
     if (!(l.ambient >= 0.0f && l.ambient <= 1.0f))
         fail("lighting.ambient", "--ambient", msg("must be 0..1, got ", l.ambient));
     if (l.fog && !(*l.fog >= 0.0f && std::isfinite(*l.fog)))
         fail("lighting.fog", "--fog", msg("must be >= 0 per world unit (0 = off), got ", *l.fog));
     for (float v : {l.sky.r, l.sky.g, l.sky.b})
         if (!(v >= 0.0f && v <= 1.0f))
-            fail("lighting.sky", "--sky", msg("channels must be 0..1, got ", l.sky.r, ",", l.sky.g, ",", l.sky.b));
+            fail("lighting.sky", "--sky",
+                 msg("channels must be 0..1, got ", l.sky.r, ",", l.sky.g, ",", l.sky.b));
 }
 
 void validateStyle(const StyleDesc& s) {
     if (!(s.treeLine > 0.0f) || !std::isfinite(s.treeLine))
-        fail("style.tree_line", "--tree-line", msg("must be a finite height > 0 m, got ", s.treeLine));
+        fail("style.tree_line", "--tree-line",
+             msg("must be a finite height > 0 m, got ", s.treeLine));
     if (!(s.snowLine >= s.treeLine) || !std::isfinite(s.snowLine))
         fail("style.snow_line", "--snow-line",
-             msg("must be finite and at least the tree line (", s.treeLine, " m), got ", s.snowLine));
+             msg("must be finite and at least the tree line (", s.treeLine, " m), got ",
+                 s.snowLine));
     if (s.colourBy != "surface" && s.colourBy != "level" && s.colourBy != "error")
-        fail("style.colour_by", "--colour-by", msg("must be surface, level or error, got '", s.colourBy, "'"));
+        fail("style.colour_by", "--colour-by",
+             msg("must be surface, level or error, got '", s.colourBy, "'"));
     if (!s.polygons && !s.points && !s.wireframe)
-        fail("style.polygons", "--display", "draws nothing: name at least one of points, wireframe, polygons");
+        fail("style.polygons", "--display",
+             "draws nothing: name at least one of points, wireframe, polygons");
     // Overlay parameters: the analysis module's own checks and messages.
     analysis::validate(s.overlay.curvature);
     analysis::validate(analysis::lineOptions(s.overlay));
     if (!(s.overlay.lines.width > 0.0f) || !std::isfinite(s.overlay.lines.width))
-        fail("style.lines.width", "--line-width", msg("must be a finite number of pixels > 0, got ", s.overlay.lines.width));
+        fail("style.lines.width", "--line-width",
+             msg("must be a finite number of pixels > 0, got ", s.overlay.lines.width));
     if (!(s.overlay.hatch.length > 0.0f) || !std::isfinite(s.overlay.hatch.length))
-        fail("style.hatch.length", "--hatch-length", msg("must be a finite number of grid units > 0, got ",
-                                                          s.overlay.hatch.length));
+        fail("style.hatch.length", "--hatch-length",
+             msg("must be a finite number of grid units > 0, got ", s.overlay.hatch.length));
     if (!(s.overlay.hatch.width > 0.0f) || !std::isfinite(s.overlay.hatch.width))
-        fail("style.hatch.width", "--hatch-width", msg("must be a finite number of pixels > 0, got ", s.overlay.hatch.width));
+        fail("style.hatch.width", "--hatch-width",
+             msg("must be a finite number of pixels > 0, got ", s.overlay.hatch.width));
 }
 
 void validateZones(const ZonesDesc& z) {
     if (z.blend != "linear" && z.blend != "height")
         fail("zones.blend", "--blend", msg("must be linear or height, got '", z.blend, "'"));
     if (z.debugView != "none" && z.debugView != "zones" && z.debugView != "bands")
-        fail("zones.debug_view", "--debug-view", msg("must be none, zones or bands, got '", z.debugView, "'"));
+        fail("zones.debug_view", "--debug-view",
+             msg("must be none, zones or bands, got '", z.debugView, "'"));
     if (!std::isfinite(z.band) || z.band > 1000.0f)
-        fail("zones.band", "--band", msg("must be a width in zone-map pixels (< 0 = the palette's), got ", z.band));
+        fail("zones.band", "--band",
+             msg("must be a width in zone-map pixels (< 0 = the palette's), got ", z.band));
     if (!(z.epsilon >= 0.0f) || !std::isfinite(z.epsilon))
-        fail("zones.epsilon", "--zone-epsilon", msg("must be >= 0 zone-map pixels, got ", z.epsilon));
-    for (auto [value, key, option] : {std::tuple{z.deepWater, "zones.deep_water", "--deep-water"},
-                                      std::tuple{z.sandTop, "zones.sand_top", "--sand-top"},
-                                      std::tuple{z.snowLine, "zones.snow_line", "--zone-snow-line"}})
-        if (!(value >= 0.0f && value <= 1.0f)) fail(key, option, msg("must be a fraction 0..1, got ", value));
+        fail("zones.epsilon", "--zone-epsilon",
+             msg("must be >= 0 zone-map pixels, got ", z.epsilon));
+    for (auto [value, key, option] :
+         {std::tuple{z.deepWater, "zones.deep_water", "--deep-water"},
+          std::tuple{z.sandTop, "zones.sand_top", "--sand-top"},
+          std::tuple{z.snowLine, "zones.snow_line", "--zone-snow-line"}})
+        if (!(value >= 0.0f && value <= 1.0f))
+            fail(key, option, msg("must be a fraction 0..1, got ", value));
     if (!(z.rockSlope > 0.0f && z.rockSlope < 90.0f))
         fail("zones.rock_slope", "--rock-slope", msg("must be 0..90 degrees, got ", z.rockSlope));
     if (z.map.empty() && z.debugView != "none")
@@ -161,22 +192,26 @@ void validateLod(const LodDesc& l) {
 
 void validateOutput(const OutputDesc& o) {
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
-        fail("output.width/height", "--size", msg("must each be 1..16384, got ", o.width, "x", o.height));
+        fail("output.width/height", "--size",
+             msg("must each be 1..16384, got ", o.width, "x", o.height));
     if (o.snapshotEvery < 0)
-        fail("output.snapshot_every", "--snapshot-every", msg("must be >= 0 (0 = the last frame only), got ",
-                                                              o.snapshotEvery));
+        fail("output.snapshot_every", "--snapshot-every",
+             msg("must be >= 0 (0 = the last frame only), got ", o.snapshotEvery));
     if (o.msaa != 0 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8)
         fail("output.msaa", "--msaa", msg("must be 0 (off), 2, 4 or 8, got ", o.msaa));
     if (o.frame.empty()) fail("output.frame", "--out", "must name a PNG file");
-    if (!o.depth.empty() && (o.depth.size() < 4 || o.depth.compare(o.depth.size() - 4, 4, ".npy") != 0))
+    if (!o.depth.empty() &&
+        (o.depth.size() < 4 || o.depth.compare(o.depth.size() - 4, 4, ".npy") != 0))
         fail("output.depth", "--depth-out", msg("must be a .npy file, got '", o.depth, "'"));
 }
 
 }  // namespace
 
 Vec3 directionFromAngles(float azimuthDegrees, float altitudeDegrees) {
-    const double a = double(azimuthDegrees) * kPi / 180.0, e = double(altitudeDegrees) * kPi / 180.0;
-    return {float(std::sin(a) * std::cos(e)), float(std::sin(e)), float(-std::cos(a) * std::cos(e))};
+    const double a = double(azimuthDegrees) * kPi / 180.0,
+                 e = double(altitudeDegrees) * kPi / 180.0;
+    return {float(std::sin(a) * std::cos(e)), float(std::sin(e)),
+            float(-std::cos(a) * std::cos(e))};
 }
 
 const char* toString(Projection projection) {
@@ -185,19 +220,25 @@ const char* toString(Projection projection) {
 
 const char* toString(PathType type) {
     switch (type) {
-    case PathType::Orbit: return "orbit";
-    case PathType::Flyover: return "flyover";
-    case PathType::Keyframes: return "keyframes";
-    case PathType::None: break;
+        case PathType::Orbit:
+            return "orbit";
+        case PathType::Flyover:
+            return "flyover";
+        case PathType::Keyframes:
+            return "keyframes";
+        case PathType::None:
+            break;
     }
     return "none";
 }
 
-const char* toString(LodMode mode) { return mode == LodMode::Full ? "full" : "sbt"; }
+const char* toString(LodMode mode) {
+    return mode == LodMode::Full ? "full" : "sbt";
+}
 
 Projection parseProjection(const std::string& text, const std::string& what) {
-    static const std::pair<const char*, Projection> kNames[] = {{"perspective", Projection::Perspective},
-                                                                {"orthographic", Projection::Orthographic}};
+    static const std::pair<const char*, Projection> kNames[] = {
+        {"perspective", Projection::Perspective}, {"orthographic", Projection::Orthographic}};
     return detail::parseName(text, what, kNames);
 }
 
@@ -210,7 +251,8 @@ PathType parsePathType(const std::string& text, const std::string& what) {
 }
 
 LodMode parseLodMode(const std::string& text, const std::string& what) {
-    static const std::pair<const char*, LodMode> kNames[] = {{"sbt", LodMode::Sbt}, {"full", LodMode::Full}};
+    static const std::pair<const char*, LodMode> kNames[] = {{"sbt", LodMode::Sbt},
+                                                             {"full", LodMode::Full}};
     return detail::parseName(text, what, kNames);
 }
 
@@ -226,13 +268,17 @@ void validateScene(const Scene& scene) {
 }
 
 std::string presetPath(const std::string& name) {
-    const bool line = name.size() == 5 && name.rfind("fig3", 0) == 0 && name[4] >= 'a' && name[4] <= 'n';
-    const bool hatch = name.size() == 5 && name.rfind("fig4", 0) == 0 && name[4] >= 'a' && name[4] <= 'h';
+    const bool line =
+        name.size() == 5 && name.rfind("fig3", 0) == 0 && name[4] >= 'a' && name[4] <= 'n';
+    const bool hatch =
+        name.size() == 5 && name.rfind("fig4", 0) == 0 && name[4] >= 'a' && name[4] <= 'h';
     SIERRA_CHECK(line || hatch, "unknown preset '", name,
                  "' (expected fig3a..fig3n for line shading or fig4a..fig4h for hatch shading)");
     return assetPath("presets/" + name + ".json");
 }
 
-analysis::StyleParams loadPreset(const std::string& name) { return analysis::loadStyleFile(presetPath(name)); }
+analysis::StyleParams loadPreset(const std::string& name) {
+    return analysis::loadStyleFile(presetPath(name));
+}
 
 }  // namespace sierra::scene

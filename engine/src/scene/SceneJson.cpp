@@ -29,7 +29,9 @@ Json number(float f) {
     return double(f);
 }
 
-Json vec3(const Vec3& v) { return Json::array({number(v.x), number(v.y), number(v.z)}); }
+Json vec3(const Vec3& v) {
+    return Json::array({number(v.x), number(v.y), number(v.z)});
+}
 
 template <typename T, typename F>
 Json optional(const std::optional<T>& value, F write) {
@@ -40,25 +42,34 @@ Json optional(const std::optional<T>& value, F write) {
 
 const char* typeName(const Json& j) {
     switch (j.type()) {
-    case Json::value_t::null: return "null";
-    case Json::value_t::object: return "an object";
-    case Json::value_t::array: return "an array";
-    case Json::value_t::string: return "a string";
-    case Json::value_t::boolean: return "a boolean";
-    case Json::value_t::number_integer:
-    case Json::value_t::number_unsigned: return "an integer";
-    case Json::value_t::number_float: return "a number with a fraction";
-    default: return "something else";
+        case Json::value_t::null:
+            return "null";
+        case Json::value_t::object:
+            return "an object";
+        case Json::value_t::array:
+            return "an array";
+        case Json::value_t::string:
+            return "a string";
+        case Json::value_t::boolean:
+            return "a boolean";
+        case Json::value_t::number_integer:
+        case Json::value_t::number_unsigned:
+            return "an integer";
+        case Json::value_t::number_float:
+            return "a number with a fraction";
+        default:
+            return "something else";
     }
 }
 
 // One JSON object being read: each known key is read by a call to one of the
 // typed readers; finish() rejects any key that none of them asked for.
 class ObjectReader {
-public:
+  public:
     ObjectReader(const Json& json, std::string path, const std::string& source)
         : json_(json), path_(std::move(path)), source_(source) {
-        if (!json_.is_object()) wrongType(json_, path_.empty() ? "the top level" : path_, "an object");
+        if (!json_.is_object())
+            wrongType(json_, path_.empty() ? "the top level" : path_, "an object");
     }
 
     // Calls read(value, keyPath) when `key` is present.
@@ -76,12 +87,14 @@ public:
             if (!found) {
                 std::string names;
                 for (const char* k : known_) names += msg(names.empty() ? "" : ", ", k);
-                throw Error(msg(source_, ": unknown key ", keyPath(it.key()), " (expected one of: ", names, ")"));
+                throw Error(msg(source_, ": unknown key ", keyPath(it.key()),
+                                " (expected one of: ", names, ")"));
             }
         }
     }
 
-    [[noreturn]] void wrongType(const Json& value, const std::string& key, const char* expected) const {
+    [[noreturn]] void wrongType(const Json& value, const std::string& key,
+                                const char* expected) const {
         throw Error(msg(source_, ": ", key, ": expected ", expected, ", got ", typeName(value)));
     }
 
@@ -91,7 +104,9 @@ public:
 
     const std::string& source() const { return source_; }
 
-    std::string keyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+    std::string keyPath(const std::string& key) const {
+        return path_.empty() ? key : path_ + "." + key;
+    }
 
     // Typed values; each throws naming the key and the expected type.
     float toFloat(const Json& v, const std::string& key, const char* expected = "a number") const {
@@ -127,7 +142,7 @@ public:
         return {toFloat(v[0], key + "[0]"), toFloat(v[1], key + "[1]"), toFloat(v[2], key + "[2]")};
     }
 
-private:
+  private:
     const Json& json_;
     std::string path_;
     const std::string& source_;
@@ -153,17 +168,23 @@ void object(ObjectReader& parent, const char* key, F fn) {
 }
 
 void readTerrain(ObjectReader& r, TerrainSource& t) {
-    r.field("heightmap", [&](const Json& v, const std::string& k) { t.heightmap = r.toString(v, k); });
-    r.field("generate", [&](const Json& v, const std::string& k) { t.generateSize = r.toInt(v, k); });
+    r.field("heightmap",
+            [&](const Json& v, const std::string& k) { t.heightmap = r.toString(v, k); });
+    r.field("generate",
+            [&](const Json& v, const std::string& k) { t.generateSize = r.toInt(v, k); });
     r.field("seed", [&](const Json& v, const std::string& k) { t.seed = r.toUnsigned(v, k); });
-    r.field("roughness", [&](const Json& v, const std::string& k) { t.roughness = r.toFloat(v, k); });
+    r.field("roughness",
+            [&](const Json& v, const std::string& k) { t.roughness = r.toFloat(v, k); });
     r.field("hurst", [&](const Json& v, const std::string& k) {
-        readOptional(v, t.hurst, [&](const Json& x) { return r.toFloat(x, k, "a number or null"); });
+        readOptional(v, t.hurst,
+                     [&](const Json& x) { return r.toFloat(x, k, "a number or null"); });
     });
     r.field("raw_width", [&](const Json& v, const std::string& k) { t.rawWidth = r.toInt(v, k); });
-    r.field("raw_height", [&](const Json& v, const std::string& k) { t.rawHeight = r.toInt(v, k); });
+    r.field("raw_height",
+            [&](const Json& v, const std::string& k) { t.rawHeight = r.toInt(v, k); });
     r.field("spacing", [&](const Json& v, const std::string& k) { t.spacing = r.toFloat(v, k); });
-    r.field("vertical_scale", [&](const Json& v, const std::string& k) { t.verticalScale = r.toFloat(v, k); });
+    r.field("vertical_scale",
+            [&](const Json& v, const std::string& k) { t.verticalScale = r.toFloat(v, k); });
     r.field("sea_level", [&](const Json& v, const std::string& k) {
         if (v.is_string()) {
             std::string s = v.get<std::string>();
@@ -182,7 +203,8 @@ void readTerrain(ObjectReader& r, TerrainSource& t) {
         t.heightUnits = parseHeightUnits(r.toString(v, k), msg(r.source(), ": ", k));
     });
     r.field("channel", [&](const Json& v, const std::string& k) {
-        t.channel = v.is_null() ? Channel::Grey : parseChannel(r.toString(v, k), msg(r.source(), ": ", k));
+        t.channel =
+            v.is_null() ? Channel::Grey : parseChannel(r.toString(v, k), msg(r.source(), ": ", k));
     });
 }
 
@@ -194,7 +216,8 @@ void readCamera(ObjectReader& r, CameraDesc& c) {
     };
     auto num = [&](std::optional<float>& out) {
         return [&](const Json& v, const std::string& k) {
-            readOptional(v, out, [&](const Json& x) { return r.toFloat(x, k, "a number or null"); });
+            readOptional(v, out,
+                         [&](const Json& x) { return r.toFloat(x, k, "a number or null"); });
         };
     };
     r.field("position", vec(c.position));
@@ -225,9 +248,12 @@ void readPath(ObjectReader& r, PathDesc& p) {
         for (size_t i = 0; i < v.size(); ++i) {
             ObjectReader f(v[i], msg(k, "[", i, "]"), r.source());
             Keyframe key;
-            f.field("time", [&](const Json& x, const std::string& kk) { key.time = f.toFloat(x, kk); });
-            f.field("position", [&](const Json& x, const std::string& kk) { key.position = f.toVec3(x, kk); });
-            f.field("target", [&](const Json& x, const std::string& kk) { key.target = f.toVec3(x, kk); });
+            f.field("time",
+                    [&](const Json& x, const std::string& kk) { key.time = f.toFloat(x, kk); });
+            f.field("position",
+                    [&](const Json& x, const std::string& kk) { key.position = f.toVec3(x, kk); });
+            f.field("target",
+                    [&](const Json& x, const std::string& kk) { key.target = f.toVec3(x, kk); });
             f.finish();
             p.keyframes.push_back(key);
         }
@@ -235,15 +261,20 @@ void readPath(ObjectReader& r, PathDesc& p) {
 }
 
 void readLighting(ObjectReader& r, LightingDesc& l) {
-    r.field("sun_azimuth", [&](const Json& v, const std::string& k) { l.sunAzimuth = r.toFloat(v, k); });
-    r.field("sun_altitude", [&](const Json& v, const std::string& k) { l.sunAltitude = r.toFloat(v, k); });
+    r.field("sun_azimuth",
+            [&](const Json& v, const std::string& k) { l.sunAzimuth = r.toFloat(v, k); });
+    r.field("sun_altitude",
+            [&](const Json& v, const std::string& k) { l.sunAltitude = r.toFloat(v, k); });
     r.field("ambient", [&](const Json& v, const std::string& k) { l.ambient = r.toFloat(v, k); });
     r.field("fog", [&](const Json& v, const std::string& k) {
-        readOptional(v, l.fog, [&](const Json& x) { return r.toFloat(x, k, "a number or null (automatic)"); });
+        readOptional(v, l.fog, [&](const Json& x) {
+            return r.toFloat(x, k, "a number or null (automatic)");
+        });
     });
     r.field("sky", [&](const Json& v, const std::string& k) {
         if (!v.is_array() || v.size() != 3) r.wrongType(v, k, "an array of 3 numbers [r, g, b]");
-        l.sky = {r.toFloat(v[0], k + "[0]"), r.toFloat(v[1], k + "[1]"), r.toFloat(v[2], k + "[2]")};
+        l.sky = {r.toFloat(v[0], k + "[0]"), r.toFloat(v[1], k + "[1]"),
+                 r.toFloat(v[2], k + "[2]")};
     });
 }
 
@@ -264,8 +295,10 @@ void readOutput(ObjectReader& r, OutputDesc& o) {
     r.field("msaa", [&](const Json& v, const std::string& k) { o.msaa = r.toInt(v, k); });
     r.field("frame", [&](const Json& v, const std::string& k) { o.frame = r.toString(v, k); });
     r.field("debug", [&](const Json& v, const std::string& k) { o.debug = r.toString(v, k); });
-    r.field("snapshot_only", [&](const Json& v, const std::string& k) { o.snapshotOnly = r.toString(v, k); });
-    r.field("snapshot_every", [&](const Json& v, const std::string& k) { o.snapshotEvery = r.toInt(v, k); });
+    r.field("snapshot_only",
+            [&](const Json& v, const std::string& k) { o.snapshotOnly = r.toString(v, k); });
+    r.field("snapshot_every",
+            [&](const Json& v, const std::string& k) { o.snapshotEvery = r.toInt(v, k); });
     r.field("snapshot_deterministic",
             [&](const Json& v, const std::string& k) { o.snapshotDeterministic = r.toBool(v, k); });
     r.field("depth", [&](const Json& v, const std::string& k) { o.depth = r.toString(v, k); });
@@ -273,13 +306,17 @@ void readOutput(ObjectReader& r, OutputDesc& o) {
 }
 
 void readStyle(ObjectReader& r, StyleDesc& s) {
-    r.field("wireframe", [&](const Json& v, const std::string& k) { s.wireframe = r.toBool(v, k); });
-    r.field("tree_line", [&](const Json& v, const std::string& k) { s.treeLine = r.toFloat(v, k); });
-    r.field("snow_line", [&](const Json& v, const std::string& k) { s.snowLine = r.toFloat(v, k); });
+    r.field("wireframe",
+            [&](const Json& v, const std::string& k) { s.wireframe = r.toBool(v, k); });
+    r.field("tree_line",
+            [&](const Json& v, const std::string& k) { s.treeLine = r.toFloat(v, k); });
+    r.field("snow_line",
+            [&](const Json& v, const std::string& k) { s.snowLine = r.toFloat(v, k); });
     r.field("cpt", [&](const Json& v, const std::string& k) { s.cpt = r.toString(v, k); });
     r.field("polygons", [&](const Json& v, const std::string& k) { s.polygons = r.toBool(v, k); });
     r.field("points", [&](const Json& v, const std::string& k) { s.points = r.toBool(v, k); });
-    r.field("colour_by", [&](const Json& v, const std::string& k) { s.colourBy = r.toString(v, k); });
+    r.field("colour_by",
+            [&](const Json& v, const std::string& k) { s.colourBy = r.toString(v, k); });
     // Overlays: a preset first, then the analysis module's style keys over it.
     bool preset = false;
     r.field("preset", [&](const Json& v, const std::string& k) {
@@ -303,13 +340,19 @@ void readZones(ObjectReader& r, ZonesDesc& z) {
     r.field("band", [&](const Json& v, const std::string& k) { z.band = r.toFloat(v, k); });
     r.field("epsilon", [&](const Json& v, const std::string& k) { z.epsilon = r.toFloat(v, k); });
     r.field("blend", [&](const Json& v, const std::string& k) { z.blend = r.toString(v, k); });
-    r.field("triplanar", [&](const Json& v, const std::string& k) { z.triplanar = r.toBool(v, k); });
-    r.field("variation", [&](const Json& v, const std::string& k) { z.variation = r.toBool(v, k); });
-    r.field("debug_view", [&](const Json& v, const std::string& k) { z.debugView = r.toString(v, k); });
-    r.field("deep_water", [&](const Json& v, const std::string& k) { z.deepWater = r.toFloat(v, k); });
+    r.field("triplanar",
+            [&](const Json& v, const std::string& k) { z.triplanar = r.toBool(v, k); });
+    r.field("variation",
+            [&](const Json& v, const std::string& k) { z.variation = r.toBool(v, k); });
+    r.field("debug_view",
+            [&](const Json& v, const std::string& k) { z.debugView = r.toString(v, k); });
+    r.field("deep_water",
+            [&](const Json& v, const std::string& k) { z.deepWater = r.toFloat(v, k); });
     r.field("sand_top", [&](const Json& v, const std::string& k) { z.sandTop = r.toFloat(v, k); });
-    r.field("snow_line", [&](const Json& v, const std::string& k) { z.snowLine = r.toFloat(v, k); });
-    r.field("rock_slope", [&](const Json& v, const std::string& k) { z.rockSlope = r.toFloat(v, k); });
+    r.field("snow_line",
+            [&](const Json& v, const std::string& k) { z.snowLine = r.toFloat(v, k); });
+    r.field("rock_slope",
+            [&](const Json& v, const std::string& k) { z.rockSlope = r.toFloat(v, k); });
 }
 
 }  // namespace
@@ -322,13 +365,15 @@ Json parseJson(std::string_view text, const std::string& source) {
         // "[json.exception.parse_error.101] parse error at line L, column C: ...".
         std::string_view what = e.what();
         size_t start = what.find("] ");
-        throw Error(msg(source, ": not a JSON scene file: ", start == what.npos ? what : what.substr(start + 2)));
+        throw Error(msg(source, ": not a JSON scene file: ",
+                        start == what.npos ? what : what.substr(start + 2)));
     }
 }
 
 Json readJsonFile(const std::string& path) {
     const std::vector<uint8_t> bytes = readFileBytes(path);
-    return parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
+    return parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                     path);
 }
 
 Scene sceneFromJson(const Json& json, const std::string& source, const Scene& base) {
@@ -376,22 +421,23 @@ Json sceneToJson(const Scene& s) {
     };
     const CameraDesc& c = s.camera;
     Json camera = {
-        {"position", optional(c.position, vec3)},
-        {"target", optional(c.target, vec3)},
-        {"azimuth", optional(c.azimuth, number)},
-        {"elevation", optional(c.elevation, number)},
-        {"distance", optional(c.distance, number)},
-        {"fov", number(c.fov)},
+        {"position", optional(c.position, vec3)},   {"target", optional(c.target, vec3)},
+        {"azimuth", optional(c.azimuth, number)},   {"elevation", optional(c.elevation, number)},
+        {"distance", optional(c.distance, number)}, {"fov", number(c.fov)},
         {"projection", toString(c.projection)},
     };
     const PathDesc& p = s.path;
     Json keyframes = Json::array();
     for (const Keyframe& k : p.keyframes)
-        keyframes.push_back({{"time", number(k.time)}, {"position", vec3(k.position)}, {"target", vec3(k.target)}});
+        keyframes.push_back(
+            {{"time", number(k.time)}, {"position", vec3(k.position)}, {"target", vec3(k.target)}});
     Json path = {
         {"type", toString(p.type)},
         {"frames", p.frames},
-        {"range", optional(p.range, [](const FrameRange& r) { return Json::array({r.first, r.last}); })},
+        {"range", optional(p.range,
+                           [](const FrameRange& r) {
+                               return Json::array({r.first, r.last});
+                           })},
         {"keyframes", keyframes},
     };
     const LightingDesc& l = s.lighting;
@@ -403,22 +449,25 @@ Json sceneToJson(const Scene& s) {
         {"sky", Json::array({number(l.sky.r), number(l.sky.g), number(l.sky.b)})},
     };
     Json lod = {
-        {"mode", toString(s.lod.mode)},         {"tau", number(s.lod.tau)}, {"geomorph", s.lod.geomorph},
-        {"cull", s.lod.cull},                   {"threads", s.lod.threads}, {"mesh", s.lod.mesh},
+        {"mode", toString(s.lod.mode)}, {"tau", number(s.lod.tau)}, {"geomorph", s.lod.geomorph},
+        {"cull", s.lod.cull},           {"threads", s.lod.threads}, {"mesh", s.lod.mesh},
     };
     const OutputDesc& o = s.output;
     Json output = {
-        {"width", o.width}, {"height", o.height}, {"msaa", o.msaa}, {"frame", o.frame},
-        {"debug", o.debug}, {"depth", o.depth},   {"alpha", o.alpha},
-        {"snapshot_only", o.snapshotOnly}, {"snapshot_every", o.snapshotEvery},
+        {"width", o.width},
+        {"height", o.height},
+        {"msaa", o.msaa},
+        {"frame", o.frame},
+        {"debug", o.debug},
+        {"depth", o.depth},
+        {"alpha", o.alpha},
+        {"snapshot_only", o.snapshotOnly},
+        {"snapshot_every", o.snapshotEvery},
         {"snapshot_deterministic", o.snapshotDeterministic},
     };
-    Json style = {{"wireframe", s.style.wireframe},
-                  {"tree_line", number(s.style.treeLine)},
-                  {"snow_line", number(s.style.snowLine)},
-                  {"cpt", s.style.cpt},
-                  {"polygons", s.style.polygons},
-                  {"points", s.style.points},
+    Json style = {{"wireframe", s.style.wireframe},        {"tree_line", number(s.style.treeLine)},
+                  {"snow_line", number(s.style.snowLine)}, {"cpt", s.style.cpt},
+                  {"polygons", s.style.polygons},          {"points", s.style.points},
                   {"colour_by", s.style.colourBy}};
     const ZonesDesc& z = s.zones;
     Json zones = {{"map", z.map},
@@ -439,8 +488,12 @@ Json sceneToJson(const Scene& s) {
             {"lod", lod},         {"output", output}, {"style", style}, {"zones", zones}};
 }
 
-std::string sceneToText(const Scene& scene) { return sceneToJson(scene).dump(2) + "\n"; }
+std::string sceneToText(const Scene& scene) {
+    return sceneToJson(scene).dump(2) + "\n";
+}
 
-void saveScene(const std::string& path, const Scene& scene) { writeFileAtomic(path, sceneToText(scene)); }
+void saveScene(const std::string& path, const Scene& scene) {
+    writeFileAtomic(path, sceneToText(scene));
+}
 
 }  // namespace sierra::scene

@@ -22,9 +22,10 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& option
                               const char* example) {
     int w = 0, h = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
-        h <= 0 || w > maxSide || h > maxSide)
-        throw Error(msg(option, " '", text, "': expected WIDTHxHEIGHT, each 1..", maxSide, ", e.g. ", example));
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
+        w <= 0 || h <= 0 || w > maxSide || h > maxSide)
+        throw Error(msg(option, " '", text, "': expected WIDTHxHEIGHT, each 1..", maxSide,
+                        ", e.g. ", example));
     return {w, h};
 }
 
@@ -32,37 +33,49 @@ std::pair<int, int> parseSize(const std::string& text, const std::string& option
 
 const char* toString(SeaLevel::Mode mode) {
     switch (mode) {
-    case SeaLevel::Mode::None: return "none";
-    case SeaLevel::Mode::Value: return "value";
-    case SeaLevel::Mode::Auto: break;
+        case SeaLevel::Mode::None:
+            return "none";
+        case SeaLevel::Mode::Value:
+            return "value";
+        case SeaLevel::Mode::Auto:
+            break;
     }
     return "auto";
 }
 
 const char* toString(HeightUnits units) {
     switch (units) {
-    case HeightUnits::Metres: return "m";
-    case HeightUnits::None: return "none";
-    case HeightUnits::Auto: break;
+        case HeightUnits::Metres:
+            return "m";
+        case HeightUnits::None:
+            return "none";
+        case HeightUnits::Auto:
+            break;
     }
     return "auto";
 }
 
 const char* toString(Channel channel) {
     switch (channel) {
-    case Channel::Luminance: return "luminance";
-    case Channel::Red: return "r";
-    case Channel::Green: return "g";
-    case Channel::Blue: return "b";
-    case Channel::Grey: break;
+        case Channel::Luminance:
+            return "luminance";
+        case Channel::Red:
+            return "r";
+        case Channel::Green:
+            return "g";
+        case Channel::Blue:
+            return "b";
+        case Channel::Grey:
+            break;
     }
     return "grey";
 }
 
 HeightUnits parseHeightUnits(const std::string& text, const std::string& what) {
-    static const std::pair<const char*, HeightUnits> kNames[] = {
-        {"auto", HeightUnits::Auto}, {"m", HeightUnits::Metres}, {"metres", HeightUnits::Metres},
-        {"none", HeightUnits::None}};
+    static const std::pair<const char*, HeightUnits> kNames[] = {{"auto", HeightUnits::Auto},
+                                                                 {"m", HeightUnits::Metres},
+                                                                 {"metres", HeightUnits::Metres},
+                                                                 {"none", HeightUnits::None}};
     return detail::parseName(text, what, kNames);
 }
 
@@ -83,30 +96,34 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
     return parseSize(text, option, 65537, "4097x4097");
 }
 
-terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description, Padding padding,
-                                 int maxPaddedSide) {
+terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description,
+                                 Padding padding, int maxPaddedSide) {
     terrain::Heightfield field;
     std::string what;
     bool metric = false;
     if (source.heightmap.empty()) {
         SIERRA_CHECK(source.generateSize <= maxPaddedSide, "--generate ", source.generateSize,
-                     " is larger than the largest grid this renderer takes, ", maxPaddedSide, "x", maxPaddedSide,
-                     " (its texture size limit)");
-        field = terrain::generateDiamondSquare(
-            {.size = source.generateSize, .seed = source.seed, .roughness = source.roughness, .hurst = source.hurst});
-        what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ", source.seed,
-                   ", roughness ", source.roughness, source.hurst ? msg(", Hurst ", *source.hurst) : std::string());
+                     " is larger than the largest grid this renderer takes, ", maxPaddedSide, "x",
+                     maxPaddedSide, " (its texture size limit)");
+        field = terrain::generateDiamondSquare({.size = source.generateSize,
+                                                .seed = source.seed,
+                                                .roughness = source.roughness,
+                                                .hurst = source.hurst});
+        what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ",
+                   source.seed, ", roughness ", source.roughness,
+                   source.hurst ? msg(", Hurst ", *source.hurst) : std::string());
     } else {
         // The loaders take the channel's name ("" = grey images only).
-        field = terrain::loadHeightfield(source.heightmap,
-                                         {.rawWidth = source.rawWidth,
-                                          .rawHeight = source.rawHeight,
-                                          .channel = source.channel == Channel::Grey ? std::string()
-                                                                                     : toString(source.channel),
-                                          .maxPaddedSide = maxPaddedSide});
+        field = terrain::loadHeightfield(
+            source.heightmap,
+            {.rawWidth = source.rawWidth,
+             .rawHeight = source.rawHeight,
+             .channel = source.channel == Channel::Grey ? std::string() : toString(source.channel),
+             .maxPaddedSide = maxPaddedSide});
         what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
-        if (std::string warning = padding == Padding::None ? std::string()
-                                                           : terrain::paddingWarning(field.width(), field.height());
+        if (std::string warning = padding == Padding::None
+                                      ? std::string()
+                                      : terrain::paddingWarning(field.width(), field.height());
             !warning.empty())
             what += msg(" [warning: ", warning, "]");
     }
@@ -138,21 +155,24 @@ bool metricHeights(const TerrainSource& source) {
     if (source.heightUnits != HeightUnits::Auto) return source.heightUnits == HeightUnits::Metres;
     if (source.heightmap.empty()) return false;
     std::string ext = std::filesystem::path(source.heightmap).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     // SRTM and GeoTIFF carry metres: their loaders set the ground spacing, and
     // heights need no exaggeration.
     return ext == ".hgt" || ext == ".tif" || ext == ".tiff";
 }
 
 float heightQuantile(const terrain::Heightfield& field, double share) {
-    SIERRA_CHECK(share >= 0.0 && share <= 1.0, "a height quantile needs a share in [0, 1], got ", share);
+    SIERRA_CHECK(share >= 0.0 && share <= 1.0, "a height quantile needs a share in [0, 1], got ",
+                 share);
     std::vector<float> heights;
     heights.reserve(size_t(field.sampleCount()));
     for (int j = 0; j < field.height(); ++j)
         for (int i = 0; i < field.width(); ++i)
             if (field.valid(i, j)) heights.push_back(field.at(i, j));
     if (heights.empty()) return 0.0f;
-    auto nth = heights.begin() + std::ptrdiff_t(std::min(heights.size() - 1, size_t(double(heights.size()) * share)));
+    auto nth = heights.begin() +
+               std::ptrdiff_t(std::min(heights.size() - 1, size_t(double(heights.size()) * share)));
     std::nth_element(heights.begin(), nth, heights.end());
     return *nth;
 }
@@ -160,9 +180,12 @@ float heightQuantile(const terrain::Heightfield& field, double share) {
 float resolveSeaLevel(const TerrainSource& source, const terrain::Heightfield& field) {
     constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
     switch (source.seaLevel.mode) {
-    case SeaLevel::Mode::Value: return source.seaLevel.value;
-    case SeaLevel::Mode::None: return kNone;
-    case SeaLevel::Mode::Auto: break;
+        case SeaLevel::Mode::Value:
+            return source.seaLevel.value;
+        case SeaLevel::Mode::None:
+            return kNone;
+        case SeaLevel::Mode::Auto:
+            break;
     }
     if (source.heightmap.empty()) return heightQuantile(field, 0.3);
     if (metricHeights(source) && field.range().first < 0.0f) return 0.0f;

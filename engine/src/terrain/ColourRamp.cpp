@@ -5,9 +5,9 @@
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <utility>
-#include <cmath>
 
 namespace sierra::terrain {
 namespace {
@@ -82,9 +82,9 @@ ColourRamp::ColourRamp(const ColourRampDesc& desc) : desc_(desc) {
             }
             // Absolute stops above the ground; those below it are dropped so
             // the land starts with the colour the ground height has.
-            const Stop land[] = {{0.0f, kLowGrass},        {0.5f * tree, kHighGrass},
-                                 {0.8f * tree, kScrub},    {tree, kBrownRock},
-                                 {snow, kGreyRock},        {snow, kSnow},
+            const Stop land[] = {{0.0f, kLowGrass},      {0.5f * tree, kHighGrass},
+                                 {0.8f * tree, kScrub},  {tree, kBrownRock},
+                                 {snow, kGreyRock},      {snow, kSnow},
                                  {snow + 1500.0f, kPeak}};
             size_t first = 0;
             while (first + 1 < std::size(land) && land[first + 1].height <= ground) ++first;
@@ -92,8 +92,9 @@ ColourRamp::ColourRamp(const ColourRampDesc& desc) : desc_(desc) {
                 // Interpolate the colour at the ground between the surrounding stops.
                 const Stop& a = land[first];
                 const Stop& b = land[std::min(first + 1, std::size(land) - 1)];
-                float t = b.height > a.height ? std::clamp((ground - a.height) / (b.height - a.height), 0.0f, 1.0f)
-                                              : 1.0f;
+                float t = b.height > a.height
+                              ? std::clamp((ground - a.height) / (b.height - a.height), 0.0f, 1.0f)
+                              : 1.0f;
                 add(ground, {lerp8(a.colour.r, b.colour.r, t), lerp8(a.colour.g, b.colour.g, t),
                              lerp8(a.colour.b, b.colour.b, t)});
                 ++first;
@@ -127,14 +128,19 @@ ColourRamp::ColourRamp(const ColourRampDesc& desc) : desc_(desc) {
 
 ColourRamp::ColourRamp(std::vector<ColourStop> stops, float minHeight, float maxHeight,
                        const OutOfRangeColours& outside)
-    : desc_{.minHeight = minHeight, .maxHeight = maxHeight}, outside_(outside), stops_(std::move(stops)) {
+    : desc_{.minHeight = minHeight, .maxHeight = maxHeight},
+      outside_(outside),
+      stops_(std::move(stops)) {
     SIERRA_CHECK(std::isfinite(minHeight) && std::isfinite(maxHeight) && minHeight < maxHeight,
-                 "colour ramp range [", minHeight, ", ", maxHeight, "] is invalid; need minHeight < maxHeight");
+                 "colour ramp range [", minHeight, ", ", maxHeight,
+                 "] is invalid; need minHeight < maxHeight");
     SIERRA_CHECK(stops_.size() >= 2, "a colour table needs at least 2 stops, got ", stops_.size());
     for (size_t k = 0; k < stops_.size(); ++k) {
-        SIERRA_CHECK(std::isfinite(stops_[k].height), "colour stop ", k, " has a non-finite height");
-        SIERRA_CHECK(k == 0 || stops_[k].height >= stops_[k - 1].height, "colour stops are not ascending: ",
-                     stops_[k - 1].height, " then ", stops_[k].height);
+        SIERRA_CHECK(std::isfinite(stops_[k].height), "colour stop ", k,
+                     " has a non-finite height");
+        SIERRA_CHECK(k == 0 || stops_[k].height >= stops_[k - 1].height,
+                     "colour stops are not ascending: ", stops_[k - 1].height, " then ",
+                     stops_[k].height);
     }
 }
 

@@ -103,16 +103,20 @@ CptTable parseCpt(const std::string& text, const std::string& name) {
                     value.erase(0, value.find_first_not_of(" \t+"));
                     value.erase(value.find_last_not_of(" \t") + 1);
                     if (value != "rgb") {
-                        for (char& ch : value) ch = char(std::toupper(static_cast<unsigned char>(ch)));
-                        throw LineError{msg("colour model '", value, "' is not supported (only RGB)")};
+                        for (char& ch : value)
+                            ch = char(std::toupper(static_cast<unsigned char>(ch)));
+                        throw LineError{
+                            msg("colour model '", value, "' is not supported (only RGB)")};
                     }
                 }
                 // A '#' starting a token after the slice is part of "#rrggbb":
                 // only a '#' at the start of the line or after white space and
                 // not followed by 6 hex digits starts a comment.
-                bool isHexColour = hash + 7 <= line.size() &&
-                                   std::all_of(line.begin() + long(hash) + 1, line.begin() + long(hash) + 7,
-                                               [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
+                bool isHexColour =
+                    hash + 7 <= line.size() &&
+                    std::all_of(
+                        line.begin() + long(hash) + 1, line.begin() + long(hash) + 7,
+                        [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
                 if (!isHexColour || hash == line.find_first_not_of(" \t")) line.erase(hash);
             }
             const size_t semi = line.find(';');  // ";label" annotations
@@ -126,8 +130,11 @@ CptTable parseCpt(const std::string& text, const std::string& name) {
                 size_t k = 1;
                 if (tokens.size() == 2 && tokens[1] == "-") continue;  // "skip": keep clamping
                 Rgb c = colour(tokens, k, true);
-                if (k != tokens.size()) throw LineError{msg("unexpected '", tokens[k], "' after the ", key, " colour")};
-                (key == "B" ? table.outside.below : key == "F" ? table.outside.above : table.outside.noData) = c;
+                if (k != tokens.size())
+                    throw LineError{msg("unexpected '", tokens[k], "' after the ", key, " colour")};
+                (key == "B"   ? table.outside.below
+                 : key == "F" ? table.outside.above
+                              : table.outside.noData) = c;
                 continue;
             }
             auto z0 = number(key);
@@ -141,11 +148,14 @@ CptTable parseCpt(const std::string& text, const std::string& name) {
             if (!z1) throw LineError{msg("upper height '", tokens[k], "' is not a number")};
             ++k;
             Rgb c1 = colour(tokens, k, triple);
-            if (k < tokens.size() && (tokens[k] == "L" || tokens[k] == "U" || tokens[k] == "B")) ++k;
-            if (k != tokens.size()) throw LineError{msg("unexpected '", tokens[k], "' after the slice")};
+            if (k < tokens.size() && (tokens[k] == "L" || tokens[k] == "U" || tokens[k] == "B"))
+                ++k;
+            if (k != tokens.size())
+                throw LineError{msg("unexpected '", tokens[k], "' after the slice")};
             if (!(*z1 > *z0)) throw LineError{msg("slice ", *z0, " .. ", *z1, " does not ascend")};
             if (!table.stops.empty() && float(*z0) < table.stops.back().height)
-                throw LineError{msg("slice starts at ", *z0, ", below the end of the previous slice (",
+                throw LineError{msg("slice starts at ", *z0,
+                                    ", below the end of the previous slice (",
                                     table.stops.back().height, ")")};
             table.stops.push_back({float(*z0), c0});
             table.stops.push_back({float(*z1), c1});
@@ -153,7 +163,8 @@ CptTable parseCpt(const std::string& text, const std::string& name) {
             throw Error(msg(name, " line ", lineNo, ": ", e.what));
         }
     }
-    if (table.stops.empty()) throw Error(msg(name, ": no colour slices (lines 'z0 colour z1 colour')"));
+    if (table.stops.empty())
+        throw Error(msg(name, ": no colour slices (lines 'z0 colour z1 colour')"));
     return table;
 }
 

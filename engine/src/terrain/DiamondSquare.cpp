@@ -36,13 +36,14 @@ Heightfield generateDiamondSquare(const DiamondSquareDesc& desc) {
     SIERRA_CHECK(size >= kMinSize && size <= kMaxSize && ((size - 1) & (size - 2)) == 0,
                  "diamond-square size ", size, " is not 2^n + 1 in ", kMinSize, "..", kMaxSize,
                  " (e.g. 257, 513, 1025)");
-    SIERRA_CHECK(std::isfinite(desc.roughness) && desc.roughness > 0.0f && desc.roughness <= kMaxRoughness,
-                 "diamond-square roughness ", desc.roughness, " must be in (0, ", kMaxRoughness,
-                 "] (default 1; it sets the height units only)");
+    SIERRA_CHECK(
+        std::isfinite(desc.roughness) && desc.roughness > 0.0f && desc.roughness <= kMaxRoughness,
+        "diamond-square roughness ", desc.roughness, " must be in (0, ", kMaxRoughness,
+        "] (default 1; it sets the height units only)");
     if (desc.hurst) {
         const float h = *desc.hurst;
-        SIERRA_CHECK(std::isfinite(h) && h > 0.0f && h <= 2.0f, "diamond-square Hurst exponent ",
-                     h, " must be in (0, 2] (1 = the default scaling, smaller = rougher)");
+        SIERRA_CHECK(std::isfinite(h) && h > 0.0f && h <= 2.0f, "diamond-square Hurst exponent ", h,
+                     " must be in (0, 2] (1 = the default scaling, smaller = rougher)");
     }
     const uint64_t seedHash = splitmix64(desc.seed);
     const double roughness = desc.roughness;

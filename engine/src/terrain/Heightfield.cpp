@@ -24,8 +24,8 @@ void Heightfield::setSpacing(float x, float z) {
 }
 
 void Heightfield::setVerticalScale(float scale) {
-    SIERRA_CHECK(std::isfinite(scale) && scale > 0, "vertical scale must be finite and positive, got ",
-                 scale);
+    SIERRA_CHECK(std::isfinite(scale) && scale > 0,
+                 "vertical scale must be finite and positive, got ", scale);
     verticalScale_ = scale;
 }
 

@@ -134,7 +134,8 @@ SpngContext openPng(const std::string& what, std::span<const uint8_t> bytes, int
             throw Error(msg(what, ": ", step, " (libspng: ", spng_strerror(err),
                             "); the file is truncated or corrupt"));
     };
-    check(spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR), "cannot set up PNG decoding");
+    check(spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR),
+          "cannot set up PNG decoding");
     check(spng_set_image_limits(ctx.get(), kMaxSide, kMaxSide), "cannot set up PNG decoding");
     // libspng refuses a chunk limit above the cache limit (SPNG_EINVAL), which
     // made every PNG over 8 MiB unreadable; the cache may then hold up to the
@@ -152,7 +153,8 @@ Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes,
                     const LoadOptions& options) {
     const Channel channel = parseChannel(path, options.channel);
     spng_ihdr ihdr{};
-    SpngContext ctx = openPng(path, bytes, options.maxPaddedSide, "an 8- or 16-bit greyscale PNG", ihdr);
+    SpngContext ctx =
+        openPng(path, bytes, options.maxPaddedSide, "an 8- or 16-bit greyscale PNG", ihdr);
     auto check = [&](int err, const char* what) {
         if (err != 0)
             throw Error(msg(path, ": ", what, " (libspng: ", spng_strerror(err),
@@ -163,9 +165,9 @@ Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes,
                       ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA;
     if (!grey && channel == Channel::GreyOnly)
         throw Error(msg(path, ": PNG is colour (",
-                        ihdr.color_type == SPNG_COLOR_TYPE_INDEXED ? "palette"
+                        ihdr.color_type == SPNG_COLOR_TYPE_INDEXED     ? "palette"
                         : ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR ? "RGB"
-                                                                         : "RGBA",
+                                                                       : "RGBA",
                         "); a heightmap must be greyscale (8 or 16 bit), or pick a channel: "
                         "luminance, r, g or b"));
     const bool sixteen = ihdr.bit_depth == 16;
@@ -194,9 +196,15 @@ Heightfield loadPng(const std::string& path, const std::vector<uint8_t>& bytes,
                 h = sample(row, i, 0);
             } else {
                 switch (channel) {
-                    case Channel::R: h = sample(row, i, 0); break;
-                    case Channel::G: h = sample(row, i, 1); break;
-                    case Channel::B: h = sample(row, i, 2); break;
+                    case Channel::R:
+                        h = sample(row, i, 0);
+                        break;
+                    case Channel::G:
+                        h = sample(row, i, 1);
+                        break;
+                    case Channel::B:
+                        h = sample(row, i, 2);
+                        break;
                     default:  // Rec. 709 luma weights on the stored values
                         h = 0.2126f * sample(row, i, 0) + 0.7152f * sample(row, i, 1) +
                             0.0722f * sample(row, i, 2);
@@ -260,7 +268,8 @@ namespace {
 
 class PgmReader {
   public:
-    PgmReader(const std::string& path, const std::vector<uint8_t>& bytes, const LoadOptions& options)
+    PgmReader(const std::string& path, const std::vector<uint8_t>& bytes,
+              const LoadOptions& options)
         : path_(path), bytes_(bytes), options_(options) {}
 
     Heightfield load() {
@@ -631,8 +640,8 @@ Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
         GDALRasterBand* maskBand = band->GetMaskBand();
         if (!maskBand || maskBand->RasterIO(GF_Read, 0, 0, width, height, mask.data(), width,
                                             height, GDT_Byte, 0, 0, nullptr) != CE_None)
-            throw Error(msg(path, ": GDAL cannot read the no-data mask of band 1: ",
-                            CPLGetLastErrorMsg()));
+            throw Error(
+                msg(path, ": GDAL cannot read the no-data mask of band 1: ", CPLGetLastErrorMsg()));
         bool any = false;
         for (size_t k = 0; k < mask.size(); ++k) {
             mask[k] = mask[k] != 0 ? 1 : 0;
@@ -721,14 +730,14 @@ void checkFieldSize(const std::string& what, int64_t width, int64_t height, int 
                         kMinSide, "x", kMinSide, " samples"));
     const int side = paddedSide(int(std::max(width, height)));
     if (side > maxPaddedSide)
-        throw Error(msg(what, " size ", width, "x", height, " pads to a ", side, "x", side,
-                        " grid (", int64_t(side) * side, " samples), over the limit of ",
-                        maxPaddedSide, "x", maxPaddedSide,
-                        " samples (maxPaddedSide: ",
-                        maxPaddedSide == kDefaultMaxPaddedSide
-                            ? "the loaders' budget, 1 GiB of float32 heights"
-                            : "the largest grid the caller takes, for a renderer its GL's texture size",
-                        ")"));
+        throw Error(
+            msg(what, " size ", width, "x", height, " pads to a ", side, "x", side, " grid (",
+                int64_t(side) * side, " samples), over the limit of ", maxPaddedSide, "x",
+                maxPaddedSide, " samples (maxPaddedSide: ",
+                maxPaddedSide == kDefaultMaxPaddedSide
+                    ? "the loaders' budget, 1 GiB of float32 heights"
+                    : "the largest grid the caller takes, for a renderer its GL's texture size",
+                ")"));
 }
 
 namespace {
@@ -738,9 +747,9 @@ enum class Format { Png, Pgm, R16, R32, Hgt, Npy, Npz, Tiff };
 Format formatOf(const std::string& path) {
     const std::string ext = lowerExtension(path);
     static const std::pair<const char*, Format> kFormats[] = {
-        {".png", Format::Png},  {".pgm", Format::Pgm},  {".r16", Format::R16},
-        {".r32", Format::R32},  {".hgt", Format::Hgt},  {".npy", Format::Npy},  {".npz", Format::Npz},
-        {".tif", Format::Tiff}, {".tiff", Format::Tiff}};
+        {".png", Format::Png}, {".pgm", Format::Pgm},  {".r16", Format::R16},
+        {".r32", Format::R32}, {".hgt", Format::Hgt},  {".npy", Format::Npy},
+        {".npz", Format::Npz}, {".tif", Format::Tiff}, {".tiff", Format::Tiff}};
     const auto known = std::find_if(std::begin(kFormats), std::end(kFormats),
                                     [&](const auto& entry) { return ext == entry.first; });
     if (known == std::end(kFormats))
@@ -755,8 +764,9 @@ Format formatOf(const std::string& path) {
 uint64_t maxFileBytes(Format format, const std::string& path, const LoadOptions& options,
                       std::string& reason) {
     const uint64_t samples = maxSamples(options);
-    reason = msg("a ", lowerExtension(path), " heightmap within the limit of ", options.maxPaddedSide, "x", options.maxPaddedSide,
-                 " samples (maxPaddedSide) is smaller");
+    reason =
+        msg("a ", lowerExtension(path), " heightmap within the limit of ", options.maxPaddedSide,
+            "x", options.maxPaddedSide, " samples (maxPaddedSide) is smaller");
     switch (format) {
         case Format::Png:  // RGBA16 stored uncompressed: 8 bytes a sample, plus framing
             return samples * 8 + samples / 8 + kHeaderSlack;
@@ -795,7 +805,9 @@ Heightfield decode(Format format, const std::string& path, const std::vector<uin
             return loadNpy(path, bytes, options);
         case Format::Npz: {
             std::string reason;
-            return loadNpy(path, npzMember(path, bytes, {}, maxFileBytes(format, path, options, reason)), options);
+            return loadNpy(path,
+                           npzMember(path, bytes, {}, maxFileBytes(format, path, options, reason)),
+                           options);
         }
         case Format::Tiff:
             break;
@@ -829,10 +841,12 @@ Heightfield loadHeightfield(const std::string& path, const LoadOptions& options)
 Heightfield decodeHeightfield(const std::string& name, const std::vector<uint8_t>& bytes,
                               const LoadOptions& options) {
     const Format format = formatOf(name);
-    SIERRA_CHECK(format != Format::Tiff, name, ": GeoTIFF is read from files only (loadHeightfield)");
+    SIERRA_CHECK(format != Format::Tiff, name,
+                 ": GeoTIFF is read from files only (loadHeightfield)");
     std::string reason;
     const uint64_t maxBytes = maxFileBytes(format, name, options, reason);
-    SIERRA_CHECK(bytes.size() <= maxBytes, name, ": ", bytes.size(), " bytes is too large: ", reason);
+    SIERRA_CHECK(bytes.size() <= maxBytes, name, ": ", bytes.size(),
+                 " bytes is too large: ", reason);
     return decode(format, name, bytes, options);
 }
 

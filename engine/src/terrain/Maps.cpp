@@ -67,7 +67,9 @@ void appendBytes(void* context, void* data, int size) {
     out->insert(out->end(), p, p + size);
 }
 
-uint8_t grey8(double v) { return uint8_t(std::lround(std::clamp(v, 0.0, 255.0))); }
+uint8_t grey8(double v) {
+    return uint8_t(std::lround(std::clamp(v, 0.0, 255.0)));
+}
 
 std::string tickLabel(double value, double step) {
     const int decimals = step >= 1.0 ? 0 : int(std::ceil(-std::log10(step) - 1e-9));
@@ -78,12 +80,13 @@ std::string tickLabel(double value, double step) {
 }  // namespace
 
 std::vector<float> hillshade(const Heightfield& field, const Sun& sun) {
-    SIERRA_CHECK(std::isfinite(sun.azimuth) && std::isfinite(sun.altitude) && sun.altitude >= 0.0f &&
-                     sun.altitude <= 90.0f,
+    SIERRA_CHECK(std::isfinite(sun.azimuth) && std::isfinite(sun.altitude) &&
+                     sun.altitude >= 0.0f && sun.altitude <= 90.0f,
                  "sun azimuth ", sun.azimuth, " and altitude ", sun.altitude,
                  " degrees: need a finite azimuth and an altitude in 0..90");
     const double az = sun.azimuth * kDegrees, alt = sun.altitude * kDegrees;
-    const double lx = std::sin(az) * std::cos(alt), ly = std::cos(az) * std::cos(alt), lz = std::sin(alt);
+    const double lx = std::sin(az) * std::cos(alt), ly = std::cos(az) * std::cos(alt),
+                 lz = std::sin(alt);
     std::vector<float> out(size_t(field.sampleCount()), 0.0f);
     for (int j = 0; j < field.height(); ++j)
         for (int i = 0; i < field.width(); ++i) {
@@ -103,7 +106,8 @@ std::vector<float> slopeDegrees(const Heightfield& field) {
         for (int i = 0; i < field.width(); ++i) {
             if (!field.valid(i, j)) continue;
             const Gradient g = gradientAt(field, i, j);
-            out[size_t(j) * field.width() + i] = float(std::atan(std::hypot(g.east, g.north)) / kDegrees);
+            out[size_t(j) * field.width() + i] =
+                float(std::atan(std::hypot(g.east, g.north)) / kDegrees);
         }
     return out;
 }
@@ -114,12 +118,15 @@ MapScheme parseMapScheme(const std::string& name) {
     if (name == "hypsometric") return MapScheme::Hypsometric;
     if (name == "hillshade") return MapScheme::Hillshade;
     if (name == "slope") return MapScheme::Slope;
-    throw Error(msg("unknown map scheme '", name, "'; expected plasma, atlas, hypsometric, hillshade or slope"));
+    throw Error(msg("unknown map scheme '", name,
+                    "'; expected plasma, atlas, hypsometric, hillshade or slope"));
 }
 
-RgbImage renderMap(const Heightfield& field, MapScheme scheme, const ColourRamp& ramp, const Sun& sun) {
+RgbImage renderMap(const Heightfield& field, MapScheme scheme, const ColourRamp& ramp,
+                   const Sun& sun) {
     SIERRA_CHECK(!field.empty(), "cannot draw a map of an empty heightfield");
-    RgbImage image{field.width(), field.height(), std::vector<uint8_t>(size_t(field.sampleCount()) * 3)};
+    RgbImage image{field.width(), field.height(),
+                   std::vector<uint8_t>(size_t(field.sampleCount()) * 3)};
     std::vector<float> grey;
     if (scheme == MapScheme::Hillshade) grey = hillshade(field, sun);
     if (scheme == MapScheme::Slope) {
@@ -147,7 +154,8 @@ int drawText(RgbImage& image, int x, int y, const std::string& text, Rgb colour,
     // character is ample (the font silently drops quads that do not fit).
     std::vector<char> vertices(text.size() * 1024 + 1024);
     std::string copy = text;
-    const int quads = stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, vertices.data(), int(vertices.size()));
+    const int quads = stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, vertices.data(),
+                                          int(vertices.size()));
     struct Vertex {
         float x, y, z;
         unsigned char rgba[4];
@@ -161,7 +169,8 @@ int drawText(RgbImage& image, int x, int y, const std::string& text, Rgb colour,
         }
         for (int py = y + int(y0) * scale; py < y + int(y1) * scale; ++py)
             for (int px = x + int(x0) * scale; px < x + int(x1) * scale; ++px)
-                if (px >= 0 && py >= 0 && px < image.width && py < image.height) image.set(px, py, colour);
+                if (px >= 0 && py >= 0 && px < image.width && py < image.height)
+                    image.set(px, py, colour);
     }
     return stb_easy_font_width(copy.data()) * scale;
 }
@@ -169,7 +178,8 @@ int drawText(RgbImage& image, int x, int y, const std::string& text, Rgb colour,
 std::vector<LegendTick> addColourBar(RgbImage& image, const ColourRamp& ramp, float unitScale,
                                      const std::string& units, int* barXOut) {
     SIERRA_CHECK(image.width > 0 && image.height > 0, "cannot add a colour bar to an empty image");
-    SIERRA_CHECK(std::isfinite(unitScale) && unitScale > 0.0f, "legend unit scale must be > 0, got ", unitScale);
+    SIERRA_CHECK(std::isfinite(unitScale) && unitScale > 0.0f,
+                 "legend unit scale must be > 0, got ", unitScale);
     const int h = image.height;
     const int scale = std::max(1, h / 200);  // font pixels: ~7 per line at scale 1
     const double lo = ramp.desc().minHeight, hi = ramp.desc().maxHeight;
@@ -189,7 +199,8 @@ std::vector<LegendTick> addColourBar(RgbImage& image, const ColourRamp& ramp, fl
 
     const int gap = std::max(2, image.width / 50);
     const int bar = std::max(8, image.width / 16);
-    const int tick = 3 * scale;  // drawn from inside the bar out, then a gap: not read as a minus sign
+    const int tick =
+        3 * scale;  // drawn from inside the bar out, then a gap: not read as a minus sign
     int labelWidth = 0;
     for (auto& t : ticks) {
         std::string s = t.label;
@@ -210,7 +221,8 @@ std::vector<LegendTick> addColourBar(RgbImage& image, const ColourRamp& ramp, fl
     const int textHeight = 7 * scale;
     for (const auto& t : ticks) {
         for (int x = barX + bar - bar / 3; x < barX + bar + tick; ++x)
-            for (int y = t.row; y < std::min(h, t.row + std::max(1, scale / 2)); ++y) out.set(x, y, kInk);
+            for (int y = t.row; y < std::min(h, t.row + std::max(1, scale / 2)); ++y)
+                out.set(x, y, kInk);
         const int ty = std::clamp(t.row - textHeight / 2, 0, std::max(0, h - textHeight));
         drawText(out, barX + bar + tick + 3 * scale, ty, t.label, kInk, scale);
     }
@@ -220,21 +232,24 @@ std::vector<LegendTick> addColourBar(RgbImage& image, const ColourRamp& ramp, fl
 }
 
 void writeRgbPng(const std::string& path, const RgbImage& image) {
-    SIERRA_CHECK(image.width > 0 && image.height > 0, "cannot write ", path, ": the image is empty");
+    SIERRA_CHECK(image.width > 0 && image.height > 0, "cannot write ", path,
+                 ": the image is empty");
     std::vector<uint8_t> png;
-    if (!stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 3, image.rgb.data(), image.width * 3))
-        throw Error(msg("cannot write ", path, ": PNG encoding failed for a ", image.width, "x", image.height,
-                        " image"));
+    if (!stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 3, image.rgb.data(),
+                                image.width * 3))
+        throw Error(msg("cannot write ", path, ": PNG encoding failed for a ", image.width, "x",
+                        image.height, " image"));
     writeFileAtomic(path, png);
 }
 
 void writeGreyPng(const std::string& path, int width, int height, std::span<const uint8_t> grey) {
-    SIERRA_CHECK(width > 0 && height > 0 && grey.size() == size_t(width) * size_t(height), "cannot write ", path,
-                 ": a ", width, "x", height, " grey image needs ", int64_t(width) * height, " bytes, got ",
-                 grey.size());
+    SIERRA_CHECK(width > 0 && height > 0 && grey.size() == size_t(width) * size_t(height),
+                 "cannot write ", path, ": a ", width, "x", height, " grey image needs ",
+                 int64_t(width) * height, " bytes, got ", grey.size());
     std::vector<uint8_t> png;
     if (!stbi_write_png_to_func(appendBytes, &png, width, height, 1, grey.data(), width))
-        throw Error(msg("cannot write ", path, ": PNG encoding failed for a ", width, "x", height, " image"));
+        throw Error(msg("cannot write ", path, ": PNG encoding failed for a ", width, "x", height,
+                        " image"));
     writeFileAtomic(path, png);
 }
 

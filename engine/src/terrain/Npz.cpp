@@ -11,8 +11,12 @@ namespace sierra::terrain {
 
 namespace {
 
-uint32_t read16(const std::vector<uint8_t>& b, size_t at) { return uint32_t(b[at]) | uint32_t(b[at + 1]) << 8; }
-uint32_t read32(const std::vector<uint8_t>& b, size_t at) { return read16(b, at) | read16(b, at + 2) << 16; }
+uint32_t read16(const std::vector<uint8_t>& b, size_t at) {
+    return uint32_t(b[at]) | uint32_t(b[at + 1]) << 8;
+}
+uint32_t read32(const std::vector<uint8_t>& b, size_t at) {
+    return read16(b, at) | read16(b, at + 2) << 16;
+}
 
 uint32_t crc32(const uint8_t* data, size_t size) {
     static const std::array<uint32_t, 256> table = [] {
@@ -35,7 +39,8 @@ int npyDimensions(const std::vector<uint8_t>& npy) {
     std::string header(npy.begin() + 8, npy.begin() + std::min<size_t>(npy.size(), 8 + 4096));
     size_t shape = header.find("'shape'");
     size_t open = header.find('(', shape), close = header.find(')', open);
-    if (shape == std::string::npos || open == std::string::npos || close == std::string::npos) return -1;
+    if (shape == std::string::npos || open == std::string::npos || close == std::string::npos)
+        return -1;
     int dims = 0;
     bool inNumber = false;
     for (size_t k = open + 1; k < close; ++k) {
@@ -54,8 +59,8 @@ struct Member {
 
 }  // namespace
 
-std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_t>& bytes, const std::string& member,
-                               uint64_t maxBytes) {
+std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_t>& bytes,
+                               const std::string& member, uint64_t maxBytes) {
     auto fail = [&](const std::string& why) { return Error(msg(path, ": ", why)); };
     // The end-of-central-directory record: 22 bytes, at most 64 KiB of comment after it.
     if (bytes.size() < 22) throw fail("too short for an .npz (zip) archive");
@@ -68,33 +73,40 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
     if (eocd == std::string::npos) throw fail("not an .npz archive (no zip directory found)");
     uint32_t count = read16(bytes, eocd + 10);
     uint64_t dirSize = read32(bytes, eocd + 12), dirOffset = read32(bytes, eocd + 16);
-    if (count == 0xFFFF || dirOffset == 0xFFFFFFFFu) throw fail("zip64 .npz archives are not supported");
+    if (count == 0xFFFF || dirOffset == 0xFFFFFFFFu)
+        throw fail("zip64 .npz archives are not supported");
     if (dirOffset + dirSize > eocd) throw fail("corrupt .npz: its directory lies outside the file");
 
     std::vector<Member> members;
     size_t at = size_t(dirOffset);
     for (uint32_t k = 0; k < count; ++k) {
-        if (at + 46 > eocd || read32(bytes, at) != 0x02014b50u) throw fail("corrupt .npz directory entry");
+        if (at + 46 > eocd || read32(bytes, at) != 0x02014b50u)
+            throw fail("corrupt .npz directory entry");
         Member m;
         uint32_t flags = read16(bytes, at + 8);
         m.method = read16(bytes, at + 10);
         m.crc = read32(bytes, at + 16);
         m.compressed = read32(bytes, at + 20);
         m.size = read32(bytes, at + 24);
-        uint32_t nameLength = read16(bytes, at + 28), extra = read16(bytes, at + 30), comment = read16(bytes, at + 32);
+        uint32_t nameLength = read16(bytes, at + 28), extra = read16(bytes, at + 30),
+                 comment = read16(bytes, at + 32);
         m.localHeader = read32(bytes, at + 42);
         if (at + 46 + nameLength > eocd) throw fail("corrupt .npz directory entry");
         m.name.assign(reinterpret_cast<const char*>(&bytes[at + 46]), nameLength);
         if (flags & 1) throw fail(msg("member ", m.name, " is encrypted"));
-        if (m.size == 0xFFFFFFFFu || m.compressed == 0xFFFFFFFFu) throw fail("zip64 .npz archives are not supported");
+        if (m.size == 0xFFFFFFFFu || m.compressed == 0xFFFFFFFFu)
+            throw fail("zip64 .npz archives are not supported");
         members.push_back(m);
         at += 46 + nameLength + extra + comment;
     }
 
     auto extract = [&](const Member& m) {
         if (m.method != 0 && m.method != 8)
-            throw fail(msg("member ", m.name, " uses zip method ", m.method, "; .npz members are stored or deflated"));
-        if (m.size > maxBytes) throw fail(msg("member ", m.name, " holds ", m.size, " bytes, over the limit of ", maxBytes));
+            throw fail(msg("member ", m.name, " uses zip method ", m.method,
+                           "; .npz members are stored or deflated"));
+        if (m.size > maxBytes)
+            throw fail(
+                msg("member ", m.name, " holds ", m.size, " bytes, over the limit of ", maxBytes));
         // Deflate expands at most 1032:1, so a small member claiming a huge size
         // is refused before its buffer is allocated.
         if (m.size > m.compressed * 1032 + 1024)
@@ -104,10 +116,12 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
         if (local + 30 > bytes.size() || read32(bytes, local) != 0x04034b50u)
             throw fail(msg("corrupt .npz: no local header for ", m.name));
         size_t data = local + 30 + read16(bytes, local + 26) + read16(bytes, local + 28);
-        if (data + m.compressed > bytes.size()) throw fail(msg("truncated .npz: member ", m.name, " is cut short"));
+        if (data + m.compressed > bytes.size())
+            throw fail(msg("truncated .npz: member ", m.name, " is cut short"));
         std::vector<uint8_t> out(size_t(m.size));
         if (m.method == 0) {
-            if (m.compressed != m.size) throw fail(msg("corrupt .npz: stored member ", m.name, " changes size"));
+            if (m.compressed != m.size)
+                throw fail(msg("corrupt .npz: stored member ", m.name, " changes size"));
             // An empty member has no data to copy (and out.data() may be null).
             if (!out.empty()) std::memcpy(out.data(), bytes.data() + data, out.size());
         } else {
@@ -125,7 +139,8 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
                 throw fail(msg("member ", m.name, " does not inflate to its declared size (",
                                rc == Z_STREAM_END ? "size differs" : "corrupt deflate data", ")"));
         }
-        if (crc32(out.data(), out.size()) != m.crc) throw fail(msg("member ", m.name, " fails its CRC check"));
+        if (crc32(out.data(), out.size()) != m.crc)
+            throw fail(msg("member ", m.name, " fails its CRC check"));
         return out;
     };
 

@@ -15,6 +15,7 @@ namespace sierra::terrain {
 // zip, zip64, encrypted or otherwise compressed members, a CRC mismatch, a
 // member larger than `maxBytes`, or no 2-D array (the members are listed).
 std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_t>& bytes,
-                               const std::string& member = {}, uint64_t maxBytes = uint64_t(1) << 32);
+                               const std::string& member = {},
+                               uint64_t maxBytes = uint64_t(1) << 32);
 
 }  // namespace sierra::terrain

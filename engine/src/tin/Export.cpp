@@ -112,11 +112,14 @@ void writeObj(const std::string& path, const TinMesh& mesh, const ObjOptions& op
             }
         }
         // The palette colours, or a stable plain colour per material, for viewers without textures.
-        auto a = options.surfaceColours.find(surfaces[0]), b = options.surfaceColours.find(surfaces[1]);
+        auto a = options.surfaceColours.find(surfaces[0]),
+             b = options.surfaceColours.find(surfaces[1]);
         if (a != options.surfaceColours.end() && b != options.surfaceColours.end()) {
             mtl << "Ka 0 0 0\nKd";
             for (int shift : {16, 8, 0})
-                mtl << " " << (double((a->second >> shift) & 255u) + double((b->second >> shift) & 255u)) / 510.0;
+                mtl << " "
+                    << (double((a->second >> shift) & 255u) + double((b->second >> shift) & 255u)) /
+                           510.0;
             mtl << "\nKs 0 0 0\nillum 1\n";
         } else {
             const uint32_t h = uint32_t(surfaces[0]) * 2654435761u ^ uint32_t(surfaces[1]) * 40503u;

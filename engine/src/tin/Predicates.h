@@ -33,7 +33,9 @@ inline int inCircleSign64(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
                         (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
     return (det > 0) - (det < 0);
 }
-inline bool inCircle64(GridPoint a, GridPoint b, GridPoint c, GridPoint d) { return inCircleSign64(a, b, c, d) > 0; }
+inline bool inCircle64(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
+    return inCircleSign64(a, b, c, d) > 0;
+}
 
 // Where d lies against the circumcircle of the counter-clockwise triangle
 // a, b, c: 1 strictly inside, 0 on it, -1 outside.
@@ -51,7 +53,9 @@ inline int inCircleSign(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
 
 // True when d lies strictly inside the circumcircle of the counter-clockwise
 // triangle a, b, c.
-inline bool inCircle(GridPoint a, GridPoint b, GridPoint c, GridPoint d) { return inCircleSign(a, b, c, d) > 0; }
+inline bool inCircle(GridPoint a, GridPoint b, GridPoint c, GridPoint d) {
+    return inCircleSign(a, b, c, d) > 0;
+}
 
 // Scan conversion of a triangle over the grid: calls row(y, x0, x1) for every
 // row y with at least one sample inside or on the triangle, x0..x1 inclusive.

@@ -204,7 +204,9 @@ class Mesher {
     template <bool kLargest>
     double planeError(GridPoint a, GridPoint b, GridPoint c,
                       double limit = std::numeric_limits<double>::infinity()) const;
-    double quadError(GridPoint a, GridPoint b, GridPoint c) const { return planeError<false>(a, b, c); }
+    double quadError(GridPoint a, GridPoint b, GridPoint c) const {
+        return planeError<false>(a, b, c);
+    }
     void heapUpdate(int t);
     bool heapLess(int i, int j) const { return heap_[size_t(i)].error < heap_[size_t(j)].error; }
     void heapSwap(int i, int j) {
@@ -444,7 +446,8 @@ bool Mesher::shouldFlip(int e) {
     if (o < 0 || constrained_[e]) return false;
     const GridPoint a = at(e), b = at(nextHe(e)), p = at(prevHe(e)), d = at(prevHe(o));
     if (!dataDependent_) {
-        const int side = smallGrid_ ? detail::inCircleSign64(a, b, p, d) : detail::inCircleSign(a, b, p, d);
+        const int side =
+            smallGrid_ ? detail::inCircleSign64(a, b, p, d) : detail::inCircleSign(a, b, p, d);
         if (side != 0) return side > 0;
         // d on the circle (four grid samples on one circle are common): both
         // diagonals are Delaunay. Keep the one whose two planes have the smaller
@@ -453,7 +456,8 @@ bool Mesher::shouldFlip(int e) {
         // On the fractals of docs/tin.md it saves 0.3-1.7% of the triangles at
         // 0.1-0.5% relative error; keeping the first diagonal gave about the
         // public mesher's counts.
-        const double bar = std::max(planeError<true>(a, b, p), planeError<true>(b, a, d)) * (1.0 - 1e-9);
+        const double bar =
+            std::max(planeError<true>(a, b, p), planeError<true>(b, a, d)) * (1.0 - 1e-9);
         return planeError<true>(p, a, d, bar) < bar && planeError<true>(d, b, p, bar) < bar;
     }
     // Data-dependent: only a strictly convex quad, and only when the other
@@ -940,8 +944,8 @@ TinResult Mesher::run(const Constraints& constraints) {
     // With a budget and BudgetStop::BestMax, the mesh of smallest max error so
     // far (the heap's top before each insertion is the current mesh's max error)
     // is the checkpoint that a budget stop goes back to.
-    journaling_ = (desc_.maxTriangles > 0 || desc_.maxPoints > 0) &&
-                  desc_.budgetStop == BudgetStop::BestMax;
+    journaling_ =
+        (desc_.maxTriangles > 0 || desc_.maxPoints > 0) && desc_.budgetStop == BudgetStop::BestMax;
     struct Kept {
         double error = std::numeric_limits<double>::infinity();  // stored units
         int64_t inserted = 0, edgeSplits = 0, snapSplits = 0, flips = 0;

@@ -22,10 +22,10 @@ namespace {
 
 // A zone map and a grid the TIN can relate: each at least 2x2.
 void checkSizes(int mapWidth, int mapHeight, int gridWidth, int gridHeight) {
-    SIERRA_CHECK(mapWidth >= 2 && mapHeight >= 2, "a zone map for a TIN needs at least 2x2 pixels, got ", mapWidth,
-                 "x", mapHeight);
-    SIERRA_CHECK(gridWidth >= 2 && gridHeight >= 2, "a TIN needs a grid of at least 2x2 samples, got ", gridWidth,
-                 "x", gridHeight);
+    SIERRA_CHECK(mapWidth >= 2 && mapHeight >= 2,
+                 "a zone map for a TIN needs at least 2x2 pixels, got ", mapWidth, "x", mapHeight);
+    SIERRA_CHECK(gridWidth >= 2 && gridHeight >= 2,
+                 "a TIN needs a grid of at least 2x2 samples, got ", gridWidth, "x", gridHeight);
 }
 
 // Is (x, y) inside the closed polygon made of `edges` (even-odd rule)?
@@ -42,12 +42,14 @@ bool insideEdges(const zones::Borderlines& lines, const std::vector<uint32_t>& e
 }
 
 // The convex hull of the vertices `vs` (monotone chain; collinear points dropped).
-std::vector<zones::Vertex> convexHull(const zones::Borderlines& lines, const std::vector<uint32_t>& vs) {
+std::vector<zones::Vertex> convexHull(const zones::Borderlines& lines,
+                                      const std::vector<uint32_t>& vs) {
     std::vector<zones::Vertex> points;
     points.reserve(vs.size());
     for (uint32_t v : vs) points.push_back(lines.vertices[v]);
-    std::sort(points.begin(), points.end(),
-              [](const zones::Vertex& a, const zones::Vertex& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    std::sort(points.begin(), points.end(), [](const zones::Vertex& a, const zones::Vertex& b) {
+        return a.x < b.x || (a.x == b.x && a.y < b.y);
+    });
     if (points.size() < 3) return points;
     auto cross = [](const zones::Vertex& o, const zones::Vertex& a, const zones::Vertex& b) {
         return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
@@ -86,7 +88,8 @@ size_t removeThinIslands(zones::Borderlines& lines, double epsilon) {
         if (pinned[v]) hasJunction[root(v)] = 1;
     std::vector<std::vector<uint32_t>> loopEdges(nv);
     for (uint32_t k = 0; k < lines.edges.size(); ++k)
-        if (!hasJunction[root(lines.edges[k].from)]) loopEdges[root(lines.edges[k].from)].push_back(k);
+        if (!hasJunction[root(lines.edges[k].from)])
+            loopEdges[root(lines.edges[k].from)].push_back(k);
 
     struct Island {
         uint32_t root;
@@ -135,7 +138,8 @@ size_t removeThinIslands(zones::Borderlines& lines, double epsilon) {
             within = true;
             for (size_t i = 0; i < vs.size() && within; ++i) {
                 const zones::Vertex& s = lines.vertices[vs[i]];
-                within = std::fabs((q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x)) <= epsilon * length;
+                within = std::fabs((q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x)) <=
+                         epsilon * length;
             }
         }
         if (within) thin.push_back(box);
@@ -199,8 +203,8 @@ size_t removeThinIslands(zones::Borderlines& lines, double epsilon) {
 }
 
 zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palette& palette,
-                                   const zones::BorderlineDesc& desc, int gridWidth,
-                                   int gridHeight, size_t* removedIslands) {
+                                   const zones::BorderlineDesc& desc, int gridWidth, int gridHeight,
+                                   size_t* removedIslands) {
     checkSizes(map.width, map.height, gridWidth, gridHeight);
     SIERRA_CHECK(std::isfinite(desc.epsilon) && desc.epsilon >= 0.0,
                  "borderlines: epsilon must be >= 0 pixels, got ", desc.epsilon);

@@ -31,11 +31,14 @@ struct Crossing {
 BorderField buildBorderField(const Borderlines& lines, const BorderFieldDesc& desc) {
     const int s = desc.texelsPerPixel;
     SIERRA_CHECK(s >= 1 && s <= 8, "border field: texelsPerPixel must be 1..8, got ", s);
-    SIERRA_CHECK(lines.mapWidth > 0 && lines.mapHeight > 0, "border field: the borderlines have no map size");
-    SIERRA_CHECK(lines.zones.size() <= 255, "border field: at most 255 zones, got ", lines.zones.size());
+    SIERRA_CHECK(lines.mapWidth > 0 && lines.mapHeight > 0,
+                 "border field: the borderlines have no map size");
+    SIERRA_CHECK(lines.zones.size() <= 255, "border field: at most 255 zones, got ",
+                 lines.zones.size());
     for (const Zone& z : lines.zones)
-        SIERRA_CHECK(z.bandOf[0] < 0, "border field: build it from the borderlines before doubling (band zone ", z.name,
-                     "); the band is where |signedDistance| < W/2");
+        SIERRA_CHECK(z.bandOf[0] < 0,
+                     "border field: build it from the borderlines before doubling (band zone ",
+                     z.name, "); the band is where |signedDistance| < W/2");
     BorderField f;
     f.width = lines.mapWidth * s;
     f.height = lines.mapHeight * s;
@@ -61,7 +64,8 @@ BorderField buildBorderField(const Borderlines& lines, const BorderFieldDesc& de
             // rows whose sample y = clamp((j + 0.5) / s + tiny) lies in [lo, hi)
             j0 = std::max(0, int(std::ceil((lo - tiny) * s - 0.5)));
             j1 = std::min(h - 1, int(std::ceil((hi - tiny) * s - 0.5)) - 1);
-            // the first and last rows are clamped into the frame: include them when the edge covers the frame's ends
+            // the first and last rows are clamped into the frame: include them when the edge covers
+            // the frame's ends
             if (lo <= lines.frameY0) j0 = 0;
             if (hi >= lines.frameY1) j1 = h - 1;
             return j0 <= j1;
@@ -96,7 +100,8 @@ BorderField buildBorderField(const Borderlines& lines, const BorderFieldDesc& de
             }
         }
         for (int j = 0; j < h; ++j) {
-            auto first = crossings.begin() + start[size_t(j)], last = crossings.begin() + start[size_t(j) + 1];
+            auto first = crossings.begin() + start[size_t(j)],
+                 last = crossings.begin() + start[size_t(j) + 1];
             std::sort(first, last, [](const Crossing& p, const Crossing& q) { return p.x < q.x; });
             size_t count = size_t(last - first), k = 0;
             int32_t current = kOutside;
@@ -104,7 +109,8 @@ BorderField buildBorderField(const Borderlines& lines, const BorderFieldDesc& de
                 double x = (i + 0.5) / s;
                 while (k < count && first[long(k)].x <= x) current = first[long(k++)].after;
                 int32_t zone = current;
-                if (zone < 0 && count > 0) zone = k == 0 ? first[0].after : first[long(k) - 1].before;
+                if (zone < 0 && count > 0)
+                    zone = k == 0 ? first[0].after : first[long(k) - 1].before;
                 f.zone[size_t(j) * size_t(w) + size_t(i)] = uint8_t(std::max(zone, 0));
             }
         }
@@ -121,7 +127,8 @@ BorderField buildBorderField(const Borderlines& lines, const BorderFieldDesc& de
         float dx = float((b.x - a.x) * s), dy = float((b.y - a.y) * s);
         float len2 = dx * dx + dy * dy;
         segments.push_back({float(a.x * s), float(a.y * s), dx, dy, len2 > 0 ? 1.0f / len2 : 0.0f,
-                            uint8_t(std::min(e.left, e.right)), uint8_t(std::max(e.left, e.right))});
+                            uint8_t(std::min(e.left, e.right)),
+                            uint8_t(std::max(e.left, e.right))});
     }
     if (segments.empty()) {
         f.lowZone = f.zone;
@@ -143,10 +150,12 @@ BorderField buildBorderField(const Borderlines& lines, const BorderFieldDesc& de
         const Segment& g = segments[k];
         int steps = int(std::ceil(std::sqrt(g.dx * g.dx + g.dy * g.dy) * 2.0f)) + 1;
         for (int t = 0; t <= steps; ++t) {
-            float px = g.ax + g.dx * float(t) / float(steps), py = g.ay + g.dy * float(t) / float(steps);
+            float px = g.ax + g.dx * float(t) / float(steps),
+                  py = g.ay + g.dy * float(t) / float(steps);
             int ci = int(std::floor(px)), cj = int(std::floor(py));
             for (int j = std::max(cj - 1, 0); j <= std::min(cj + 1, h - 1); ++j)
-                for (int i = std::max(ci - 1, 0); i <= std::min(ci + 1, w - 1); ++i) consider(i, j, int32_t(k));
+                for (int i = std::max(ci - 1, 0); i <= std::min(ci + 1, w - 1); ++i)
+                    consider(i, j, int32_t(k));
         }
     }
     auto pull = [&](int i, int j, int ni, int nj) {

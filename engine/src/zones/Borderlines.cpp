@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <unordered_map>
 
@@ -96,9 +96,12 @@ void vectoriseFigure1(const ZoneMap& map, Borderlines& lines) {
         for (int x = 0; x < w; ++x) {
             bool b = border(x, y);
             if (!b && !ring(x, y)) continue;
-            // Right and down neighbours: both borderline pixels, or both on the same side of the ring.
-            if (x + 1 < w && ((b && border(x + 1, y)) || y == 0 || y == h - 1)) addAxis(x, y, x + 1, y);
-            if (y + 1 < h && ((b && border(x, y + 1)) || x == 0 || x == w - 1)) addAxis(x, y, x, y + 1);
+            // Right and down neighbours: both borderline pixels, or both on the same side of the
+            // ring.
+            if (x + 1 < w && ((b && border(x + 1, y)) || y == 0 || y == h - 1))
+                addAxis(x, y, x + 1, y);
+            if (y + 1 < h && ((b && border(x, y + 1)) || x == 0 || x == w - 1))
+                addAxis(x, y, x, y + 1);
             if (!b) continue;
             // Diagonals, only where no borderline pixel is a common 4-neighbour
             // (else the 4-connected path already joins them). The pixel on each
@@ -106,7 +109,8 @@ void vectoriseFigure1(const ZoneMap& map, Borderlines& lines) {
             for (int dx : {1, -1}) {
                 int qx = x + dx, qy = y + 1;
                 if (!border(qx, qy) || border(qx, y) || border(x, qy)) continue;
-                int32_t a = map.at(qx, y), c = map.at(x, qy);  // (x+dx, y) is on the left when dx*dy > 0
+                int32_t a = map.at(qx, y),
+                        c = map.at(x, qy);  // (x+dx, y) is on the left when dx*dy > 0
                 int32_t l = dx > 0 ? a : c, r = dx > 0 ? c : a;
                 if (l != r) lines.edges.push_back({vertex.at(x, y), vertex.at(qx, qy), l, r});
             }
@@ -150,7 +154,8 @@ std::vector<bool> junctionsOf(const Borderlines& lines, const Adjacency& adj) {
     }
     for (uint32_t v = 0; v < lines.vertices.size(); ++v) {
         const Vertex& p = lines.vertices[v];
-        if ((p.x == lines.frameX0 || p.x == lines.frameX1) && (p.y == lines.frameY0 || p.y == lines.frameY1))
+        if ((p.x == lines.frameX0 || p.x == lines.frameX1) &&
+            (p.y == lines.frameY0 || p.y == lines.frameY1))
             pinned[v] = true;
     }
     return pinned;
@@ -169,7 +174,8 @@ double cross(const Vertex& o, const Vertex& a, const Vertex& b) {
     return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
 
-std::vector<Arc> extractArcs(const Borderlines& lines, const Adjacency& adj, const std::vector<bool>& pinned) {
+std::vector<Arc> extractArcs(const Borderlines& lines, const Adjacency& adj,
+                             const std::vector<bool>& pinned) {
     std::vector<Arc> arcs;
     std::vector<bool> used(lines.edges.size(), false);
     auto walk = [&](uint32_t v, uint32_t e) {
@@ -185,7 +191,8 @@ std::vector<Arc> extractArcs(const Borderlines& lines, const Adjacency& adj, con
             v = edge.from == v ? edge.to : edge.from;
             arc.chain.push_back(v);
             if (pinned[v] || v == start) break;
-            uint32_t next = adj.list[adj.start[v]] == e ? adj.list[adj.start[v] + 1] : adj.list[adj.start[v]];
+            uint32_t next =
+                adj.list[adj.start[v]] == e ? adj.list[adj.start[v] + 1] : adj.list[adj.start[v]];
             e = next;
         }
         arc.closed = arc.chain.front() == arc.chain.back();
@@ -245,8 +252,8 @@ void rebuild(Borderlines& lines, const std::vector<Arc>& arcs) {
 }
 
 // Douglas-Peucker over chain[first..last]: marks the kept vertices.
-void douglasPeucker(const Borderlines& lines, const std::vector<uint32_t>& chain, size_t first, size_t last,
-                    double epsilon, std::vector<bool>& keep) {
+void douglasPeucker(const Borderlines& lines, const std::vector<uint32_t>& chain, size_t first,
+                    size_t last, double epsilon, std::vector<bool>& keep) {
     std::vector<std::pair<size_t, size_t>> stack{{first, last}};
     while (!stack.empty()) {
         auto [a, b] = stack.back();
@@ -254,7 +261,8 @@ void douglasPeucker(const Borderlines& lines, const std::vector<uint32_t>& chain
         double worst = -1.0;
         size_t at = a;
         for (size_t k = a + 1; k < b; ++k) {
-            double d = segmentDistance(lines.vertices[chain[k]], lines.vertices[chain[a]], lines.vertices[chain[b]]);
+            double d = segmentDistance(lines.vertices[chain[k]], lines.vertices[chain[a]],
+                                       lines.vertices[chain[b]]);
             if (d > worst) {
                 worst = d;
                 at = k;
@@ -319,7 +327,8 @@ std::vector<bool> findConflicts(const Borderlines& lines, const std::vector<Arc>
     };
     std::vector<Seg> segs;
     for (size_t k = 0; k < arcs.size(); ++k)
-        for (size_t i = 0; i + 1 < chains[k].size(); ++i) segs.push_back({chains[k][i], chains[k][i + 1], uint32_t(k)});
+        for (size_t i = 0; i + 1 < chains[k].size(); ++i)
+            segs.push_back({chains[k][i], chains[k][i + 1], uint32_t(k)});
     std::vector<bool> conflict(arcs.size(), false);
 
     // Around each vertex.
@@ -338,7 +347,8 @@ std::vector<bool> findConflicts(const Borderlines& lines, const std::vector<Arc>
             const auto& next = list[(k + 1) % list.size()];
             const Arc& ca = arcs[segs[cur.second / 2].arc];
             const Arc& na = arcs[segs[next.second / 2].arc];
-            int32_t curRight = cur.second % 2 ? ca.left : ca.right;  // leaving through the end: sides swap
+            int32_t curRight =
+                cur.second % 2 ? ca.left : ca.right;  // leaving through the end: sides swap
             int32_t nextLeft = next.second % 2 ? na.right : na.left;
             if (cur.first == next.first || curRight != nextLeft) {
                 for (const auto& e : list) conflict[segs[e.second / 2].arc] = true;
@@ -351,12 +361,15 @@ std::vector<bool> findConflicts(const Borderlines& lines, const std::vector<Arc>
     const double cell = std::max(4.0, std::max(lines.mapWidth, lines.mapHeight) / 256.0);
     const int gw = int(lines.mapWidth / cell) + 2, gh = int(lines.mapHeight / cell) + 2;
     std::vector<std::vector<uint32_t>> grid(size_t(gw) * size_t(gh));
-    auto cellOf = [&](double v, int limit) { return std::clamp(int(std::floor(v / cell)), 0, limit - 1); };
+    auto cellOf = [&](double v, int limit) {
+        return std::clamp(int(std::floor(v / cell)), 0, limit - 1);
+    };
     for (uint32_t s = 0; s < segs.size(); ++s) {
         const Vertex& a = lines.vertices[segs[s].a];
         const Vertex& b = lines.vertices[segs[s].b];
         for (int gy = cellOf(std::min(a.y, b.y), gh); gy <= cellOf(std::max(a.y, b.y), gh); ++gy)
-            for (int gx = cellOf(std::min(a.x, b.x), gw); gx <= cellOf(std::max(a.x, b.x), gw); ++gx)
+            for (int gx = cellOf(std::min(a.x, b.x), gw); gx <= cellOf(std::max(a.x, b.x), gw);
+                 ++gx)
                 grid[size_t(gy) * size_t(gw) + size_t(gx)].push_back(s);
     }
     for (const auto& bucket : grid)
@@ -370,16 +383,19 @@ std::vector<bool> findConflicts(const Borderlines& lines, const std::vector<Arc>
                 bool shared = s.a == t.a || s.a == t.b || s.b == t.a || s.b == t.b;
                 bool bad;
                 if (shared) {
-                    // Sharing an end is fine unless the other end lies on the other segment (overlap).
+                    // Sharing an end is fine unless the other end lies on the other segment
+                    // (overlap).
                     uint32_t sOther = (s.a == t.a || s.a == t.b) ? s.b : s.a;
                     uint32_t tOther = (t.a == s.a || t.a == s.b) ? t.b : t.a;
-                    bad = (sOther != t.a && sOther != t.b && onSegment(lines.vertices[sOther], c, d)) ||
-                          (tOther != s.a && tOther != s.b && onSegment(lines.vertices[tOther], a, b));
+                    bad =
+                        (sOther != t.a && sOther != t.b &&
+                         onSegment(lines.vertices[sOther], c, d)) ||
+                        (tOther != s.a && tOther != s.b && onSegment(lines.vertices[tOther], a, b));
                 } else {
                     int o1 = orientation(a, b, c), o2 = orientation(a, b, d);
                     int o3 = orientation(c, d, a), o4 = orientation(c, d, b);
-                    bad = (o1 * o2 < 0 && o3 * o4 < 0) || onSegment(c, a, b) || onSegment(d, a, b) ||
-                          onSegment(a, c, d) || onSegment(b, c, d);
+                    bad = (o1 * o2 < 0 && o3 * o4 < 0) || onSegment(c, a, b) ||
+                          onSegment(d, a, b) || onSegment(a, c, d) || onSegment(b, c, d);
                 }
                 if (bad) conflict[s.arc] = conflict[t.arc] = true;
             }
@@ -389,8 +405,9 @@ std::vector<bool> findConflicts(const Borderlines& lines, const std::vector<Arc>
 }  // namespace
 
 Borderlines vectorise(const ZoneMap& map, const Palette& palette) {
-    SIERRA_CHECK(map.width > 0 && map.height > 0 && map.ids.size() == size_t(map.width) * size_t(map.height),
-                 "vectorise: the zone map is empty or its ids do not match its size");
+    SIERRA_CHECK(
+        map.width > 0 && map.height > 0 && map.ids.size() == size_t(map.width) * size_t(map.height),
+        "vectorise: the zone map is empty or its ids do not match its size");
     SIERRA_CHECK(map.layout == ZoneLayout::Touching || (map.width >= 2 && map.height >= 2),
                  "vectorise: a Figure 1 zone map needs at least 2x2 pixels");
     Borderlines lines;
@@ -398,7 +415,8 @@ Borderlines vectorise(const ZoneMap& map, const Palette& palette) {
     lines.mapHeight = map.height;
     lines.layout = map.layout;
     for (size_t k = 0; k < palette.surfaces.size(); ++k)
-        lines.zones.push_back({int32_t(k), palette.surfaces[k].name, palette.surfaces[k].colour, {-1, -1}});
+        lines.zones.push_back(
+            {int32_t(k), palette.surfaces[k].name, palette.surfaces[k].colour, {-1, -1}});
     if (map.layout == ZoneLayout::Touching) {
         lines.frameX1 = map.width;
         lines.frameY1 = map.height;
@@ -417,7 +435,8 @@ void removeDuplicateVertices(Borderlines& lines) {
     std::vector<uint32_t> remap(lines.vertices.size());
     std::vector<Vertex> vertices;
     for (uint32_t v = 0; v < lines.vertices.size(); ++v) {
-        auto [it, fresh] = first.try_emplace({lines.vertices[v].x, lines.vertices[v].y}, uint32_t(vertices.size()));
+        auto [it, fresh] = first.try_emplace({lines.vertices[v].x, lines.vertices[v].y},
+                                             uint32_t(vertices.size()));
         if (fresh) vertices.push_back(lines.vertices[v]);
         remap[v] = it->second;
     }
@@ -435,7 +454,9 @@ void removeDuplicateVertices(Borderlines& lines) {
     lines.edges.swap(edges);
 }
 
-std::vector<bool> junctions(const Borderlines& lines) { return junctionsOf(lines, adjacency(lines)); }
+std::vector<bool> junctions(const Borderlines& lines) {
+    return junctionsOf(lines, adjacency(lines));
+}
 
 void removeCollinearVertices(Borderlines& lines) {
     Adjacency adj = adjacency(lines);
@@ -446,7 +467,8 @@ void removeCollinearVertices(Borderlines& lines) {
             const Vertex& a = lines.vertices[out.back()];
             const Vertex& v = lines.vertices[arc.chain[k]];
             const Vertex& b = lines.vertices[arc.chain[k + 1]];
-            bool straight = cross(a, v, b) == 0.0 && (v.x - a.x) * (b.x - v.x) + (v.y - a.y) * (b.y - v.y) > 0.0;
+            bool straight = cross(a, v, b) == 0.0 &&
+                            (v.x - a.x) * (b.x - v.x) + (v.y - a.y) * (b.y - v.y) > 0.0;
             if (!straight) out.push_back(arc.chain[k]);
         }
         out.push_back(arc.chain.back());
@@ -472,7 +494,8 @@ void simplifyArcs(Borderlines& lines, double epsilon) {
         for (size_t a = 0; a < arcs.size(); ++a) {
             if (!dirty[a]) continue;
             dirty[a] = false;
-            chains[a] = simplifiedChain(lines, arcs[a], level[a] >= kExact ? 0.0 : epsilon / double(1 << level[a]));
+            chains[a] = simplifiedChain(lines, arcs[a],
+                                        level[a] >= kExact ? 0.0 : epsilon / double(1 << level[a]));
         }
         std::vector<bool> conflict = findConflicts(lines, arcs, chains);
         bool any = false;
@@ -493,8 +516,9 @@ namespace {
 // The two copies of one arc at +-width/2 (mitred), as vertex ids; new vertices
 // are appended to `vertices`. An open arc's copies start and end at its
 // junctions and reach their full width at min(taper, length / 3) from them.
-std::pair<std::vector<uint32_t>, std::vector<uint32_t>> offsetArc(std::vector<Vertex>& vertices, const Arc& arc,
-                                                                  double width, double taperLength) {
+std::pair<std::vector<uint32_t>, std::vector<uint32_t>> offsetArc(std::vector<Vertex>& vertices,
+                                                                  const Arc& arc, double width,
+                                                                  double taperLength) {
     const double half = width / 2;
     auto add = [&](Vertex p) {
         vertices.push_back(p);
@@ -504,7 +528,8 @@ std::pair<std::vector<uint32_t>, std::vector<uint32_t>> offsetArc(std::vector<Ve
     for (uint32_t v : arc.chain) pts.push_back(vertices[v]);
     if (!arc.closed) {
         double length = 0;
-        for (size_t k = 0; k + 1 < pts.size(); ++k) length += std::hypot(pts[k + 1].x - pts[k].x, pts[k + 1].y - pts[k].y);
+        for (size_t k = 0; k + 1 < pts.size(); ++k)
+            length += std::hypot(pts[k + 1].x - pts[k].x, pts[k + 1].y - pts[k].y);
         double taper = std::min(taperLength, length / 3);
         auto insertAt = [&](std::vector<Vertex>& p) {
             double walked = 0;
@@ -513,8 +538,8 @@ std::pair<std::vector<uint32_t>, std::vector<uint32_t>> offsetArc(std::vector<Ve
                 if (walked + seg > taper) {
                     double t = (taper - walked) / seg;
                     if (t > 1e-9)
-                        p.insert(p.begin() + long(k) + 1,
-                                 {p[k].x + t * (p[k + 1].x - p[k].x), p[k].y + t * (p[k + 1].y - p[k].y)});
+                        p.insert(p.begin() + long(k) + 1, {p[k].x + t * (p[k + 1].x - p[k].x),
+                                                           p[k].y + t * (p[k + 1].y - p[k].y)});
                     return;
                 }
                 walked += seg;
@@ -562,7 +587,8 @@ std::pair<std::vector<uint32_t>, std::vector<uint32_t>> offsetArc(std::vector<Ve
 
 }  // namespace
 
-void doubleBorderlines(Borderlines& lines, double width, const std::function<Vertex(const Vertex&)>& snap) {
+void doubleBorderlines(Borderlines& lines, double width,
+                       const std::function<Vertex(const Vertex&)>& snap) {
     if (!(width > 0.0)) return;
     Adjacency adj = adjacency(lines);
     const std::vector<Arc> arcs = extractArcs(lines, adj, junctionsOf(lines, adj));
@@ -578,8 +604,10 @@ void doubleBorderlines(Borderlines& lines, double width, const std::function<Ver
             const Zone& zb = lines.zones[size_t(key.second)];
             Colour mixed = 0;
             for (int shift : {16, 8, 0})
-                mixed |= ((((za.colour >> shift) & 255) + ((zb.colour >> shift) & 255)) / 2) << shift;
-            lines.zones.push_back({it->second, za.name + "|" + zb.name, mixed, {key.first, key.second}});
+                mixed |= ((((za.colour >> shift) & 255) + ((zb.colour >> shift) & 255)) / 2)
+                         << shift;
+            lines.zones.push_back(
+                {it->second, za.name + "|" + zb.name, mixed, {key.first, key.second}});
         }
         band[a] = it->second;
     }
@@ -590,7 +618,8 @@ void doubleBorderlines(Borderlines& lines, double width, const std::function<Ver
     std::vector<int> level(arcs.size(), 0);
     const size_t baseVertices = lines.vertices.size();
     while (true) {
-        std::vector<Vertex> vertices(lines.vertices.begin(), lines.vertices.begin() + long(baseVertices));
+        std::vector<Vertex> vertices(lines.vertices.begin(),
+                                     lines.vertices.begin() + long(baseVertices));
         std::vector<Arc> out;
         std::vector<size_t> source;
         for (size_t a = 0; a < arcs.size(); ++a) {
@@ -624,8 +653,8 @@ void doubleBorderlines(Borderlines& lines, double width, const std::function<Ver
                 for (uint32_t v : arc.chain)
                     if (kept.empty() || !same(kept.back(), v)) kept.push_back(v);
                 // A closed copy keeps its first vertex as its last.
-                if (kept.size() > 1 && arc.chain.front() == arc.chain.back() && kept.back() != kept.front() &&
-                    same(kept.back(), kept.front()))
+                if (kept.size() > 1 && arc.chain.front() == arc.chain.back() &&
+                    kept.back() != kept.front() && same(kept.back(), kept.front()))
                     kept.back() = kept.front();
                 arc.chain = std::move(kept);
             }
@@ -653,7 +682,8 @@ void doubleBorderlines(Borderlines& lines, double width, const std::function<Ver
         }
         std::vector<bool> narrow(arcs.size(), false);
         for (size_t k = 0; k < out.size(); ++k)
-            if (conflict[k] && band[source[k]] >= 0 && level[source[k]] < kSingle) narrow[source[k]] = true;
+            if (conflict[k] && band[source[k]] >= 0 && level[source[k]] < kSingle)
+                narrow[source[k]] = true;
         bool any = false;
         for (size_t a = 0; a < arcs.size(); ++a)
             if (narrow[a]) {
@@ -668,9 +698,10 @@ void doubleBorderlines(Borderlines& lines, double width, const std::function<Ver
     }
 }
 
-Borderlines buildBorderlines(const ZoneMap& map, const Palette& palette, const BorderlineDesc& desc) {
-    SIERRA_CHECK(std::isfinite(desc.epsilon) && desc.epsilon >= 0.0, "borderlines: epsilon must be >= 0 pixels, got ",
-                 desc.epsilon);
+Borderlines buildBorderlines(const ZoneMap& map, const Palette& palette,
+                             const BorderlineDesc& desc) {
+    SIERRA_CHECK(std::isfinite(desc.epsilon) && desc.epsilon >= 0.0,
+                 "borderlines: epsilon must be >= 0 pixels, got ", desc.epsilon);
     SIERRA_CHECK(std::isfinite(desc.bandWidth) && desc.bandWidth >= 0.0,
                  "borderlines: band width must be >= 0 pixels, got ", desc.bandWidth);
     Borderlines lines = vectorise(map, palette);
@@ -714,15 +745,20 @@ std::string borderlinesToJson(const Borderlines& lines) {
 std::string borderlinesToSvg(const Borderlines& lines, const std::string& imageHref) {
     std::string out;
     char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
-                  "viewBox=\"0 0 %d %d\" width=\"%d\" height=\"%d\">\n",
-                  lines.mapWidth, lines.mapHeight, std::max(lines.mapWidth, 512) , 
-                  int(std::lround(std::max(lines.mapWidth, 512) * double(lines.mapHeight) / lines.mapWidth)));
+    std::snprintf(
+        buf, sizeof buf,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
+        "viewBox=\"0 0 %d %d\" width=\"%d\" height=\"%d\">\n",
+        lines.mapWidth, lines.mapHeight, std::max(lines.mapWidth, 512),
+        int(std::lround(std::max(lines.mapWidth, 512) * double(lines.mapHeight) / lines.mapWidth)));
     out += buf;
-    out += "<!-- sierra zones: borderlines (red), band copies (yellow), frame (blue); zone-map pixel units -->\n";
+    out +=
+        "<!-- sierra zones: borderlines (red), band copies (yellow), frame (blue); zone-map pixel "
+        "units -->\n";
     if (!imageHref.empty()) {
-        std::snprintf(buf, sizeof buf, "<image x=\"0\" y=\"0\" width=\"%d\" height=\"%d\" style=\"image-rendering:pixelated\" ",
+        std::snprintf(buf, sizeof buf,
+                      "<image x=\"0\" y=\"0\" width=\"%d\" height=\"%d\" "
+                      "style=\"image-rendering:pixelated\" ",
                       lines.mapWidth, lines.mapHeight);
         out += buf;
         out += "xlink:href=\"" + imageHref + "\" href=\"" + imageHref + "\"/>\n";
@@ -731,9 +767,12 @@ std::string borderlinesToSvg(const Borderlines& lines, const std::string& imageH
     const char* classes[3] = {"#ff2020", "#ffd000", "#2050ff"};
     for (int c = 0; c < 3; ++c) {
         out += std::string("<path fill=\"none\" stroke=\"") + classes[c] +
-               "\" stroke-width=\"1.5\" vector-effect=\"non-scaling-stroke\" stroke-linecap=\"round\" d=\"";
+               "\" stroke-width=\"1.5\" vector-effect=\"non-scaling-stroke\" "
+               "stroke-linecap=\"round\" d=\"";
         for (const Edge& e : lines.edges) {
-            int cls = e.left == kOutside || e.right == kOutside ? 2 : isBand(e.left) || isBand(e.right) ? 1 : 0;
+            int cls = e.left == kOutside || e.right == kOutside ? 2
+                      : isBand(e.left) || isBand(e.right)       ? 1
+                                                                : 0;
             if (cls != c) continue;
             const Vertex& a = lines.vertices[e.from];
             const Vertex& b = lines.vertices[e.to];
@@ -753,7 +792,8 @@ std::string borderlinesToSvg(const Borderlines& lines, const std::string& imageH
 }
 
 std::string pngDataUri(const std::vector<uint8_t>& png) {
-    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char* kAlphabet =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out = "data:image/png;base64,";
     out.reserve(out.size() + (png.size() + 2) / 3 * 4);
     for (size_t k = 0; k < png.size(); k += 3) {

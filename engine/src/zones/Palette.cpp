@@ -19,8 +19,10 @@ Colour parseColour(const nlohmann::json& value, const std::string& where) {
     Colour colour = 0;
     for (size_t k = 1; ok && k < text.size(); ++k) {
         char c = text[k];
-        int digit = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10
-                  : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+        int digit = c >= '0' && c <= '9'   ? c - '0'
+                    : c >= 'a' && c <= 'f' ? c - 'a' + 10
+                    : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                           : -1;
         if (digit < 0) ok = false;
         colour = colour * 16 + Colour(digit < 0 ? 0 : digit);
     }
@@ -70,11 +72,14 @@ Palette parsePalette(const std::string& text, const std::string& baseDir, const 
     if (!doc.is_object() || !doc.contains("zones") || !doc["zones"].is_array())
         throw Error(msg("palette ", source, ": expected an object with a \"zones\" array"));
     Palette palette;
-    if (doc.contains("borderline")) palette.borderline = parseColour(doc["borderline"], msg("palette ", source, ": borderline"));
+    if (doc.contains("borderline"))
+        palette.borderline =
+            parseColour(doc["borderline"], msg("palette ", source, ": borderline"));
     palette.bandWidth = parseNumber(doc, "bandWidth", 0.0f, 0.0f, 1e4f, msg("palette ", source));
     const auto& zones = doc["zones"];
     if (zones.empty()) throw Error(msg("palette ", source, ": \"zones\" is empty"));
-    if (zones.size() > 255) throw Error(msg("palette ", source, ": at most 255 zones, got ", zones.size()));
+    if (zones.size() > 255)
+        throw Error(msg("palette ", source, ": at most 255 zones, got ", zones.size()));
     for (size_t k = 0; k < zones.size(); ++k) {
         const auto& z = zones[k];
         std::string where = msg("palette ", source, ": zone ", k);
@@ -84,7 +89,8 @@ Palette parsePalette(const std::string& text, const std::string& baseDir, const 
         SurfaceType s;
         s.name = z["name"].get<std::string>();
         where = msg(where, " (", s.name, ")");
-        if (s.name.find('|') != std::string::npos) throw Error(msg(where, ": '|' is reserved for band zones"));
+        if (s.name.find('|') != std::string::npos)
+            throw Error(msg(where, ": '|' is reserved for band zones"));
         if (!z.contains("colour")) throw Error(msg(where, ": needs a \"colour\" \"#rrggbb\""));
         s.colour = parseColour(z["colour"], where);
         if (!z.contains("tile") || !z["tile"].is_string())
@@ -100,7 +106,8 @@ Palette parsePalette(const std::string& text, const std::string& baseDir, const 
             throw Error(msg(where, ": colour ", colourHex(s.colour), " is the borderline colour"));
         if (palette.find(s.colour) >= 0)
             throw Error(msg(where, ": colour ", colourHex(s.colour), " is used twice"));
-        if (palette.findName(s.name) >= 0) throw Error(msg(where, ": name \"", s.name, "\" is used twice"));
+        if (palette.findName(s.name) >= 0)
+            throw Error(msg(where, ": name \"", s.name, "\" is used twice"));
         palette.surfaces.push_back(std::move(s));
     }
     return palette;
@@ -119,8 +126,11 @@ std::string paletteToJson(const Palette& palette) {
     doc["bandWidth"] = palette.bandWidth;
     doc["zones"] = nlohmann::json::array();
     for (const auto& s : palette.surfaces)
-        doc["zones"].push_back({{"name", s.name}, {"colour", colourHex(s.colour)}, {"tile", s.tile},
-                                {"tileSize", s.tileSize}, {"heightBlend", s.heightBlend}});
+        doc["zones"].push_back({{"name", s.name},
+                                {"colour", colourHex(s.colour)},
+                                {"tile", s.tile},
+                                {"tileSize", s.tileSize},
+                                {"heightBlend", s.heightBlend}});
     return doc.dump(2) + "\n";
 }
 

@@ -13,7 +13,8 @@ std::vector<uint8_t> encodePng8(int width, int height, int channels, const uint8
         const auto* p = static_cast<const uint8_t*>(data);
         bytes->insert(bytes->end(), p, p + size);
     };
-    int ok = stbi_write_png_to_func(append, &out, width, height, channels, pixels, width * channels);
+    int ok =
+        stbi_write_png_to_func(append, &out, width, height, channels, pixels, width * channels);
     if (!ok) throw Error(msg("PNG encoding of a ", width, "x", height, " image failed"));
     return out;
 }

@@ -32,7 +32,8 @@ class Noise {
     double lattice(int cells, int ix, int iy, uint64_t salt) const {
         ix = ((ix % cells) + cells) % cells;
         iy = ((iy % cells) + cells) % cells;
-        uint64_t h = mix(seed_ ^ mix(salt * 0x100000001b3ull + uint64_t(cells)) ^ mix(uint64_t(ix) << 32 | uint64_t(iy)));
+        uint64_t h = mix(seed_ ^ mix(salt * 0x100000001b3ull + uint64_t(cells)) ^
+                         mix(uint64_t(ix) << 32 | uint64_t(iy)));
         return double(h >> 11) / double(1ull << 53);  // [0, 1)
     }
     // Value noise in [0, 1).
@@ -97,7 +98,9 @@ struct Texel {
     double r, g, b, height;  // colour 0..1, height 0..1
 };
 
-double lerp(double a, double b, double t) { return a + (b - a) * t; }
+double lerp(double a, double b, double t) {
+    return a + (b - a) * t;
+}
 Texel mixColour(Texel a, Texel b, double t) {
     return {lerp(a.r, b.r, t), lerp(a.g, b.g, t), lerp(a.b, b.b, t), lerp(a.height, b.height, t)};
 }
@@ -108,7 +111,8 @@ Texel shade(const std::string& name, const Noise& n, double u, double v) {
         double blades = n.fbm(u * 1.0, v, 64, 2, 2);
         double clumps = n.value(u, v, 8, 3);
         Texel dark{0.20, 0.36, 0.12, 0}, light{0.42, 0.60, 0.22, 0};
-        Texel t = mixColour(dark, light, std::clamp(0.3 * base + 0.5 * blades + 0.3 * clumps - 0.05, 0.0, 1.0));
+        Texel t = mixColour(dark, light,
+                            std::clamp(0.3 * base + 0.5 * blades + 0.3 * clumps - 0.05, 0.0, 1.0));
         t.height = std::clamp(0.25 + 0.5 * blades * clumps + 0.2 * base, 0.0, 1.0);
         return t;
     }
@@ -128,7 +132,8 @@ Texel shade(const std::string& name, const Noise& n, double u, double v) {
         double base = n.fbm(u, v, 4, 6, 20);
         double ridge = 1.0 - std::abs(2 * n.fbm(u, v, 8, 4, 21) - 1);
         // Cracks along cell boundaries, wobbled by noise so they are not straight.
-        double crack = n.cellEdge(u + 0.03 * n.fbm(u, v, 8, 3, 24), v + 0.03 * n.fbm(u, v, 8, 3, 25), 5, 22);
+        double crack =
+            n.cellEdge(u + 0.03 * n.fbm(u, v, 8, 3, 24), v + 0.03 * n.fbm(u, v, 8, 3, 25), 5, 22);
         Texel grey{0.38 + 0.25 * base, 0.36 + 0.24 * base, 0.34 + 0.22 * base, 0};
         Texel t = mixColour(grey, {0.45, 0.38, 0.30, 0}, n.value(u, v, 4, 23) * 0.5);
         double dark = std::clamp((0.08 - crack) * 14, 0.0, 1.0);
@@ -148,7 +153,8 @@ Texel shade(const std::string& name, const Noise& n, double u, double v) {
         double a = n.fbm(u, v, 6, 3, 40), b = n.fbm(u, v, 6, 3, 41);
         double caustic = std::pow(1.0 - std::abs(a - b) * 4, 6);
         caustic = std::clamp(caustic, 0.0, 1.0);
-        Texel t = mixColour({0.16, 0.48, 0.60, 0}, {0.55, 0.82, 0.85, 0}, 0.7 * caustic + 0.2 * n.fbm(u, v, 4, 4, 42));
+        Texel t = mixColour({0.16, 0.48, 0.60, 0}, {0.55, 0.82, 0.85, 0},
+                            0.7 * caustic + 0.2 * n.fbm(u, v, 4, 4, 42));
         t.height = 0.1 + 0.1 * caustic;
         return t;
     }
@@ -174,7 +180,8 @@ Texel shade(const std::string& name, const Noise& n, double u, double v) {
 }  // namespace
 
 const std::vector<std::string>& tileNames() {
-    static const std::vector<std::string> names{"grass", "sand", "rock", "snow", "shallow-water", "deep-water", "earth"};
+    static const std::vector<std::string> names{"grass",         "sand",       "rock", "snow",
+                                                "shallow-water", "deep-water", "earth"};
     return names;
 }
 
@@ -185,8 +192,8 @@ TileImage generateTile(const std::string& name, int size, uint64_t seed) {
         for (const auto& k : names) known += (known.empty() ? "" : ", ") + k;
         throw Error(msg("unknown tile \"", name, "\" (known: ", known, ")"));
     }
-    SIERRA_CHECK(size >= 16 && size <= 2048 && (size & (size - 1)) == 0, "tile size must be a power of two in 16..2048, got ",
-                 size);
+    SIERRA_CHECK(size >= 16 && size <= 2048 && (size & (size - 1)) == 0,
+                 "tile size must be a power of two in 16..2048, got ", size);
     Noise noise(mix(seed));
     TileImage tile;
     tile.size = size;
@@ -211,10 +218,11 @@ TileImage loadTile(const std::string& path) {
     int w = 0, h = 0, channels = 0;
     if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels))
         throw Error(msg("tile ", path, " is not an image (", stbi_failure_reason(), ")"));
-    SIERRA_CHECK(w == h && w > 0 && w <= kMaxTile, "tile ", path, " is ", w, "x", h, "; tiles are square, 1..",
-                 kMaxTile, " per side");
+    SIERRA_CHECK(w == h && w > 0 && w <= kMaxTile, "tile ", path, " is ", w, "x", h,
+                 "; tiles are square, 1..", kMaxTile, " per side");
     std::unique_ptr<uint8_t, void (*)(void*)> pixels(
-        stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 4), stbi_image_free);
+        stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 4),
+        stbi_image_free);
     if (!pixels) throw Error(msg("tile ", path, " cannot be decoded: ", stbi_failure_reason()));
     TileImage tile;
     tile.size = w;
@@ -223,8 +231,8 @@ TileImage loadTile(const std::string& path) {
 }
 
 TileImage blendTiles(const TileImage& first, const TileImage& second, float heightBlend) {
-    SIERRA_CHECK(first.size == second.size && first.size > 0, "blending tiles of ", first.size, " and ", second.size,
-                 " texels: both must have one size");
+    SIERRA_CHECK(first.size == second.size && first.size > 0, "blending tiles of ", first.size,
+                 " and ", second.size, " texels: both must have one size");
     auto smoothstep = [](double e0, double e1, double x) {
         double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
         return t * t * (3.0 - 2.0 * t);
@@ -235,11 +243,14 @@ TileImage blendTiles(const TileImage& first, const TileImage& second, float heig
     for (size_t k = 0; k < out.rgba.size(); k += 4) {
         const uint8_t* a = &first.rgba[k];
         const uint8_t* b = &second.rgba[k];
-        // The shader's shift at weight w is strength (hb - ha) 4 w (1 - w): at w = 0.5, strength (hb - ha).
-        double weight = std::clamp(0.5 + double(heightBlend) * (double(b[3]) - double(a[3])) / 255.0, 0.0, 1.0);
+        // The shader's shift at weight w is strength (hb - ha) 4 w (1 - w): at w = 0.5, strength
+        // (hb - ha).
+        double weight =
+            std::clamp(0.5 + double(heightBlend) * (double(b[3]) - double(a[3])) / 255.0, 0.0, 1.0);
         if (heightBlend > 0.0f) weight = smoothstep(0.15, 0.85, weight);
         for (int c = 0; c < 3; ++c)
-            out.rgba[k + size_t(c)] = uint8_t(std::lround(double(a[c]) * (1.0 - weight) + double(b[c]) * weight));
+            out.rgba[k + size_t(c)] =
+                uint8_t(std::lround(double(a[c]) * (1.0 - weight) + double(b[c]) * weight));
         out.rgba[k + 3] = uint8_t((int(a[3]) + int(b[3]) + 1) / 2);
     }
     return out;
@@ -252,7 +263,8 @@ std::vector<uint8_t> encodeTilePng(const TileImage& tile) {
 std::vector<uint8_t> encodeTileSheetPng(const std::vector<TileImage>& tiles) {
     SIERRA_CHECK(!tiles.empty(), "a tile sheet needs at least one tile");
     const int n = tiles[0].size;
-    for (const auto& t : tiles) SIERRA_CHECK(t.size == n, "tile sheet: all tiles must have one size");
+    for (const auto& t : tiles)
+        SIERRA_CHECK(t.size == n, "tile sheet: all tiles must have one size");
     const int w = n * int(tiles.size()), h = 2 * n;
     std::vector<uint8_t> rgb(size_t(w) * size_t(h) * 3, 0);
     for (size_t k = 0; k < tiles.size(); ++k) {
@@ -260,7 +272,8 @@ std::vector<uint8_t> encodeTileSheetPng(const std::vector<TileImage>& tiles) {
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
                 // Top: 2x2 repeats at half resolution, texel (2x mod n, 2y mod n).
-                const uint8_t* src = &t[(size_t((2 * y) % n) * size_t(n) + size_t((2 * x) % n)) * 4];
+                const uint8_t* src =
+                    &t[(size_t((2 * y) % n) * size_t(n) + size_t((2 * x) % n)) * 4];
                 uint8_t* dst = &rgb[(size_t(y) * size_t(w) + k * size_t(n) + size_t(x)) * 3];
                 dst[0] = src[0], dst[1] = src[1], dst[2] = src[2];
                 uint8_t height = t[(size_t(y) * size_t(n) + size_t(x)) * 4 + 3];

@@ -24,10 +24,10 @@ constexpr int kMaxSide = 16384;
 
 ZoneMap classifyZoneMap(int width, int height, std::span<const uint8_t> rgb, const Palette& palette,
                         const std::string& source) {
-    SIERRA_CHECK(width > 0 && height > 0 && width <= kMaxSide && height <= kMaxSide,
-                 "zone map ", source, ": size ", width, "x", height, " must be 1..", kMaxSide, " per side");
-    SIERRA_CHECK(rgb.size() == size_t(width) * size_t(height) * 3, "zone map ", source, ": expected ",
-                 size_t(width) * size_t(height) * 3, " RGB bytes, got ", rgb.size());
+    SIERRA_CHECK(width > 0 && height > 0 && width <= kMaxSide && height <= kMaxSide, "zone map ",
+                 source, ": size ", width, "x", height, " must be 1..", kMaxSide, " per side");
+    SIERRA_CHECK(rgb.size() == size_t(width) * size_t(height) * 3, "zone map ", source,
+                 ": expected ", size_t(width) * size_t(height) * 3, " RGB bytes, got ", rgb.size());
     ZoneMap map;
     map.width = width;
     map.height = height;
@@ -41,8 +41,9 @@ ZoneMap classifyZoneMap(int width, int height, std::span<const uint8_t> rgb, con
         if (c != lastColour) {
             int id = c == palette.borderline ? kBorderlinePixel : palette.find(c);
             if (id < 0 && c != palette.borderline)
-                throw Error(msg("zone map ", source, ": colour ", colourHex(c), " at pixel (", p % size_t(width),
-                                ", ", p / size_t(width), ") is not in the palette (nor the borderline colour ",
+                throw Error(msg("zone map ", source, ": colour ", colourHex(c), " at pixel (",
+                                p % size_t(width), ", ", p / size_t(width),
+                                ") is not in the palette (nor the borderline colour ",
                                 colourHex(palette.borderline), ")"));
             lastColour = c;
             lastId = int16_t(id);
@@ -66,10 +67,12 @@ ZoneMap classifyZoneMap(int width, int height, std::span<const uint8_t> rgb, con
                     if (nx >= width || ny >= height) continue;
                     int b = map.at(nx, ny);
                     if (b >= 0 && b != a)
-                        throw Error(msg("zone map ", source, ": zones \"", palette.surfaces[a].name, "\" and \"",
-                                        palette.surfaces[b].name, "\" touch at pixels (", x, ", ", y, ") and (", nx,
-                                        ", ", ny, ") with no borderline pixel between them (Figure 1 layout: ",
-                                        colourHex(palette.borderline), " lines between all zones)"));
+                        throw Error(
+                            msg("zone map ", source, ": zones \"", palette.surfaces[a].name,
+                                "\" and \"", palette.surfaces[b].name, "\" touch at pixels (", x,
+                                ", ", y, ") and (", nx, ", ", ny,
+                                ") with no borderline pixel between them (Figure 1 layout: ",
+                                colourHex(palette.borderline), " lines between all zones)"));
                 }
             }
     }
@@ -80,7 +83,8 @@ ZoneMap loadZoneMap(const std::string& path, const Palette& palette) {
     // An RGB image of kMaxSide^2 stored uncompressed, plus framing, is the largest.
     const uint64_t maxBytes = uint64_t(kMaxSide) * kMaxSide * 4 + (uint64_t(1) << 20);
     const std::vector<uint8_t> bytes =
-        readFileBytes(path, maxBytes, msg("a zone map of at most ", kMaxSide, "x", kMaxSide, " pixels is smaller"));
+        readFileBytes(path, maxBytes,
+                      msg("a zone map of at most ", kMaxSide, "x", kMaxSide, " pixels is smaller"));
     // PNG is decoded like a PNG heightmap: every CRC checked, the size limits
     // before the pixels are allocated.
     static const uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -94,27 +98,31 @@ ZoneMap loadZoneMap(const std::string& path, const Palette& palette) {
     if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels))
         throw Error(msg("zone map ", path, " is not an image (", stbi_failure_reason(),
                         "); expected a PNG whose colours are in the palette"));
-    SIERRA_CHECK(w > 0 && h > 0 && w <= kMaxSide && h <= kMaxSide, "zone map ", path, ": size ", w, "x", h,
-                 " must be 1..", kMaxSide, " per side");
+    SIERRA_CHECK(w > 0 && h > 0 && w <= kMaxSide && h <= kMaxSide, "zone map ", path, ": size ", w,
+                 "x", h, " must be 1..", kMaxSide, " per side");
     std::unique_ptr<uint8_t, void (*)(void*)> pixels(
-        stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 3), stbi_image_free);
+        stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 3),
+        stbi_image_free);
     if (!pixels) throw Error(msg("zone map ", path, " cannot be decoded: ", stbi_failure_reason()));
-    return classifyZoneMap(w, h, std::span<const uint8_t>(pixels.get(), size_t(w) * size_t(h) * 3), palette, path);
+    return classifyZoneMap(w, h, std::span<const uint8_t>(pixels.get(), size_t(w) * size_t(h) * 3),
+                           palette, path);
 }
 
-ZoneMap autoZones(const terrain::Heightfield& field, const Palette& palette, const AutoZoneDesc& desc) {
+ZoneMap autoZones(const terrain::Heightfield& field, const Palette& palette,
+                  const AutoZoneDesc& desc) {
     SIERRA_CHECK(!field.empty(), "auto-zoning needs a non-empty heightfield");
     for (float f : {desc.deepWater, desc.sandTop, desc.snowLine})
         SIERRA_CHECK(f >= 0.0f && f <= 1.0f, "auto-zoning: fractions must be in [0, 1], got ", f);
-    SIERRA_CHECK(desc.rockSlope > 0.0f && desc.rockSlope <= 90.0f, "auto-zoning: rockSlope must be in (0, 90] degrees, got ",
-                 desc.rockSlope);
+    SIERRA_CHECK(desc.rockSlope > 0.0f && desc.rockSlope <= 90.0f,
+                 "auto-zoning: rockSlope must be in (0, 90] degrees, got ", desc.rockSlope);
     auto id = [&](const std::string& name) {
         int k = palette.findName(name);
         if (k < 0) throw Error(msg("auto-zoning: the palette has no surface named \"", name, "\""));
         return int16_t(k);
     };
-    const int16_t deep = id(desc.deepName), shallow = id(desc.shallowName), sand = id(desc.sandName),
-                  grass = id(desc.grassName), rock = id(desc.rockName), snow = id(desc.snowName);
+    const int16_t deep = id(desc.deepName), shallow = id(desc.shallowName),
+                  sand = id(desc.sandName), grass = id(desc.grassName), rock = id(desc.rockName),
+                  snow = id(desc.snowName);
     auto [lo, hi] = field.range();
     const float sea = desc.seaLevel;
     const float deepBelow = sea - desc.deepWater * std::max(0.0f, sea - lo);
@@ -137,12 +145,20 @@ ZoneMap autoZones(const terrain::Heightfield& field, const Palette& palette, con
                 // Central differences (one-sided at the border), world units.
                 int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, w - 1);
                 int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, h - 1);
-                double gx = i1 > i0 ? (field.at(i1, j) - field.at(i0, j)) * vs / ((i1 - i0) * double(field.spacingX())) : 0.0;
-                double gz = j1 > j0 ? (field.at(i, j1) - field.at(i, j0)) * vs / ((j1 - j0) * double(field.spacingZ())) : 0.0;
-                if (gx * gx + gz * gz > tanRock * tanRock) zone = rock;
-                else if (z < sandTop) zone = sand;
-                else if (z >= snowLine) zone = snow;
-                else zone = grass;
+                double gx = i1 > i0 ? (field.at(i1, j) - field.at(i0, j)) * vs /
+                                          ((i1 - i0) * double(field.spacingX()))
+                                    : 0.0;
+                double gz = j1 > j0 ? (field.at(i, j1) - field.at(i, j0)) * vs /
+                                          ((j1 - j0) * double(field.spacingZ()))
+                                    : 0.0;
+                if (gx * gx + gz * gz > tanRock * tanRock)
+                    zone = rock;
+                else if (z < sandTop)
+                    zone = sand;
+                else if (z >= snowLine)
+                    zone = snow;
+                else
+                    zone = grass;
             }
             map.ids[size_t(j) * size_t(w) + size_t(i)] = zone;
         }
@@ -178,7 +194,8 @@ ZoneMap drawBorderlines(const ZoneMap& map) {
     for (int y = 0; y < map.height; ++y)
         for (int x = 0; x < map.width; ++x) {
             int a = map.at(x, y);
-            bool border = (x + 1 < map.width && map.at(x + 1, y) != a) || (y + 1 < map.height && map.at(x, y + 1) != a);
+            bool border = (x + 1 < map.width && map.at(x + 1, y) != a) ||
+                          (y + 1 < map.height && map.at(x, y + 1) != a);
             if (border) out.ids[size_t(y) * size_t(map.width) + size_t(x)] = kBorderlinePixel;
         }
     return out;

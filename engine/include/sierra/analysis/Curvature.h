@@ -57,7 +57,8 @@ namespace sierra::analysis {
 
 inline constexpr int kDirectionCount = 4;
 // Grid steps (di, dj) of the four directions, in the order above.
-inline constexpr std::array<std::array<int, 2>, kDirectionCount> kDirectionSteps{{{1, 0}, {0, 1}, {1, 1}, {1, -1}}};
+inline constexpr std::array<std::array<int, 2>, kDirectionCount> kDirectionSteps{
+    {{1, 0}, {0, 1}, {1, 1}, {1, -1}}};
 
 enum class CurvatureMethod { TwoNormal, ThreeNormal, ThreeVertex, EdgeAngle };
 
@@ -84,12 +85,12 @@ struct Levels {
 struct CurvatureOptions {
     CurvatureMethod method = CurvatureMethod::ThreeNormal;
     NormalMethod normals = NormalMethod::Quad;  // for TwoNormal and ThreeNormal
-    int distance = 1;      // reinforcement distance in steps; 1 = none, >= 1; TwoNormal needs 1
-    float scale = 1.0f;    // multiplies every value, >= 0
-    Levels levels;         // off by default
+    int distance = 1;    // reinforcement distance in steps; 1 = none, >= 1; TwoNormal needs 1
+    float scale = 1.0f;  // multiplies every value, >= 0
+    Levels levels;       // off by default
     bool signedValues = false;  // keep the sign of y''
     CurvatureOutput output = CurvatureOutput::Curvature;
-    int threads = 0;       // 0 = sierra::defaultThreadCount(); the result does not depend on it
+    int threads = 0;  // 0 = sierra::defaultThreadCount(); the result does not depend on it
     bool operator==(const CurvatureOptions&) const = default;
 };
 
@@ -106,7 +107,8 @@ struct CurvatureField {
     std::vector<float> values;
 
     float at(int i, int j, int direction) const {
-        return values[(size_t(j) * size_t(width) + size_t(i)) * kDirectionCount + size_t(direction)];
+        return values[(size_t(j) * size_t(width) + size_t(i)) * kDirectionCount +
+                      size_t(direction)];
     }
     // The largest magnitude over the 4 directions, ignoring NaN; NaN when all
     // four are NaN (a no-data sample).
@@ -118,9 +120,11 @@ struct CurvatureField {
 // Computes the field; threads as in options. Throws sierra::Error for bad
 // options or a grid smaller than the stencil (2 * distance + 1 samples a side,
 // at least 3).
-CurvatureField computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options = {});
+CurvatureField computeCurvature(const terrain::Heightfield& field,
+                                const CurvatureOptions& options = {});
 // The same into `out`, reusing its storage (no page faults for a field of the
 // same size: a 2049^2 field is 64 MiB).
-void computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options, CurvatureField& out);
+void computeCurvature(const terrain::Heightfield& field, const CurvatureOptions& options,
+                      CurvatureField& out);
 
 }  // namespace sierra::analysis

@@ -54,7 +54,7 @@ inline constexpr int64_t kParallelMinSamples = 32768;
 
 // threads: 0 = sierra::defaultThreadCount(). The result does not depend on
 // the thread count. Throws sierra::Error for an empty heightfield.
-NormalField computeNormals(const terrain::Heightfield& field, NormalMethod method = NormalMethod::Quad,
-                           int threads = 0);
+NormalField computeNormals(const terrain::Heightfield& field,
+                           NormalMethod method = NormalMethod::Quad, int threads = 0);
 
 }  // namespace sierra::analysis

@@ -48,17 +48,17 @@ struct StyleLayers {
 };
 
 struct LineStyle {
-    int minLength = 5;         // shortest polyline kept, in vertices (Figure 3 "Min. Len")
-    float width = 1.0f;        // pixels
-    float threshold = 0.5f;    // curvature a vertex needs, after scale and levels
+    int minLength = 5;       // shortest polyline kept, in vertices (Figure 3 "Min. Len")
+    float width = 1.0f;      // pixels
+    float threshold = 0.5f;  // curvature a vertex needs, after scale and levels
     LinePolarity polarity = LinePolarity::Any;
-    bool blended = false;      // blended directions (LineOptions::blended)
+    bool blended = false;  // blended directions (LineOptions::blended)
     bool operator==(const LineStyle&) const = default;
 };
 
 struct HatchStyle {
-    float length = 0.75f;      // stroke length in grid units (Figure 4 "Hatch Len.")
-    float width = 1.0f;        // pixels
+    float length = 0.75f;  // stroke length in grid units (Figure 4 "Hatch Len.")
+    float width = 1.0f;    // pixels
     HatchDirection direction = HatchDirection::Along;  // Figure 4 "With" = along, "Perp." = across
     bool operator==(const HatchStyle&) const = default;
 };

@@ -11,7 +11,7 @@ namespace sierra {
 // Thrown by every module for bad input and failed resources. what() is one
 // line meant for the user: the file or call, what is wrong, what would be right.
 class Error : public std::runtime_error {
-public:
+  public:
     explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
@@ -39,9 +39,9 @@ std::string msg(const Args&... args) {
 // SIERRA_CHECK(cond, parts...): throws sierra::Error naming the condition when
 // cond is false. Active in every build type: a violated precondition is a bug
 // or bad input, never something to run past.
-#define SIERRA_CHECK(cond, ...)                                                          \
-    do {                                                                                 \
-        if (!(cond)) [[unlikely]]                                                        \
-            ::sierra::detail::throwCheckFailed(#cond, __FILE__, __LINE__,                \
-                                               ::sierra::msg(__VA_ARGS__));              \
+#define SIERRA_CHECK(cond, ...)                                             \
+    do {                                                                    \
+        if (!(cond)) [[unlikely]]                                           \
+            ::sierra::detail::throwCheckFailed(#cond, __FILE__, __LINE__,   \
+                                               ::sierra::msg(__VA_ARGS__)); \
     } while (0)

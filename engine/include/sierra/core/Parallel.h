@@ -74,7 +74,7 @@ void parallelFor(int64_t begin, int64_t end, const std::function<void(int64_t)>&
 // output is discarded).
 
 class ChunkStop {
-public:
+  public:
     ChunkStop() = default;
     explicit ChunkStop(const std::atomic<uint8_t>* state) : state_(state) {}
     // True once the other run of this chunk has finished: this run's output will not be used.
@@ -82,7 +82,7 @@ public:
     // False when the run cannot be stopped (a serial call): no need to check.
     bool possible() const { return state_ != nullptr; }
 
-private:
+  private:
     const std::atomic<uint8_t>* state_ = nullptr;
 };
 

@@ -10,7 +10,7 @@
 namespace sierra {
 
 class Progress {
-public:
+  public:
     // `what`: a short label ("frames"); `total`: the number of steps, > 0.
     // `out` defaults to stderr; `terminal` defaults to isatty(out).
     Progress(std::string what, int64_t total, std::FILE* out = nullptr, int terminalOverride = -1);
@@ -20,7 +20,7 @@ public:
     void finish();
     bool terminal() const { return terminal_; }
 
-private:
+  private:
     std::string what_;
     int64_t total_;
     std::FILE* out_;

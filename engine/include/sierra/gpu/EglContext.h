@@ -13,7 +13,7 @@
 namespace sierra::gpu {
 
 struct ContextDesc {
-    int width = 640;   // pbuffer size in pixels: the frame
+    int width = 640;  // pbuffer size in pixels: the frame
     int height = 360;
     // Route KHR_debug messages to the log and count errors (see glErrorCount()).
     // Also switched on by SIERRA_GL_DEBUG=1.
@@ -30,7 +30,7 @@ struct EglDeviceInfo {
 };
 
 class EglContext {
-public:
+  public:
     // Creates the display, a 4.5 core context and a pbuffer, and makes them
     // current on the calling thread. Throws sierra::Error naming the cause (no
     // libEGL device, no 4.5 core, ...) and the Debian packages that provide it.
@@ -60,7 +60,7 @@ public:
     // Devices visible through EGL_EXT_device_enumeration (empty if unsupported).
     static std::vector<EglDeviceInfo> listDevices();
 
-private:
+  private:
     struct State;
     explicit EglContext(std::unique_ptr<State> state);
     std::unique_ptr<State> state_;

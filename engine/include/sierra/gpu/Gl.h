@@ -23,10 +23,10 @@ void checkGlErrors(const char* what);
 // with the call's text; in release builds it is the bare call (KHR_debug output
 // catches errors in test builds at no cost to release frames).
 #ifndef NDEBUG
-#define GL_CHECK(call)                               \
-    do {                                             \
-        call;                                        \
-        ::sierra::gpu::checkGlErrors(#call);         \
+#define GL_CHECK(call)                       \
+    do {                                     \
+        call;                                \
+        ::sierra::gpu::checkGlErrors(#call); \
     } while (0)
 #else
 #define GL_CHECK(call) call

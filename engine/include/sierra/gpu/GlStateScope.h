@@ -46,13 +46,13 @@ struct GlState {
 
 // Captures the state on construction and restores it on destruction.
 class GlStateScope {
-public:
+  public:
     GlStateScope() : saved_(GlState::capture()) {}
     ~GlStateScope() { saved_.restore(); }
     GlStateScope(const GlStateScope&) = delete;
     GlStateScope& operator=(const GlStateScope&) = delete;
 
-private:
+  private:
     GlState saved_;
 };
 

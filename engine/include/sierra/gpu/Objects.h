@@ -17,7 +17,7 @@ inline constexpr AdoptTag kAdopt{};
 
 template <typename Derived, void (*Destroy)(GLuint)>
 class GlObject {
-public:
+  public:
     GlObject() = default;
     GlObject(GLuint id, AdoptTag) : id_(id) {}
     GlObject(const GlObject&) = delete;
@@ -41,7 +41,7 @@ public:
         id_ = 0;
     }
 
-protected:
+  protected:
     GLuint id_ = 0;
 };
 
@@ -55,23 +55,23 @@ void deleteQuery(GLuint id);
 }  // namespace detail
 
 struct BufferDesc {
-    size_t size = 0;              // bytes
-    const void* data = nullptr;   // initial contents, or null
-    GLbitfield flags = 0;         // glBufferStorage flags; 0 = immutable, GPU only
+    size_t size = 0;             // bytes
+    const void* data = nullptr;  // initial contents, or null
+    GLbitfield flags = 0;        // glBufferStorage flags; 0 = immutable, GPU only
 };
 
 class Buffer : public GlObject<Buffer, detail::deleteBuffer> {
-public:
+  public:
     using GlObject::GlObject;
     static Buffer create(const BufferDesc& desc);
     size_t size() const { return size_; }
 
-private:
+  private:
     size_t size_ = 0;
 };
 
 class VertexArray : public GlObject<VertexArray, detail::deleteVertexArray> {
-public:
+  public:
     using GlObject::GlObject;
     static VertexArray create();
 };
@@ -80,16 +80,16 @@ struct TextureDesc {
     GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_1D, _2D, _2D_ARRAY or _2D_MULTISAMPLE
     GLenum format = GL_RGBA8;       // sized internal format
     int width = 1;
-    int height = 1;                 // ignored for 1D
-    int layers = 0;                 // for GL_TEXTURE_2D_ARRAY
-    int levels = 1;                 // mip levels (non-multisample); > 1 with GL_LINEAR = trilinear
-    int samples = 0;                // for GL_TEXTURE_2D_MULTISAMPLE
-    GLenum filter = GL_LINEAR;      // min and mag filter
+    int height = 1;             // ignored for 1D
+    int layers = 0;             // for GL_TEXTURE_2D_ARRAY
+    int levels = 1;             // mip levels (non-multisample); > 1 with GL_LINEAR = trilinear
+    int samples = 0;            // for GL_TEXTURE_2D_MULTISAMPLE
+    GLenum filter = GL_LINEAR;  // min and mag filter
     GLenum wrap = GL_CLAMP_TO_EDGE;
 };
 
 class Texture : public GlObject<Texture, detail::deleteTexture> {
-public:
+  public:
     using GlObject::GlObject;
     static Texture create(const TextureDesc& desc);
     // Uploads a whole level-0 image: `format`/`type` describe `pixels`.
@@ -102,7 +102,7 @@ public:
     int height() const { return height_; }
     GLenum target() const { return target_; }
 
-private:
+  private:
     int width_ = 0;
     int height_ = 0;
     GLenum target_ = GL_TEXTURE_2D;
@@ -110,7 +110,7 @@ private:
 };
 
 class Framebuffer : public GlObject<Framebuffer, detail::deleteFramebuffer> {
-public:
+  public:
     using GlObject::GlObject;
     static Framebuffer create();
     void attach(GLenum attachment, const Texture& texture);
@@ -119,14 +119,14 @@ public:
 };
 
 class Query : public GlObject<Query, detail::deleteQuery> {
-public:
+  public:
     using GlObject::GlObject;
     static Query create(GLenum target);
 };
 
 // A GLsync fence, move-only.
 class Fence {
-public:
+  public:
     Fence() = default;
     static Fence insert();
     Fence(const Fence&) = delete;
@@ -139,7 +139,7 @@ public:
     // for an empty fence.
     void wait();
 
-private:
+  private:
     GLsync sync_ = nullptr;
 };
 

@@ -22,7 +22,7 @@ struct IncludeAlias {
 };
 
 struct ProgramDesc {
-    std::string_view vertex;    // file names in shaders/; empty = no such stage
+    std::string_view vertex;  // file names in shaders/; empty = no such stage
     std::string_view fragment;
     std::string_view compute;
     std::string_view geometry;  // between vertex and fragment; empty = none
@@ -31,7 +31,7 @@ struct ProgramDesc {
 };
 
 class Program : public GlObject<Program, detail::deleteProgram> {
-public:
+  public:
     using GlObject::GlObject;
     // Compiles and links; throws sierra::Error with the file, line and driver
     // message on failure.

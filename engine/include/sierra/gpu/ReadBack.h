@@ -21,7 +21,7 @@ Image readFramebuffer(int width, int height);
 // current frame into one PBO, and the frame started one call earlier is
 // mapped and returned, so the copy overlaps the next frame's work.
 class PixelReader {
-public:
+  public:
     PixelReader(int width, int height);
     // Starts reading the bound read framebuffer; returns true and fills `out`
     // with the previously started frame when there was one.
@@ -29,7 +29,7 @@ public:
     // Returns the last started frame, if any (end of a sequence).
     bool finish(Image& out);
 
-private:
+  private:
     void collect(int slot, Image& out);
 
     int width_, height_;

@@ -13,12 +13,12 @@
 namespace sierra::gpu {
 
 struct StreamRingDesc {
-    size_t regionBytes = 4u << 20;  // initial bytes per region, default 4 MiB
+    size_t regionBytes = 4u << 20;            // initial bytes per region, default 4 MiB
     GLenum target = GL_ELEMENT_ARRAY_BUFFER;  // for documentation; binding is the caller's
 };
 
 class StreamRing {
-public:
+  public:
     static constexpr int kRegions = 3;
 
     static StreamRing create(const StreamRingDesc& desc = {});
@@ -37,7 +37,7 @@ public:
     // Times the ring grew since creation.
     int growCount() const { return grows_; }
 
-private:
+  private:
     void allocate(size_t regionBytes);
 
     Buffer buffer_;

@@ -28,8 +28,8 @@ struct Camera {
     glm::vec3 target{0.0f};
     float fovYDegrees = 45.0f;  // vertical field of view (perspective)
     Projection projection = Projection::Perspective;
-    float orthoHeight = 1.0f;   // world units seen from bottom to top of the frame (orthographic)
-    float nearPlane = 1.0f;     // world units along the view direction; > 0 for perspective
+    float orthoHeight = 1.0f;  // world units seen from bottom to top of the frame (orthographic)
+    float nearPlane = 1.0f;    // world units along the view direction; > 0 for perspective
     float farPlane = 1.0e5f;
 
     glm::vec3 forward() const;  // unit vector from position towards target
@@ -109,8 +109,8 @@ Camera defaultCamera(const SceneBounds& bounds, float aspect, float fovYDegrees 
 // `frames` cameras circling the target once (azimuth 225 degrees first,
 // turning towards the west) at one distance that frames the terrain from every
 // azimuth of the path.
-std::vector<Camera> orbitPath(const SceneBounds& bounds, int frames, float aspect, float fovYDegrees = 45.0f,
-                              float elevationDeg = 30.0f);
+std::vector<Camera> orbitPath(const SceneBounds& bounds, int frames, float aspect,
+                              float fovYDegrees = 45.0f, float elevationDeg = 30.0f);
 
 // `frames` cameras flying low across the terrain from the south edge towards
 // the north, looking ahead and slightly down.
@@ -125,7 +125,7 @@ struct Keyframe {
 // `frames` cameras at evenly spaced times from the first keyframe's time to
 // the last, positions and targets interpolated by Catmull-Rom splines through
 // the keyframes (times strictly increasing; one keyframe gives a still camera).
-std::vector<Camera> keyframePath(const SceneBounds& bounds, const std::vector<Keyframe>& keys, int frames,
-                                 float fovYDegrees = 45.0f);
+std::vector<Camera> keyframePath(const SceneBounds& bounds, const std::vector<Keyframe>& keys,
+                                 int frames, float fovYDegrees = 45.0f);
 
 }  // namespace sierra::render

@@ -20,9 +20,9 @@ gpu::Image readPng(const std::string& path);
 std::string sequencePath(const std::string& base, int index);
 
 struct ImageDifference {
-    double psnr = 0.0;           // dB over RGB; infinity for identical images
-    double differingShare = 0.0; // share of pixels whose RGB differs by more than the threshold
-    double meanAbsolute = 0.0;   // mean absolute channel difference, 0..255
+    double psnr = 0.0;            // dB over RGB; infinity for identical images
+    double differingShare = 0.0;  // share of pixels whose RGB differs by more than the threshold
+    double meanAbsolute = 0.0;    // mean absolute channel difference, 0..255
 };
 
 // Compares two images of equal size; `threshold` is the largest per-channel

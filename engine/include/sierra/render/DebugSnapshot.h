@@ -20,8 +20,8 @@ struct SnapshotFacts {
     const terrain::Heightfield* field = nullptr;  // as loaded and padded
     std::string glRenderer, glVersion, eglPlatform;
     TerrainRenderer* renderer = nullptr;
-    Camera camera;           // of the frame shown
-    int frameWidth = 0;      // the frame's viewport beside the column, pixels
+    Camera camera;       // of the frame shown
+    int frameWidth = 0;  // the frame's viewport beside the column, pixels
     int height = 0;
     DrawOptions draw;
     std::vector<DrawStats> frames;  // every frame so far, oldest first

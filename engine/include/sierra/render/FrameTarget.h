@@ -10,13 +10,13 @@
 namespace sierra::render {
 
 struct FrameTargetDesc {
-    int width = 640;   // must match the pbuffer
+    int width = 640;  // must match the pbuffer
     int height = 360;
-    int samples = 0;   // 0 = draw straight into the pbuffer; 2..16 = MSAA through an FBO
+    int samples = 0;  // 0 = draw straight into the pbuffer; 2..16 = MSAA through an FBO
 };
 
 class FrameTarget {
-public:
+  public:
     static FrameTarget create(const FrameTargetDesc& desc);
 
     // Binds the target, sets the viewport, clears colour (RGBA) and depth.
@@ -30,7 +30,7 @@ public:
     int height() const { return desc_.height; }
     int samples() const { return desc_.samples; }
 
-private:
+  private:
     FrameTargetDesc desc_;
     gpu::Framebuffer fbo_;
     gpu::Texture colour_;

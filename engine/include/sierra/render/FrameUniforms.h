@@ -26,13 +26,13 @@ struct FrameUniformData {
 };
 
 class FrameUniforms {
-public:
+  public:
     static FrameUniforms create();
     // Writes the block and binds it at kFrameUniformBinding.
     void update(const FrameUniformData& data);
     GLuint buffer() const { return buffer_.id(); }
 
-private:
+  private:
     gpu::Buffer buffer_;
 };
 

@@ -38,8 +38,8 @@ struct MeshInspection {
 // Refines `terrain`'s SBT for `camera` on a width x height viewport with the
 // given tau and culling, and measures the result. geomorph: refine as the
 // stream does with geomorphing on (at sbt::refinementTau(tau)).
-MeshInspection inspectMesh(TerrainGpu& terrain, const Camera& camera, int width, int height, float tau, bool cull,
-                           int threads = 0, bool geomorph = true);
+MeshInspection inspectMesh(TerrainGpu& terrain, const Camera& camera, int width, int height,
+                           float tau, bool cull, int threads = 0, bool geomorph = true);
 
 // Level of a right isosceles grid triangle of a (side x side) SBT from its
 // three linear vertex indices (j * side + i); -1 if it is not one.

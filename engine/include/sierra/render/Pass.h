@@ -22,12 +22,12 @@ struct FrameContext {
     const MeshDraw& mesh;
     const FrameUniformData& uniforms;
     const Camera& camera;
-    int width = 0;   // frame size, pixels
+    int width = 0;  // frame size, pixels
     int height = 0;
 };
 
 class Pass {
-public:
+  public:
     virtual ~Pass() = default;
     virtual const char* name() const = 0;
     // Draws into the bound framebuffer with the frame's uniforms bound.

@@ -37,7 +37,7 @@ struct MeshDraw {
 
 struct LodSettings {
     Lod lod = Lod::Sbt;
-    float tau = 1.0f;  // screen-space error threshold in pixels (SBT), default 1.0
+    float tau = 1.0f;      // screen-space error threshold in pixels (SBT), default 1.0
     bool cull = true;      // SBT: frustum culling by bounding spheres
     bool geomorph = true;  // SBT: refine for blending vertices in within tau (see sbt/Morph.h)
     int threads = 0;       // refinement threads, 0 = default
@@ -45,24 +45,24 @@ struct LodSettings {
 
 // What the frame's mesh cost and holds. CPU stages in wall-clock ms.
 struct MeshStats {
-    double refineMs = 0.0;  // refinement + strip emission (one pass)
-    double uploadMs = 0.0;  // copy into the persistently mapped ring
+    double refineMs = 0.0;   // refinement + strip emission (one pass)
+    double uploadMs = 0.0;   // copy into the persistently mapped ring
     uint64_t triangles = 0;  // triangles drawn (strip: non-degenerate)
     uint64_t indices = 0;    // indices drawn, restarts included
     uint64_t bytesUploaded = 0;
 };
 
 class SbtStream {
-public:
+  public:
     static SbtStream create();
 
     // Refines the SBT for `camera` (or takes the full grid) and uploads it.
-    MeshDraw prepare(TerrainGpu& terrain, const Camera& camera, int width, int height, const LodSettings& lod,
-                     MeshStats& stats);
+    MeshDraw prepare(TerrainGpu& terrain, const Camera& camera, int width, int height,
+                     const LodSettings& lod, MeshStats& stats);
     // Fences the ring region once every pass has issued its draws.
     void finishFrame();
 
-private:
+  private:
     gpu::VertexArray vao_;
     gpu::StreamRing ring_;
     std::vector<uint32_t> strip_;  // reused every frame

@@ -15,7 +15,7 @@ namespace sierra::render {
 class TerrainGpu;
 
 class Surface {
-public:
+  public:
     virtual ~Surface() = default;
     // The shader file that stands for "surface.glsl" in terrain.frag.
     virtual std::string shaderFile() const = 0;
@@ -42,6 +42,7 @@ struct RampSurfaceDesc {
 // for line and hatch styles drawn without shading.
 std::unique_ptr<Surface> makePaperSurface();
 
-std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc = {});
+std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain,
+                                         const RampSurfaceDesc& desc = {});
 
 }  // namespace sierra::render

@@ -32,7 +32,7 @@ struct TerrainGpuDesc {
 };
 
 class TerrainGpu {
-public:
+  public:
     static TerrainGpu create(const TerrainGpuDesc& desc);
     // The largest (2^n+1) grid side the current GL context's textures take
     // (GL_MAX_TEXTURE_SIZE 16384 gives 8193), at most the loaders' default
@@ -57,18 +57,18 @@ public:
     const gpu::Buffer& meshIndices() const;
     uint64_t meshIndexCount() const;
 
-    SceneBounds bounds() const;      // the real samples' box (padding excluded), world units
-    glm::vec2 worldRange() const;    // lowest and highest world height of the real samples
+    SceneBounds bounds() const;    // the real samples' box (padding excluded), world units
+    glm::vec2 worldRange() const;  // lowest and highest world height of the real samples
     bool hasWater() const;
-    float seaLevel() const;          // stored height units; NaN without water
-    float worldSeaLevel() const;     // world units; NaN without water
-    int side() const;                // samples per side
-    glm::vec2 spacing() const;       // world units between samples along x and z
-    float verticalScale() const;     // stored height -> world height
-    double errorPassMs() const;      // time spent building errors and radii
+    float seaLevel() const;              // stored height units; NaN without water
+    float worldSeaLevel() const;         // world units; NaN without water
+    int side() const;                    // samples per side
+    glm::vec2 spacing() const;           // world units between samples along x and z
+    float verticalScale() const;         // stored height -> world height
+    double errorPassMs() const;          // time spent building errors and radii
     const std::string& summary() const;  // one line: grid, spacing, height range, sea level
 
-private:
+  private:
     struct State;
     explicit TerrainGpu(std::unique_ptr<State> state);
     std::unique_ptr<State> state_;

@@ -29,11 +29,11 @@ struct TerrainDesc {
     const terrain::Heightfield* field = nullptr;
     // Sea level as a stored height (the heightfield's units); NaN = no water.
     float seaLevel = std::numeric_limits<float>::quiet_NaN();
-    int threads = 0;                      // CPU threads for the error pass, 0 = default
-    bool metric = false;                  // heights in metres: absolute-elevation colours
-    float treeLine = 2000.0f;             // metres (metric only)
-    float snowLine = 3000.0f;             // metres (metric only)
-    std::string cpt;                      // .cpt colour table instead of the scheme; empty = none
+    int threads = 0;           // CPU threads for the error pass, 0 = default
+    bool metric = false;       // heights in metres: absolute-elevation colours
+    float treeLine = 2000.0f;  // metres (metric only)
+    float snowLine = 3000.0f;  // metres (metric only)
+    std::string cpt;           // .cpt colour table instead of the scheme; empty = none
 };
 
 struct Lighting {
@@ -56,7 +56,7 @@ struct DrawOptions {
     // Polygons coloured by SBT level or split-vertex screen error instead of
     // the surface function (0 surface, 1 level, 2 error; see DebugColourPass.h).
     int colourBy = 0;
-    int threads = 0;         // refinement threads, 0 = default
+    int threads = 0;  // refinement threads, 0 = default
     Lighting lighting;
     // Which passes added with addPass() draw: bit k for the k-th added (all by
     // default; sierra-bench frames --overlay-costs times them apart).
@@ -68,11 +68,13 @@ struct DrawOptions {
 struct DrawStats : MeshStats {
     double submitMs = 0.0;  // CPU time issuing the passes
     double drawMs = 0.0;    // GPU time of the passes
-    double indicesPerTriangle() const { return triangles ? double(indices) / double(triangles) : 0.0; }
+    double indicesPerTriangle() const {
+        return triangles ? double(indices) / double(triangles) : 0.0;
+    }
 };
 
 class TerrainRenderer {
-public:
+  public:
     static TerrainRenderer create(const TerrainDesc& desc);
     TerrainRenderer(TerrainRenderer&&) noexcept;
     TerrainRenderer& operator=(TerrainRenderer&&) noexcept;
@@ -97,15 +99,16 @@ public:
 
     TerrainGpu& terrain();
     SceneBounds bounds() const;
-    float seaLevel() const;      // stored height units; NaN without water
-    int side() const;            // samples per side
-    double errorPassMs() const;  // time spent building errors and radii
+    float seaLevel() const;              // stored height units; NaN without water
+    int side() const;                    // samples per side
+    double errorPassMs() const;          // time spent building errors and radii
     const std::string& summary() const;  // one line: grid, spacing, height range
 
-private:
+  private:
     struct State;
     explicit TerrainRenderer(std::unique_ptr<State> state);
-    FrameUniformData frameUniforms(const Camera& camera, int width, int height, const DrawOptions& options) const;
+    FrameUniformData frameUniforms(const Camera& camera, int width, int height,
+                                   const DrawOptions& options) const;
     std::unique_ptr<State> state_;
 };
 

@@ -46,16 +46,18 @@ struct ZoneSurfaceDesc {
 // What was built, for the log and the debug panel.
 struct ZoneSurfaceInfo {
     int mapWidth = 0, mapHeight = 0;
-    int zoneCount = 0;          // surface types of the palette
+    int zoneCount = 0;  // surface types of the palette
     size_t borderVertices = 0, borderEdges = 0;
-    int texelsPerPixel = 1;     // distance field resolution
-    float band = 0.0f;          // band width used, zone-map pixels
-    double buildMs = 0.0;       // zone map, borderlines and field
+    int texelsPerPixel = 1;  // distance field resolution
+    float band = 0.0f;       // band width used, zone-map pixels
+    double buildMs = 0.0;    // zone map, borderlines and field
 };
 
 // `field` is the heightfield the terrain was built from (its real samples are
 // zoned for map "auto"). Throws sierra::Error for a bad palette, zone map or tile.
-std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain, const terrain::Heightfield& field,
-                                         const ZoneSurfaceDesc& desc, ZoneSurfaceInfo* info = nullptr);
+std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
+                                         const terrain::Heightfield& field,
+                                         const ZoneSurfaceDesc& desc,
+                                         ZoneSurfaceInfo* info = nullptr);
 
 }  // namespace sierra::render

@@ -81,7 +81,7 @@ enum class TriangleType : uint8_t {
 inline constexpr int kTriangleTypeCount = 8;
 
 class Addressing {
-public:
+  public:
     // n >= 1: grid side 2^n + 1 samples.
     constexpr explicit Addressing(int n) : n_(n), side_(1 << n) {}
 
@@ -104,7 +104,8 @@ public:
         if ((t.level & 1) == 0) {
             bool main = (((t.c >> 1) + t.r) & 1) == 0;
             int h = t.c & 1;
-            if (main) return h == 0 ? TriangleType::kCornerMinusPlus : TriangleType::kCornerPlusMinus;
+            if (main)
+                return h == 0 ? TriangleType::kCornerMinusPlus : TriangleType::kCornerPlusMinus;
             return h == 0 ? TriangleType::kCornerMinusMinus : TriangleType::kCornerPlusPlus;
         }
         constexpr TriangleType quarter[2][2] = {
@@ -123,10 +124,18 @@ public:
             int x0 = (t.c >> 1) * s, z0 = t.r * s, x1 = x0 + s, z1 = z0 + s;
             GridVertex v[3];
             switch (type(t)) {
-                case TriangleType::kCornerMinusPlus: v[0] = {x0, z1}, v[1] = {x0, z0}, v[2] = {x1, z1}; break;
-                case TriangleType::kCornerPlusMinus: v[0] = {x1, z0}, v[1] = {x1, z1}, v[2] = {x0, z0}; break;
-                case TriangleType::kCornerMinusMinus: v[0] = {x0, z0}, v[1] = {x1, z0}, v[2] = {x0, z1}; break;
-                default: v[0] = {x1, z1}, v[1] = {x0, z1}, v[2] = {x1, z0}; break;
+                case TriangleType::kCornerMinusPlus:
+                    v[0] = {x0, z1}, v[1] = {x0, z0}, v[2] = {x1, z1};
+                    break;
+                case TriangleType::kCornerPlusMinus:
+                    v[0] = {x1, z0}, v[1] = {x1, z1}, v[2] = {x0, z0};
+                    break;
+                case TriangleType::kCornerMinusMinus:
+                    v[0] = {x0, z0}, v[1] = {x1, z0}, v[2] = {x0, z1};
+                    break;
+                default:
+                    v[0] = {x1, z1}, v[1] = {x0, z1}, v[2] = {x1, z0};
+                    break;
             }
             return v[k];
         }
@@ -134,10 +143,18 @@ public:
         if (k == 0) return {x0 + s / 2, z0 + s / 2};
         GridVertex v1, v2;
         switch (type(t)) {
-            case TriangleType::kEdgeMinusJ: v1 = {x0, z0}, v2 = {x1, z0}; break;
-            case TriangleType::kEdgePlusI: v1 = {x1, z0}, v2 = {x1, z1}; break;
-            case TriangleType::kEdgePlusJ: v1 = {x1, z1}, v2 = {x0, z1}; break;
-            default: v1 = {x0, z1}, v2 = {x0, z0}; break;
+            case TriangleType::kEdgeMinusJ:
+                v1 = {x0, z0}, v2 = {x1, z0};
+                break;
+            case TriangleType::kEdgePlusI:
+                v1 = {x1, z0}, v2 = {x1, z1};
+                break;
+            case TriangleType::kEdgePlusJ:
+                v1 = {x1, z1}, v2 = {x0, z1};
+                break;
+            default:
+                v1 = {x0, z1}, v2 = {x0, z0};
+                break;
         }
         return k == 1 ? v1 : v2;
     }
@@ -148,7 +165,9 @@ public:
         return {(a.i + b.i) / 2, (a.j + b.j) / 2};
     }
     // Where the Sierpinski curve enters and leaves the triangle.
-    constexpr GridVertex entryVertex(TriangleId t) const { return vertex(t, (t.level & 1) ? 2 : 1); }
+    constexpr GridVertex entryVertex(TriangleId t) const {
+        return vertex(t, (t.level & 1) ? 2 : 1);
+    }
     constexpr GridVertex exitVertex(TriangleId t) const { return vertex(t, (t.level & 1) ? 1 : 2); }
 
     // Children (level + 1, requires level < 2n): leftChild holds the entry
@@ -163,18 +182,24 @@ public:
             bool main = ((qx + qy) & 1) == 0;
             TriangleType q = type(t);
             int h;
-            if (main) h = (q == TriangleType::kEdgeMinusI || q == TriangleType::kEdgePlusJ) ? 0 : 1;
-            else h = (q == TriangleType::kEdgeMinusJ || q == TriangleType::kEdgeMinusI) ? 0 : 1;
+            if (main)
+                h = (q == TriangleType::kEdgeMinusI || q == TriangleType::kEdgePlusJ) ? 0 : 1;
+            else
+                h = (q == TriangleType::kEdgeMinusJ || q == TriangleType::kEdgeMinusI) ? 0 : 1;
             return {t.level - 1, qy, 2 * qx + h};
         }
         int qx = t.c >> 1, qy = t.r, h = t.c & 1;
         int dx = qx & 1, dy = qy & 1;
         // quarter (a, b) of the parent square: 0,0 low-j; 0,1 high-i; 1,1 high-j; 1,0 low-i
         int a, b;
-        if (dx == 0 && dy == 0) a = h ? 0 : 1, b = 0;       // B -> low-i, A -> low-j
-        else if (dx == 1 && dy == 0) a = 0, b = h ? 1 : 0;  // C -> low-j, D -> high-i
-        else if (dx == 0 && dy == 1) a = 1, b = h ? 1 : 0;  // C -> low-i, D -> high-j
-        else a = h ? 0 : 1, b = 1;                          // B -> high-j, A -> high-i
+        if (dx == 0 && dy == 0)
+            a = h ? 0 : 1, b = 0;  // B -> low-i, A -> low-j
+        else if (dx == 1 && dy == 0)
+            a = 0, b = h ? 1 : 0;  // C -> low-j, D -> high-i
+        else if (dx == 0 && dy == 1)
+            a = 1, b = h ? 1 : 0;  // C -> low-i, D -> high-j
+        else
+            a = h ? 0 : 1, b = 1;  // B -> high-j, A -> high-i
         return {t.level - 1, 2 * (qy >> 1) + a, 2 * (qx >> 1) + b};
     }
 
@@ -185,10 +210,18 @@ public:
         int dr = 0, dc = 0;
         if ((t.level & 1) == 0) {
             switch (type(t)) {
-                case TriangleType::kCornerMinusPlus: dr = k == 1 ? 1 : 0, dc = k == 0 ? 1 : k == 2 ? -1 : 0; break;
-                case TriangleType::kCornerPlusMinus: dr = k == 1 ? -1 : 0, dc = k == 0 ? -1 : k == 2 ? 1 : 0; break;
-                case TriangleType::kCornerMinusMinus: dr = k == 2 ? -1 : 0, dc = k == 0 ? 1 : k == 1 ? -1 : 0; break;
-                default: dr = k == 2 ? 1 : 0, dc = k == 0 ? -1 : k == 1 ? 1 : 0; break;
+                case TriangleType::kCornerMinusPlus:
+                    dr = k == 1 ? 1 : 0, dc = k == 0 ? 1 : k == 2 ? -1 : 0;
+                    break;
+                case TriangleType::kCornerPlusMinus:
+                    dr = k == 1 ? -1 : 0, dc = k == 0 ? -1 : k == 2 ? 1 : 0;
+                    break;
+                case TriangleType::kCornerMinusMinus:
+                    dr = k == 2 ? -1 : 0, dc = k == 0 ? 1 : k == 1 ? -1 : 0;
+                    break;
+                default:
+                    dr = k == 2 ? 1 : 0, dc = k == 0 ? -1 : k == 1 ? 1 : 0;
+                    break;
             }
         } else {
             constexpr int kDr[4][3] = {{-1, 0, 1}, {1, 1, 0}, {1, 0, -1}, {-1, -1, 0}};
@@ -197,12 +230,13 @@ public:
             dr = kDr[q][k], dc = kDc[q][k];
         }
         TriangleId nb{t.level, t.r + dr, t.c + dc};
-        if (nb.r < 0 || nb.r >= rows(t.level) || nb.c < 0 || nb.c >= cols(t.level)) return {-1, -1, -1};
+        if (nb.r < 0 || nb.r >= rows(t.level) || nb.c < 0 || nb.c >= cols(t.level))
+            return {-1, -1, -1};
         return nb;
     }
     static constexpr bool hasNeighbour(TriangleId t, int k) { return neighbour(t, k).level >= 0; }
 
-private:
+  private:
     static constexpr TriangleId child(TriangleId t, int which) {
         int l = t.level + 1;
         if ((t.level & 1) == 0) {
@@ -210,10 +244,18 @@ private:
             // quarter cells (a, b) in the square's 2x2 block at level l
             int a0, b0, a1, b1;  // left child, right child
             switch (type(t)) {
-                case TriangleType::kCornerMinusPlus: a0 = 1, b0 = 0, a1 = 1, b1 = 1; break;   // W, N
-                case TriangleType::kCornerPlusMinus: a0 = 0, b0 = 1, a1 = 0, b1 = 0; break;   // E, S
-                case TriangleType::kCornerMinusMinus: a0 = 0, b0 = 0, a1 = 1, b1 = 0; break;  // S, W
-                default: a0 = 1, b0 = 1, a1 = 0, b1 = 1; break;                               // N, E
+                case TriangleType::kCornerMinusPlus:
+                    a0 = 1, b0 = 0, a1 = 1, b1 = 1;
+                    break;  // W, N
+                case TriangleType::kCornerPlusMinus:
+                    a0 = 0, b0 = 1, a1 = 0, b1 = 0;
+                    break;  // E, S
+                case TriangleType::kCornerMinusMinus:
+                    a0 = 0, b0 = 0, a1 = 1, b1 = 0;
+                    break;  // S, W
+                default:
+                    a0 = 1, b0 = 1, a1 = 0, b1 = 1;
+                    break;  // N, E
             }
             return which == 0 ? TriangleId{l, 2 * qy + a0, 2 * qx + b0}
                               : TriangleId{l, 2 * qy + a1, 2 * qx + b1};
@@ -222,10 +264,18 @@ private:
         // children: (quadrant dx, dy, half h) in the level-l squares (2qx+dx, 2qy+dy)
         int dx0, dy0, h0, dx1, dy1, h1;
         switch (type(t)) {
-            case TriangleType::kEdgeMinusJ: dx0 = 1, dy0 = 0, h0 = 0, dx1 = 0, dy1 = 0, h1 = 1; break;
-            case TriangleType::kEdgePlusI: dx0 = 1, dy0 = 1, h0 = 1, dx1 = 1, dy1 = 0, h1 = 1; break;
-            case TriangleType::kEdgePlusJ: dx0 = 0, dy0 = 1, h0 = 1, dx1 = 1, dy1 = 1, h1 = 0; break;
-            default: dx0 = 0, dy0 = 0, h0 = 0, dx1 = 0, dy1 = 1, h1 = 0; break;
+            case TriangleType::kEdgeMinusJ:
+                dx0 = 1, dy0 = 0, h0 = 0, dx1 = 0, dy1 = 0, h1 = 1;
+                break;
+            case TriangleType::kEdgePlusI:
+                dx0 = 1, dy0 = 1, h0 = 1, dx1 = 1, dy1 = 0, h1 = 1;
+                break;
+            case TriangleType::kEdgePlusJ:
+                dx0 = 0, dy0 = 1, h0 = 1, dx1 = 1, dy1 = 1, h1 = 0;
+                break;
+            default:
+                dx0 = 0, dy0 = 0, h0 = 0, dx1 = 0, dy1 = 1, h1 = 0;
+                break;
         }
         return which == 0 ? TriangleId{l, 2 * qy + dy0, 2 * (2 * qx + dx0) + h0}
                           : TriangleId{l, 2 * qy + dy1, 2 * (2 * qx + dx1) + h1};

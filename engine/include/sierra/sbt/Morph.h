@@ -45,15 +45,17 @@ inline constexpr float kMorphStart = 0.75f;
 // The tau to refine with when the renderer geomorphs with budget `tau`
 // (pixels): vertices activate when their error bound reaches kMorphStart * tau.
 // Without geomorphing refine with tau itself.
-inline float refinementTau(float tau) { return kMorphStart * tau; }
+inline float refinementTau(float tau) {
+    return kMorphStart * tau;
+}
 
 // Morph weight in [0, 1] (0: at the morph base, 1: at the true height) of a
 // vertex with saturated error `error` and bounding radius `radius` (world
 // units) at `distance` from the eye (world units, to its true position);
 // lambdaOverTau = lambda / tau with tau the full budget (pixels).
 inline float morphWeight(float error, float radius, float distance, float lambdaOverTau) {
-    const float gap = distance - radius;  // eye to the vertex's sphere
-    if (gap <= 0.0f) return 1.0f;         // eye inside the sphere: always refined
+    const float gap = distance - radius;              // eye to the vertex's sphere
+    if (gap <= 0.0f) return 1.0f;                     // eye inside the sphere: always refined
     const float ratio = lambdaOverTau * error / gap;  // mu / tau
     const float w = (ratio - kMorphStart) / (1.0f - kMorphStart);
     return w < 0.0f ? 0.0f : (w > 1.0f ? 1.0f : w);

@@ -82,9 +82,9 @@ std::array<Plane, 6> frustumPlanes(const float viewProjection[16]);
 // width / height, a viewport `viewportHeightPx` pixels high, clip planes at
 // `nearPlane` and `farPlane` along the view (world units), tau in pixels. For
 // tools and tests; the renderer builds its view from its own camera.
-ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3>& target, float fovyRadians,
-                      float aspect, float viewportHeightPx, float nearPlane, float farPlane, float tau = 1.0f,
-                      bool cull = true);
+ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3>& target,
+                      float fovyRadians, float aspect, float viewportHeightPx, float nearPlane,
+                      float farPlane, float tau = 1.0f, bool cull = true);
 
 // A refinement whose previous call in the same mode made fewer triangles runs
 // on the calling thread alone, whatever the thread count (the output is the
@@ -97,7 +97,7 @@ struct RefinerDesc {
 };
 
 class Refiner {
-public:
+  public:
     // Keeps pointers to `field` and `errors`: both must outlive the refiner and
     // stay unchanged. errors must come from computeVertexErrors(field).
     Refiner(const terrain::Heightfield& field, const VertexErrors& errors, RefinerDesc desc = {});
@@ -143,7 +143,7 @@ public:
         bool restart;  // a restart index goes at dst - 1
     };
 
-private:
+  private:
     template <bool kView, bool kFast = false>
     void run(const ViewParams* view, float epsilon, StripMesh& out);
     void buildSplitKeys();

@@ -64,7 +64,7 @@ enum OptionGroup : unsigned {
 };
 
 class SceneOptions {
-public:
+  public:
     // Registers the options of `groups` on `app`. `scene` holds the app's
     // defaults (shown in --help) and receives the result in apply(); both
     // `app` and `scene` must outlive this object.
@@ -85,7 +85,7 @@ public:
     // --print-config was given: apply() printed the scene; the app exits 0.
     bool printConfigRequested() const;
 
-private:
+  private:
     using Setter = std::function<void(Scene&, const std::vector<std::string>&)>;
     struct Entry {
         CLI::Option* option = nullptr;
@@ -93,16 +93,17 @@ private:
         Setter set;
     };
 
-    CLI::Option* add(const char* name, const std::string& help, const std::string& group, const char* typeName,
-                     const std::string& defaultText, int values, Setter set);
-    CLI::Option* addFlag(const char* name, const std::string& help, const std::string& group, Setter set);
+    CLI::Option* add(const char* name, const std::string& help, const std::string& group,
+                     const char* typeName, const std::string& defaultText, int values, Setter set);
+    CLI::Option* addFlag(const char* name, const std::string& help, const std::string& group,
+                         Setter set);
 
     CLI::App& app_;
     Scene& scene_;
-    Scene defaults_;                                  // the scene at registration
-    std::deque<std::vector<std::string>> values_;     // CLI11 writes each option's words here
-    std::vector<Entry> entries_;                      // in registration order
-    std::string config_;                              // --config FILE
+    Scene defaults_;                               // the scene at registration
+    std::deque<std::vector<std::string>> values_;  // CLI11 writes each option's words here
+    std::vector<Entry> entries_;                   // in registration order
+    std::string config_;                           // --config FILE
     CLI::Option* configOption_ = nullptr;
     CLI::Option* printOption_ = nullptr;
     CLI::Option* frameCountOption_ = nullptr;

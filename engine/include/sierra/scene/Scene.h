@@ -37,8 +37,8 @@ enum class Projection {
 };
 
 struct CameraDesc {
-    std::optional<Vec3> position;   // world units; absent = automatic (fits the whole terrain)
-    std::optional<Vec3> target;     // world units; absent = the terrain's centre
+    std::optional<Vec3> position;  // world units; absent = automatic (fits the whole terrain)
+    std::optional<Vec3> target;    // world units; absent = the terrain's centre
     // Alternative to `position`: the camera at `distance` from the target, at
     // compass bearing `azimuth` and `elevation` above the horizon, both seen
     // from the target (degrees). Any one absent = automatic (the default
@@ -46,7 +46,7 @@ struct CameraDesc {
     std::optional<float> azimuth;    // degrees clockwise from north (-z)
     std::optional<float> elevation;  // degrees above the horizon, -90..90
     std::optional<float> distance;   // world units, > 0
-    float fov = 45.0f;               // vertical field of view in degrees, (0, 180); perspective only
+    float fov = 45.0f;  // vertical field of view in degrees, (0, 180); perspective only
     Projection projection = Projection::Perspective;
     bool operator==(const CameraDesc&) const = default;
 };
@@ -59,9 +59,10 @@ enum class PathType {
 };
 
 struct Keyframe {
-    float time = 0.0f;  // any unit, increasing along the list; frames are spread evenly first..last time
-    Vec3 position;      // world units
-    Vec3 target;        // world units
+    float time =
+        0.0f;  // any unit, increasing along the list; frames are spread evenly first..last time
+    Vec3 position;  // world units
+    Vec3 target;    // world units
     bool operator==(const Keyframe&) const = default;
 };
 
@@ -103,10 +104,10 @@ enum class LodMode {
 
 struct LodDesc {
     LodMode mode = LodMode::Sbt;
-    float tau = 1.0f;       // SBT screen-space error threshold in pixels, > 0
-    bool geomorph = true;   // blend newly active vertices in, so none pops
-    bool cull = true;       // frustum culling during refinement
-    int threads = 0;        // CPU threads; 0 = sierra::defaultThreadCount()
+    float tau = 1.0f;      // SBT screen-space error threshold in pixels, > 0
+    bool geomorph = true;  // blend newly active vertices in, so none pops
+    bool cull = true;      // frustum culling during refinement
+    int threads = 0;       // CPU threads; 0 = sierra::defaultThreadCount()
     // A TIN (an OBJ from sierra-tin, made with the same terrain options) drawn
     // instead of the SBT or the full grid; "" = none.
     std::string mesh;
@@ -114,16 +115,18 @@ struct LodDesc {
 };
 
 struct OutputDesc {
-    int width = 1280;                      // frame size in pixels, 1..16384
+    int width = 1280;  // frame size in pixels, 1..16384
     int height = 720;
-    int msaa = 4;                          // samples per pixel: 0 (off), 2, 4 or 8
-    std::string frame = "out/frame.png";   // frame PNG; sequences: NAME_0000.png, ...
-    std::string debug = "out/debug.png";   // ImGui debug snapshot PNG (UI over the frame); empty = none
-    std::string snapshotOnly;              // the debug UI alone on a plain background; empty = none
-    int snapshotEvery = 0;                 // sequences: a snapshot of every Nth frame (NAME_0000.png); 0 = last only
-    bool snapshotDeterministic = false;    // snapshots show placeholders instead of measured times
-    std::string depth;                     // linear eye-space depth .npy (float32, NaN = no terrain); empty = none
-    bool alpha = false;                    // RGBA PNG with a transparent sky
+    int msaa = 4;                         // samples per pixel: 0 (off), 2, 4 or 8
+    std::string frame = "out/frame.png";  // frame PNG; sequences: NAME_0000.png, ...
+    std::string debug =
+        "out/debug.png";       // ImGui debug snapshot PNG (UI over the frame); empty = none
+    std::string snapshotOnly;  // the debug UI alone on a plain background; empty = none
+    int snapshotEvery =
+        0;  // sequences: a snapshot of every Nth frame (NAME_0000.png); 0 = last only
+    bool snapshotDeterministic = false;  // snapshots show placeholders instead of measured times
+    std::string depth;   // linear eye-space depth .npy (float32, NaN = no terrain); empty = none
+    bool alpha = false;  // RGBA PNG with a transparent sky
     bool operator==(const OutputDesc&) const = default;
 };
 
@@ -131,7 +134,8 @@ struct StyleDesc {
     bool wireframe = false;  // overlay the triangulation
     bool polygons = true;    // the shaded surface (--display polygons)
     bool points = false;     // the mesh's vertices as points (--display points)
-    std::string colourBy = "surface";  // polygons coloured by: surface, level (SBT) or error (split vertex, px)
+    std::string colourBy =
+        "surface";  // polygons coloured by: surface, level (SBT) or error (split vertex, px)
     // Metric heights are coloured by absolute elevation (metres): vegetation up
     // to the tree line, rock above it, snow above the snow line. Unitless
     // heights use a ramp over their own range instead.
@@ -143,7 +147,8 @@ struct StyleDesc {
     // beside it override it. Default: the shaded terrain, no overlay.
     std::string preset;  // "" or fig3a .. fig3n, fig4a .. fig4h
     analysis::StyleParams overlay;
-    std::string cpt;           // GMT .cpt colour table of the surface (absolute stored heights); empty = none
+    std::string
+        cpt;  // GMT .cpt colour table of the surface (absolute stored heights); empty = none
     bool operator==(const StyleDesc&) const = default;
 };
 
@@ -157,13 +162,15 @@ analysis::StyleParams loadPreset(const std::string& name);
 
 // Zone tiles with blended transition bands (the terrain pass's zone surface).
 struct ZonesDesc {
-    std::string map;      // "" = no zones (colour ramp), "auto" = from height and slope bands, or a zone-map PNG
+    std::string map;      // "" = no zones (colour ramp), "auto" = from height and slope bands, or a
+                          // zone-map PNG
     std::string palette;  // palette JSON; "" = the default (assets/palettes/default.json)
     float band = -1.0f;   // transition band width in zone-map pixels; < 0 = the palette's; 0 = none
-    float epsilon = 0.5f; // borderline simplification, zone-map pixels, >= 0
-    std::string blend = "height";  // linear (by distance) or height (tile heights move the transition)
-    bool triplanar = false;        // project tiles along the normal's axes on steep slopes
-    bool variation = true;         // warp the tile coordinates slowly against visible tile repetition
+    float epsilon = 0.5f;  // borderline simplification, zone-map pixels, >= 0
+    std::string blend =
+        "height";            // linear (by distance) or height (tile heights move the transition)
+    bool triplanar = false;  // project tiles along the normal's axes on steep slopes
+    bool variation = true;   // warp the tile coordinates slowly against visible tile repetition
     std::string debugView = "none";  // none, zones (flat zone colours) or bands (the blend weight)
     // Auto-zoning thresholds (fractions of the depth and land relief; slope in degrees).
     float deepWater = 0.35f;
@@ -193,8 +200,8 @@ Vec3 directionFromAngles(float azimuthDegrees, float altitudeDegrees);
 // Terrain.h); parse* throw sierra::Error
 // naming `what` (an option or key) and the accepted names.
 const char* toString(Projection projection);  // "perspective" "orthographic"
-const char* toString(PathType type);        // "none" "orbit" "flyover" "keyframes"
-const char* toString(LodMode mode);         // "sbt" "full"
+const char* toString(PathType type);          // "none" "orbit" "flyover" "keyframes"
+const char* toString(LodMode mode);           // "sbt" "full"
 Projection parseProjection(const std::string& text, const std::string& what);
 PathType parsePathType(const std::string& text, const std::string& what);
 LodMode parseLodMode(const std::string& text, const std::string& what);

@@ -43,17 +43,17 @@ enum class Channel {
 };
 
 struct TerrainSource {
-    std::string heightmap;        // file to load; empty = generate
-    int generateSize = 1025;      // samples per side of a generated terrain, 2^n + 1
-    uint64_t seed = 1;            // seed of the generator
-    float roughness = 1.0f;       // amplitude factor of every random offset of the generator, > 0
-    std::optional<float> hurst;   // per-level amplitude factor 2^-H of the generator;
-                                  // absent = the generator's default scaling
-    int rawWidth = 0;             // samples per row of a .r16/.r32 file; 0 = guess a square
-    int rawHeight = 0;            // rows of a .r16/.r32 file; give both or neither
-    float spacing = 0.0f;         // world units between samples; 0 = the file's (1 for images)
-    float verticalScale = 0.0f;   // stored height -> world height; 0 = automatic (see loadTerrain)
-    SeaLevel seaLevel;            // default: automatic
+    std::string heightmap;       // file to load; empty = generate
+    int generateSize = 1025;     // samples per side of a generated terrain, 2^n + 1
+    uint64_t seed = 1;           // seed of the generator
+    float roughness = 1.0f;      // amplitude factor of every random offset of the generator, > 0
+    std::optional<float> hurst;  // per-level amplitude factor 2^-H of the generator;
+                                 // absent = the generator's default scaling
+    int rawWidth = 0;            // samples per row of a .r16/.r32 file; 0 = guess a square
+    int rawHeight = 0;           // rows of a .r16/.r32 file; give both or neither
+    float spacing = 0.0f;        // world units between samples; 0 = the file's (1 for images)
+    float verticalScale = 0.0f;  // stored height -> world height; 0 = automatic (see loadTerrain)
+    SeaLevel seaLevel;           // default: automatic
     HeightUnits heightUnits = HeightUnits::Auto;
     Channel channel = Channel::Grey;
     bool operator==(const TerrainSource&) const = default;
@@ -80,13 +80,12 @@ enum class Padding {
     None,               // the samples as read, any width x height (the TIN meshes exactly these)
 };
 
-// The terrain ready for the SBT (or, with Padding::None, as read). Automatic spacing is the loader's (1 for image
-// and array formats; SRTM: 90 m for 1201 wide tiles, 30 m for 3601; GeoTIFF: the
-// pixel size of a projected system). Automatic vertical scale is 1 for metric
-// heights (height units metres, or auto with SRTM/GeoTIFF) and otherwise makes
-// the relief 20% of the horizontal extent. `description`, when given, receives
-// one line saying what was loaded and the choices made. Throws sierra::Error
-// for bad input, and for a `hurst` or `channel` that this build's terrain
+// The terrain ready for the SBT (or, with Padding::None, as read). Automatic spacing is the
+// loader's (1 for image and array formats; SRTM: 90 m for 1201 wide tiles, 30 m for 3601; GeoTIFF:
+// the pixel size of a projected system). Automatic vertical scale is 1 for metric heights (height
+// units metres, or auto with SRTM/GeoTIFF) and otherwise makes the relief 20% of the horizontal
+// extent. `description`, when given, receives one line saying what was loaded and the choices made.
+// Throws sierra::Error for bad input, and for a `hurst` or `channel` that this build's terrain
 // module cannot honour yet.
 // Spacing, vertical scale and description do not depend on `padding`.
 // `maxPaddedSide` is the largest (2^n+1) grid side the caller can take (a

@@ -49,9 +49,9 @@ struct OutOfRangeColours {
 
 struct ColourRampDesc {
     RampScheme scheme = RampScheme::Hypsometric;
-    float minHeight = 0.0f;  // stored height of the first colour; lower heights clamp to it
-    float maxHeight = 1.0f;  // stored height of the last colour, > minHeight
-    float seaLevel = 0.0f;   // water below, land at or above; outside [min, max] = all land/water
+    float minHeight = 0.0f;    // stored height of the first colour; lower heights clamp to it
+    float maxHeight = 1.0f;    // stored height of the last colour, > minHeight
+    float seaLevel = 0.0f;     // water below, land at or above; outside [min, max] = all land/water
     float treeLine = 2000.0f;  // Elevation: metres above which no vegetation grows
     float snowLine = 3000.0f;  // Elevation: metres above which snow lies, >= treeLine
 };

@@ -14,7 +14,7 @@
 namespace sierra::terrain {
 
 class Heightfield {
-public:
+  public:
     Heightfield() = default;
     // A width x height grid filled with `fill`; every sample valid.
     Heightfield(int width, int height, float fill = 0.0f);
@@ -50,7 +50,7 @@ public:
     // Smallest and largest stored height over valid samples (0, 0 when empty).
     std::pair<float, float> range() const;
 
-private:
+  private:
     int width_ = 0;
     int height_ = 0;
     float spacingX_ = 1.0f;

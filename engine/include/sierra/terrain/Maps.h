@@ -22,7 +22,6 @@ struct RgbImage {
     Rgb at(int x, int y) const {
         const uint8_t* p = rgb.data() + (size_t(y) * width + x) * 3;
         return {p[0], p[1], p[2]};
-
     }
     void set(int x, int y, Rgb c) {
         uint8_t* p = rgb.data() + (size_t(y) * width + x) * 3;
@@ -64,7 +63,8 @@ MapScheme parseMapScheme(const std::string& name);
 // The map image of `field`, one pixel per sample. Height schemes colour through
 // `ramp`; hillshade and slope are grey (hillshade: 0 = unlit; slope: white
 // flat to black vertical). No-data samples take ramp.noDataColour().
-RgbImage renderMap(const Heightfield& field, MapScheme scheme, const ColourRamp& ramp, const Sun& sun = {});
+RgbImage renderMap(const Heightfield& field, MapScheme scheme, const ColourRamp& ramp,
+                   const Sun& sun = {});
 
 // A legend tick: the height it labels (height units = stored height times
 // unitScale) and the image row of the bar where that height's colour is.

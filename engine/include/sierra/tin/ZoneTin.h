@@ -49,8 +49,8 @@ size_t removeThinIslands(zones::Borderlines& lines, double epsilon);
 // than 2 x 2. `removedIslands`, when given, receives the number of islands
 // removed.
 zones::Borderlines gridBorderlines(const zones::ZoneMap& map, const zones::Palette& palette,
-                                   const zones::BorderlineDesc& desc, int gridWidth,
-                                   int gridHeight, size_t* removedIslands = nullptr);
+                                   const zones::BorderlineDesc& desc, int gridWidth, int gridHeight,
+                                   size_t* removedIslands = nullptr);
 
 // The borderlines (zone-map pixel units) as constraints of a gridWidth x
 // gridHeight TIN: every edge becomes a segment with its two zones (the zones'

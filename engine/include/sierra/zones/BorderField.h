@@ -24,15 +24,16 @@ struct BorderFieldDesc {
 };
 
 struct BorderField {
-    int width = 0;              // mapWidth * texelsPerPixel
-    int height = 0;             // mapHeight * texelsPerPixel
+    int width = 0;   // mapWidth * texelsPerPixel
+    int height = 0;  // mapHeight * texelsPerPixel
     int texelsPerPixel = 1;
     // Texel (i, j) has its centre at ((i + 0.5) / texelsPerPixel, (j + 0.5) / texelsPerPixel)
     // in zone-map pixel units; all arrays are row-major, width * height entries.
     std::vector<uint8_t> zone;
-    std::vector<uint8_t> lowZone;   // lowZone == highZone == zone where the map has no borderline
+    std::vector<uint8_t> lowZone;  // lowZone == highZone == zone where the map has no borderline
     std::vector<uint8_t> highZone;
-    std::vector<float> signedDistance;  // texels; a very large value (1e9) where there is no borderline
+    std::vector<float>
+        signedDistance;  // texels; a very large value (1e9) where there is no borderline
 };
 
 // Builds the field from the borderlines between zones (frame edges and band

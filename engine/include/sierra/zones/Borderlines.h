@@ -34,9 +34,9 @@ struct Edge {
 };
 
 struct Zone {
-    int32_t id = 0;          // == index in Borderlines::zones
-    std::string name;        // surface name; a band zone is "a|b"
-    Colour colour = 0;       // 0xRRGGBB; a band zone gets the mean of its two zones
+    int32_t id = 0;                // == index in Borderlines::zones
+    std::string name;              // surface name; a band zone is "a|b"
+    Colour colour = 0;             // 0xRRGGBB; a band zone gets the mean of its two zones
     int32_t bandOf[2] = {-1, -1};  // for a band zone: the two zones it blends (lower id first)
 };
 
@@ -97,7 +97,8 @@ void simplifyArcs(Borderlines& lines, double epsilon);
 // copies (e.g. onto the samples of a mesh's grid) before that check, so the
 // result is a valid subdivision with the snapped positions; consecutive copy
 // vertices that snap to one position become one.
-void doubleBorderlines(Borderlines& lines, double width, const std::function<Vertex(const Vertex&)>& snap = {});
+void doubleBorderlines(Borderlines& lines, double width,
+                       const std::function<Vertex(const Vertex&)>& snap = {});
 
 struct BorderlineDesc {
     double epsilon = 0.0;    // rule 3 tolerance, zone-map pixels; 0 = rules 1-2 only
@@ -105,7 +106,8 @@ struct BorderlineDesc {
 };
 
 // vectorise, rules 1-2, rule 3 (epsilon), then doubling (bandWidth).
-Borderlines buildBorderlines(const ZoneMap& map, const Palette& palette, const BorderlineDesc& desc = {});
+Borderlines buildBorderlines(const ZoneMap& map, const Palette& palette,
+                             const BorderlineDesc& desc = {});
 
 // Area of each zone from the edges (index = zone id), square pixels: the
 // shoelace terms (x0 y1 - x1 y0) / 2 of the edges with the zone on their right

@@ -15,11 +15,11 @@ using Colour = uint32_t;
 std::string colourHex(Colour colour);
 
 struct SurfaceType {
-    std::string name;       // e.g. "grass"; unique within a palette
-    Colour colour = 0;      // its colour in zone maps, 0xRRGGBB
-    std::string tile;       // tile image, absolute or relative to the working directory
-                            // (the JSON names it relative to the palette file)
-    float tileSize = 16.0f; // zone-map pixels covered by one repetition of the tile, > 0
+    std::string name;          // e.g. "grass"; unique within a palette
+    Colour colour = 0;         // its colour in zone maps, 0xRRGGBB
+    std::string tile;          // tile image, absolute or relative to the working directory
+                               // (the JSON names it relative to the palette file)
+    float tileSize = 16.0f;    // zone-map pixels covered by one repetition of the tile, > 0
     float heightBlend = 0.5f;  // 0..1: how much the tile's height channel (alpha) moves the
                                // transition inside a band (0 = plain linear blend)
 };

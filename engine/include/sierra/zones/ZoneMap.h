@@ -45,13 +45,13 @@ ZoneMap loadZoneMap(const std::string& path, const Palette& palette);
 // Heights are stored heights; fractions are of the depth range below sea level
 // or of the land relief above it.
 struct AutoZoneDesc {
-    float seaLevel = 0.0f;       // water below, land at or above (stored height)
-    float deepWater = 0.35f;     // water deeper than this fraction of the deepest depth is deep
-    float sandTop = 0.04f;       // sand up to this fraction of the land relief above sea level
-    float snowLine = 0.75f;      // snow above this fraction of the land relief
-    float rockSlope = 25.0f;     // land steeper than this (degrees, world units: spacing and
-                                 // vertical scale of the field) is rock; sand and snow included
-    int smoothPasses = 2;        // 3x3 majority passes removing single-pixel specks, >= 0
+    float seaLevel = 0.0f;    // water below, land at or above (stored height)
+    float deepWater = 0.35f;  // water deeper than this fraction of the deepest depth is deep
+    float sandTop = 0.04f;    // sand up to this fraction of the land relief above sea level
+    float snowLine = 0.75f;   // snow above this fraction of the land relief
+    float rockSlope = 25.0f;  // land steeper than this (degrees, world units: spacing and
+                              // vertical scale of the field) is rock; sand and snow included
+    int smoothPasses = 2;     // 3x3 majority passes removing single-pixel specks, >= 0
     // Surface names looked up in the palette (each must be there).
     std::string deepName = "deep-water";
     std::string shallowName = "shallow-water";
@@ -64,7 +64,8 @@ struct AutoZoneDesc {
 // A Touching zone map of the field's size, one zone per sample. Throws
 // sierra::Error when a name is missing from the palette or a fraction is
 // outside [0, 1].
-ZoneMap autoZones(const terrain::Heightfield& field, const Palette& palette, const AutoZoneDesc& desc = {});
+ZoneMap autoZones(const terrain::Heightfield& field, const Palette& palette,
+                  const AutoZoneDesc& desc = {});
 
 // The Figure 1 form of a Touching map: a pixel becomes a borderline pixel when
 // its right or lower neighbour is another zone, which draws 1-pixel,
