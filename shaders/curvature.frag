@@ -20,15 +20,19 @@
 // array textures (render::CurvatureGpu):
 //   field: RGBA32F, layer k = sample c * 8 + k, the 4 directions;
 //   gradient: RGBA32F, layer q = samples c * 8 + 2q (.xy) and 2q + 1 (.zw).
-// Two programs per pass:
+// Three programs per pass:
 //   CURVATURE_RUNS: the interior formulas only, the run's window (3 rows of
 //     10 heights or gradients) read once as vec4 texels and shared by its
-//     samples; drawn over the whole grid of a field without no-data at
-//     distance 1, then the fragments of the border (columns 0 and last, rows
-//     0 and last) are drawn again under a scissor with
+//     samples; drawn over rows 1 ... height - 2 of a field without no-data at
+//     distance 1, where all but the first and last samples of a row are
+//     interior; then
 //   the general program: every sample on its own (border rule, no data,
-//     reinforcement), the CPU's per-sample code; drawn over the whole grid
-//     otherwise.
+//     reinforcement), the CPU's per-sample code; drawn over rows 0 and
+//     height - 1 after the runs, or over the whole grid otherwise; and
+//   CURVATURE_ONE_SAMPLE: the general code for sample uSample of the run
+//     only, into every output; drawn over the first and the last run of rows
+//     1 ... height - 2 with the other outputs masked (glColorMaski), for the
+//     first and last sample of those rows.
 const int kRun = 8;  // samples per fragment; CurvatureGpu::kRun
 
 uniform ivec2 uSize;     // samples along x and z
@@ -155,11 +159,19 @@ vec2 gradientAt(ivec2 ij) {
     return vec2(-sum.x / sum.y, -sum.z / sum.y);
 }
 
+#ifdef CURVATURE_ONE_SAMPLE
+uniform int uSample;  // the sample of the run, 0 ... kRun - 1
+void main() {
+    vec2 g = gradientAt(runStart() + ivec2(uSample, 0));
+    for (int q = 0; q < kRun / 2; ++q) oGradient[q] = vec4(g, g);
+}
+#else
 void main() {
     ivec2 start = runStart();
     for (int q = 0; q < kRun / 2; ++q)
         oGradient[q] = vec4(gradientAt(start + ivec2(2 * q, 0)), gradientAt(start + ivec2(2 * q + 1, 0)));
 }
+#endif
 
 #endif  // CURVATURE_RUNS
 
@@ -378,10 +390,18 @@ vec4 sampleValue(ivec2 ij) {
     return vec4(directionValue(ij, 0), directionValue(ij, 1), directionValue(ij, 2), directionValue(ij, 3));
 }
 
+#ifdef CURVATURE_ONE_SAMPLE
+uniform int uSample;  // the sample of the run, 0 ... kRun - 1
+void main() {
+    vec4 v = sampleValue(runStart() + ivec2(uSample, 0));
+    for (int k = 0; k < kRun; ++k) oValue[k] = v;
+}
+#else
 void main() {
     ivec2 start = runStart();
     for (int k = 0; k < kRun; ++k) oValue[k] = sampleValue(start + ivec2(k, 0));
 }
+#endif
 
 #endif  // CURVATURE_RUNS
 

@@ -88,7 +88,7 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
     return c;
 }
 
-void CurvatureGpu::draw(gpu::Program& program, gpu::Program* runsProgram) {
+void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
     auto drawIn = [&](gpu::Program& p, int x, int y, int w, int h) {
         if (w <= 0 || h <= 0) return;
         glUseProgram(p.id());
@@ -98,18 +98,30 @@ void CurvatureGpu::draw(gpu::Program& program, gpu::Program* runsProgram) {
         glDrawArrays(GL_TRIANGLES, 0, 3);
     };
     const int cols = runs();
-    if (!runsProgram) {
-        drawIn(program, 0, 0, cols, height_);
+    if (!pass.runs) {
+        drawIn(*pass.general, 0, 0, cols, height_);
         return;
     }
-    // The interior runs, then the border's: columns 0 and cols - 1 (the
-    // first and last samples of each row, and the samples past the row's
-    // end), rows 0 and height - 1.
-    drawIn(*runsProgram, 1, 1, cols - 2, height_ - 2);
-    drawIn(program, 0, 0, cols, 1);
-    drawIn(program, 0, height_ - 1, cols, 1);
-    drawIn(program, 0, 1, 1, height_ - 2);
-    if (cols > 1) drawIn(program, cols - 1, 1, 1, height_ - 2);
+    // Rows 1 ... height - 2 in runs (their first and last samples wrong),
+    // rows 0 and height - 1 per sample, then the first and the last sample of
+    // the other rows alone, every other output masked.
+    drawIn(*pass.runs, 0, 1, cols, height_ - 2);
+    drawIn(*pass.general, 0, 0, cols, 1);
+    drawIn(*pass.general, 0, height_ - 1, cols, 1);
+    for (int x : {0, width_ - 1}) {
+        const int k = x % kRun;
+        for (int b = 0; b < layers; ++b) glColorMaski(GLuint(b), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        if (gradient) {
+            const GLboolean even = k % 2 == 0 ? GL_TRUE : GL_FALSE, odd = even ? GL_FALSE : GL_TRUE;
+            glColorMaski(GLuint(k / 2), even, even, odd, odd);
+        } else {
+            glColorMaski(GLuint(k), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        }
+        glUseProgram(pass.oneSample->id());
+        glUniform1i(pass.oneSample->uniform("uSample"), k);
+        drawIn(*pass.oneSample, x / kRun, 1, 1, height_ - 2);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlanes) {
@@ -131,6 +143,7 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         return p;
     };
     const std::string runsDefine = "#define CURVATURE_RUNS 1\n";
+    const std::string oneSampleDefine = "#define CURVATURE_ONE_SAMPLE 1\n";
     gpu::GlStateScope scope;
     GLint scissor[4] = {};  // not part of GlState
     glGetIntegerv(GL_SCISSOR_BOX, scissor);
@@ -146,8 +159,12 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     if (normalBased || tangentPlanes) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gradientFramebuffer_.id());
         const size_t n = size_t(o.normals);
-        draw(build(gradientPrograms_[n], normals),
-             interiorRuns ? &build(gradientRunPrograms_[n], normals + runsDefine) : nullptr);
+        Pass pass{.general = &build(gradientPrograms_[n], normals)};
+        if (interiorRuns) {
+            pass.runs = &build(gradientRunPrograms_[n], normals + runsDefine);
+            pass.oneSample = &build(gradientSamplePrograms_[n], normals + oneSampleDefine);
+        }
+        draw(pass, kRun / 2, true);
         if (normalBased) {
             // A copy the field pass reads as a buffer texture (see curvature.frag).
             glBindBuffer(GL_PIXEL_PACK_BUFFER, gradientCopy_.id());
@@ -158,9 +175,12 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         }
     }
     const size_t m = size_t(o.method), l = size_t(levels);
-    gpu::Program& general = build(fieldPrograms_[m][l], method);
-    gpu::Program* fast = interiorRuns ? &build(fieldRunPrograms_[m][l], method + runsDefine) : nullptr;
-    for (gpu::Program* p : {&general, fast}) {
+    Pass pass{.general = &build(fieldPrograms_[m][l], method)};
+    if (interiorRuns) {
+        pass.runs = &build(fieldRunPrograms_[m][l], method + runsDefine);
+        pass.oneSample = &build(fieldSamplePrograms_[m][l], method + oneSampleDefine);
+    }
+    for (gpu::Program* p : {pass.general, pass.runs, pass.oneSample}) {
         if (!p) continue;
         glUseProgram(p->id());
         glUniform1i(p->uniform("uDistance"), o.distance);
@@ -172,7 +192,7 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     }
     glBindTextureUnit(1, gradientCopyTexture_.id());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fieldFramebuffer_.id());
-    draw(general, fast);
+    draw(pass, kRun, false);
     glScissor(scissor[0], scissor[1], scissor[2], scissor[3]);
 }
 

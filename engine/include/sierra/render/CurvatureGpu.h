@@ -60,18 +60,26 @@ public:
     int height() const { return height_; }
 
 private:
-    // Draws `program` over the runs; with `runsProgram`, that over the
-    // interior runs and `program` over the border's (scissored).
-    void draw(gpu::Program& program, gpu::Program* runsProgram);
+    // The programs of one pass (curvature.frag): general, and for a field
+    // without no-data at distance 1 the runs and the one-sample border program.
+    struct Pass {
+        gpu::Program* general = nullptr;
+        gpu::Program* runs = nullptr;
+        gpu::Program* oneSample = nullptr;
+    };
+    // Draws a pass into the bound framebuffer of `layers` attachments;
+    // `gradient`: two samples per attachment (.xy, .zw).
+    void draw(const Pass& pass, int layers, bool gradient);
 
     int width_ = 0, height_ = 0;
     float spacingX_ = 1.0f, spacingZ_ = 1.0f;
     bool noData_ = false;  // some sample has no data: the general programs only
     int pitch_ = 0;        // floats per row of heights_ (a multiple of 4)
-    // Built on first use: per NormalMethod, general and runs.
-    std::array<gpu::Program, 3> gradientPrograms_, gradientRunPrograms_;
-    // [CurvatureMethod][level control (CURVATURE_LEVELS)], general and runs (distance 1, no no-data).
-    std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldRunPrograms_;
+    // Built on first use: per NormalMethod, general, runs and one-sample.
+    std::array<gpu::Program, 3> gradientPrograms_, gradientRunPrograms_, gradientSamplePrograms_;
+    // [CurvatureMethod][level control (CURVATURE_LEVELS)], general, runs and
+    // one-sample (the last two for distance 1 without no-data).
+    std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldRunPrograms_, fieldSamplePrograms_;
     // World heights, NaN = no data: sample (i, j) at float (j + 1) * pitch_ + i + 1.
     gpu::Buffer heights_;
     gpu::Texture heightsTexture_, heights4Texture_;  // R32F and RGBA32F buffer textures over it
