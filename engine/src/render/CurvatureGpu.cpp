@@ -59,6 +59,10 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
     // -1 ... +1) lies inside the buffer and starts a texel.
     c.pitch_ = (c.runs() * kRun + 2 + 3) / 4 * 4;
     const size_t floats = size_t(c.pitch_) * size_t(c.height_ + 2);
+    GLint maxSide = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSide);
+    SIERRA_CHECK(c.height_ <= maxSide, "GPU curvature: a ", c.width_, "x", c.height_,
+                 " grid has more rows than the driver's textures (", maxSide, ")");
     GLint maxTexels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     SIERRA_CHECK(floats <= size_t(maxTexels), "GPU curvature: a ", c.width_, "x", c.height_,
@@ -82,8 +86,6 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
     c.heights4Texture_ = bufferTexture(c.heights_, GL_RGBA32F);
     layeredTarget(c.runs(), c.height_, kRun, c.fieldTexture_, c.fieldFramebuffer_);
     layeredTarget(c.runs(), c.height_, kRun / 2, c.gradientTexture_, c.gradientFramebuffer_);
-    c.gradientCopy_ = gpu::Buffer::create({.size = size_t(c.runs()) * size_t(c.height_) * (kRun / 2) * 4 * sizeof(float)});
-    c.gradientCopyTexture_ = bufferTexture(c.gradientCopy_, GL_RGBA32F);
     c.vertexArray_ = gpu::VertexArray::create();
     return c;
 }
@@ -166,11 +168,18 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         }
         draw(pass, kRun / 2, true);
         if (normalBased) {
-            // A copy the field pass reads as a buffer texture (see curvature.frag).
+            // A copy the field pass reads as a buffer texture (see curvature.frag), made on first use.
+            if (!gradientCopy_) {
+                const size_t texels = size_t(runs()) * size_t(height_) * (kRun / 2);
+                gradientCopy_ = gpu::Buffer::create({.size = texels * 4 * sizeof(float)});
+                gradientCopyTexture_ = bufferTexture(gradientCopy_, GL_RGBA32F);
+            }
+            GLint packBuffer = 0;  // not part of GlState
+            glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
             glBindBuffer(GL_PIXEL_PACK_BUFFER, gradientCopy_.id());
             glPixelStorei(GL_PACK_ALIGNMENT, 4);
             glGetTextureImage(gradientTexture_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gradientCopy_.size()), nullptr);
-            glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+            glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         }
     }
@@ -206,9 +215,12 @@ analysis::CurvatureField CurvatureGpu::read() const {
     const size_t cols = size_t(runs()), rows = size_t(height_);
     std::vector<float> layers(cols * rows * kRun * 4);
     gpu::GlStateScope scope;
+    GLint packBuffer = 0;  // not part of GlState
+    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     glGetTextureImage(fieldTexture_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(layers.size() * sizeof(float)), layers.data());
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
     // Texel (i / kRun, j) of layer i % kRun to sample (i, j).
     for (size_t j = 0; j < rows; ++j) {
         for (size_t i = 0; i < size_t(width_); ++i) {
