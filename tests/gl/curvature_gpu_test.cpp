@@ -129,9 +129,10 @@ TEST_F(CurvatureGpuTest, NonSquareGridMatchesCpu) {
 
 // Fields without no-data are computed in runs of CurvatureGpu::kRun (8)
 // samples of a row, the interior runs apart from the border's: widths of
-// several residues modulo 8, the last run full, partly full or of one sample.
+// several residues modulo 8, the last run full, partly full or of one sample,
+// and grids of one and two runs a row.
 TEST_F(CurvatureGpuTest, RunsMatchCpuForWidthsAroundWholeRuns) {
-    for (int width : {17, 22, 24, 25, 31}) {
+    for (int width : {7, 9, 17, 22, 24, 25, 31}) {
         terrain::Heightfield f(width, 7);
         for (int j = 0; j < f.height(); ++j)
             for (int i = 0; i < f.width(); ++i)
