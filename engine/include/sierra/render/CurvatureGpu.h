@@ -27,7 +27,8 @@ class CurvatureGpu {
 public:
     // Uploads the heightfield's world heights (stored height * vertical
     // scale; NaN for no-data samples); the programs are built on first use. Throws
-    // sierra::Error for an empty heightfield.
+    // sierra::Error for an empty heightfield or one larger than the driver's
+    // buffer textures or textures hold.
     static CurvatureGpu create(const terrain::Heightfield& field);
 
     // Computes the field into texture(); throws sierra::Error for bad options
