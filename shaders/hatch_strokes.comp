@@ -8,9 +8,9 @@
 // right angle on that plane. No data: opacity 0.
 layout(local_size_x = 16, local_size_y = 16) in;
 
-// Buffer textures (render::CurvatureGpu), texel j * width + i.
-layout(binding = 0) uniform samplerBuffer uCurvature;  // RGBA32F: the 4 directions
-layout(binding = 1) uniform samplerBuffer uGradient;   // RG32F: dy/dx, dy/dz
+// render::CurvatureGpu's 2D array textures: sample (i, j) at texel (i / 8, j).
+layout(binding = 0) uniform sampler2DArray uCurvature;  // the 4 directions, layer i % 8
+layout(binding = 1) uniform sampler2DArray uGradient;   // dy/dx, dy/dz: layer (i % 8) / 2, .xy even i, .zw odd
 layout(rgba32f, binding = 0) uniform writeonly image2D uStrokesOut;  // xyz: direction, w: opacity
 uniform ivec2 uSize;
 uniform vec2 uSpacing;
@@ -23,8 +23,9 @@ bool finite(float v) { return (floatBitsToUint(v) & 0x7f800000u) != 0x7f800000u;
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(ij, uSize))) return;
-    vec4 k = texelFetch(uCurvature, ij.y * uSize.x + ij.x);
-    vec2 grad = texelFetch(uGradient, ij.y * uSize.x + ij.x).rg;
+    vec4 k = texelFetch(uCurvature, ivec3(ij.x / 8, ij.y, ij.x % 8), 0);
+    vec4 g2 = texelFetch(uGradient, ivec3(ij.x / 8, ij.y, (ij.x % 8) / 2), 0);
+    vec2 grad = (ij.x & 1) == 0 ? g2.xy : g2.zw;
     float sx = 0.0, sz = 0.0, largest = 0.0, bestAngle = 0.0;
     for (int d = 0; d < 4; ++d) {
         float w = abs(k[d]);

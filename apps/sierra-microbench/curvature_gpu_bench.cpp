@@ -1,4 +1,4 @@
-// The GPU curvature field (render::CurvatureGpu, shaders/curvature.comp)
+// The GPU curvature field (render::CurvatureGpu, shaders/curvature.frag)
 // beside the CPU reference on the same grid, in one run: compute alone
 // (finished with glFinish) and compute plus the read-back the line tracer
 // needs. Args: size, method (CurvatureMethod order). Run beside

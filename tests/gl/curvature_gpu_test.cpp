@@ -1,4 +1,4 @@
-// The GPU curvature field (shaders/curvature.comp) against the CPU reference
+// The GPU curvature field (shaders/curvature.frag) against the CPU reference
 // (analysis::computeCurvature): every method, normal scheme and option, on a
 // fractal and on analytic surfaces, with no-data samples and the border rule.
 
@@ -127,11 +127,12 @@ TEST_F(CurvatureGpuTest, NonSquareGridMatchesCpu) {
     checkAllMethods(f, "non-square waves");
 }
 
-// Fields without no-data are computed in runs of samples that cross row ends,
-// reading texels whose alignment depends on the width modulo 4: every residue,
-// with the border rows and columns each run touches.
-TEST_F(CurvatureGpuTest, RunsMatchCpuForEveryWidthModulo4) {
-    for (int width : {8, 10, 11, 12}) {
+// Fields without no-data are computed in runs of CurvatureGpu::kRun (8)
+// samples of a row, the interior runs apart from the border's: widths of
+// several residues modulo 8, the last run full, partly full or of one sample,
+// and grids of one and two runs a row.
+TEST_F(CurvatureGpuTest, RunsMatchCpuForWidthsAroundWholeRuns) {
+    for (int width : {7, 9, 17, 22, 24, 25, 31}) {
         terrain::Heightfield f(width, 7);
         for (int j = 0; j < f.height(); ++j)
             for (int i = 0; i < f.width(); ++i)
@@ -140,32 +141,35 @@ TEST_F(CurvatureGpuTest, RunsMatchCpuForEveryWidthModulo4) {
     }
 }
 
-// The tangent planes the hatch strokes read (gradient(): RG32F, texel
-// j * width + i) are the CPU's normals as (dy/dx, dy/dz), from the runs and the
-// border pass alike, for a width of each residue modulo 4.
+// The tangent planes the hatch strokes read (gradient(): sample (i, j) at
+// texel (i / kRun, j), layer (i % kRun) / 2, .xy or .zw) are the CPU's normals
+// as (dy/dx, dy/dz), from the runs and the border pass alike, for widths
+// around whole runs.
 TEST_F(CurvatureGpuTest, GradientTextureMatchesCpuNormals) {
-    for (int width : {9, 10, 11, 12}) {
-        terrain::Heightfield f = fractal(17, 3);
+    for (int width : {9, 10, 16, 17, 23, 24, 25}) {
+        terrain::Heightfield f = fractal(33, 3);
         terrain::Heightfield g(width, 13);
         for (int j = 0; j < g.height(); ++j)
             for (int i = 0; i < g.width(); ++i) g.at(i, j) = f.at(i, j) * 3.0f;
         g.setSpacing(1.5f, 1.0f);
         render::CurvatureGpu gpu = render::CurvatureGpu::create(g);
+        const int run = render::CurvatureGpu::kRun, runs = gpu.runs();
         for (NormalMethod n : {NormalMethod::Edge, NormalMethod::Triangle, NormalMethod::Quad}) {
             gpu.compute({.method = CurvatureMethod::ThreeVertex, .normals = n}, /*tangentPlanes=*/true);
-            GLint buffer = 0, offset = 0;
-            glGetTextureLevelParameteriv(gpu.gradient().id(), 0, GL_TEXTURE_BUFFER_DATA_STORE_BINDING, &buffer);
-            glGetTextureLevelParameteriv(gpu.gradient().id(), 0, GL_TEXTURE_BUFFER_OFFSET, &offset);
-            std::vector<float> grad(size_t(g.sampleCount()) * 2);
-            glGetNamedBufferSubData(GLuint(buffer), offset, GLsizeiptr(grad.size() * sizeof(float)), grad.data());
+            std::vector<float> layers(size_t(runs) * 13 * size_t(run / 2) * 4);
+            glGetTextureImage(gpu.gradient().id(), 0, GL_RGBA, GL_FLOAT, GLsizei(layers.size() * sizeof(float)),
+                              layers.data());
+            auto grad = [&](int i, int j, int c) {
+                return layers[((size_t(i % run / 2) * 13 + size_t(j)) * size_t(runs) + size_t(i / run)) * 4 +
+                              size_t(i % 2) * 2 + size_t(c)];
+            };
             analysis::NormalField cpu = analysis::computeNormals(g, n);
             int bad = 0;
             for (int j = 0; j < g.height(); ++j) {
                 for (int i = 0; i < g.width(); ++i) {
                     const analysis::Vec3& v = cpu.at(i, j);
                     const float ex = -v.x / v.y, ez = -v.z / v.y;
-                    const float gx = grad[(size_t(j) * size_t(width) + size_t(i)) * 2];
-                    const float gz = grad[(size_t(j) * size_t(width) + size_t(i)) * 2 + 1];
+                    const float gx = grad(i, j, 0), gz = grad(i, j, 1);
                     auto near = [](float a, float b) { return std::fabs(a - b) <= std::max(1e-5f, 1e-4f * std::fabs(b)); };
                     if ((!near(gx, ex) || !near(gz, ez)) && ++bad <= 3)
                         ADD_FAILURE() << width << "x13 " << analysis::normalMethodName(n) << " (" << i << ", " << j

@@ -1,15 +1,14 @@
 #pragma once
-// The curvature field on the GPU (shaders/curvature.comp): the same field as
-// analysis::computeCurvature, computed by compute dispatches (vertex
-// gradients from the chosen normals, then the four directions; on a field
-// without no-data and without reinforcement each in runs of samples and then
-// on the border, see curvature.comp) into storage buffers of one value per
-// sample, which the hatch pass reads through buffer textures (on llvmpipe
-// both are far cheaper than 2D textures and image stores). It
-// agrees with the CPU reference within 1e-4 relative or 1e-6 absolute
-// (tests/gl/curvature_gpu_test.cpp).
+// The curvature field on the GPU (shaders/curvature.frag): the same field as
+// analysis::computeCurvature, drawn as full-screen fragment passes (vertex
+// gradients from the chosen normals, then the four directions), each
+// fragment a run of kRun samples of a row written to kRun colour
+// attachments: on llvmpipe a fragment's colour outputs are stored as
+// vectors, far cheaper than a compute shader's storage-buffer stores
+// (docs/curvature.md, "GPU against CPU"). It agrees with the CPU reference
+// within 1e-4 relative or 1e-6 absolute (tests/gl/curvature_gpu_test.cpp).
 //
-// Texture units and image units are those of the dispatch only; compute()
+// Texture units and framebuffers are those of the passes only; compute()
 // leaves the GL state as it found it.
 
 #include <sierra/analysis/Curvature.h>
@@ -28,7 +27,8 @@ class CurvatureGpu {
 public:
     // Uploads the heightfield's world heights (stored height * vertical
     // scale; NaN for no-data samples); the programs are built on first use. Throws
-    // sierra::Error for an empty heightfield.
+    // sierra::Error for an empty heightfield or one larger than the driver's
+    // buffer textures or textures hold.
     static CurvatureGpu create(const terrain::Heightfield& field);
 
     // Computes the field into texture(); throws sierra::Error for bad options
@@ -38,14 +38,21 @@ public:
     // normal methods fill it anyway.
     void compute(const analysis::CurvatureOptions& options, bool tangentPlanes = true);
 
-    // A buffer texture (GL_TEXTURE_BUFFER, RGBA32F): the 4 directions of
-    // Curvature.h per sample, texel j * width + i (a samplerBuffer in shaders).
+    // Samples per run: the layers of texture() and twice those of gradient().
+    static constexpr int kRun = 8;
+
+    // A 2D array texture (RGBA32F, runs() x height x kRun layers): the 4
+    // directions of Curvature.h of sample (i, j) at texel (i / kRun, j),
+    // layer i % kRun (a sampler2DArray in shaders, texelFetch only).
     const gpu::Texture& texture() const { return fieldTexture_; }
-    // A buffer texture (RG32F), texel j * width + i: the surface gradient
-    // (dy/dx, dy/dz) per sample from the options' normals (NaN = no data),
-    // the tangent planes of the hatch strokes. Filled by compute() unless
-    // told otherwise (see there).
+    // A 2D array texture (RGBA32F, runs() x height x kRun / 2 layers): the
+    // surface gradient (dy/dx, dy/dz) of sample (i, j) from the options'
+    // normals (NaN = no data), the tangent planes of the hatch strokes, at
+    // texel (i / kRun, j), layer (i % kRun) / 2, in .xy for even i and .zw for
+    // odd i. Filled by compute() unless told otherwise (see there).
     const gpu::Texture& gradient() const { return gradientTexture_; }
+    // Runs per row: width rounded up to whole runs, divided by kRun.
+    int runs() const { return (width_ + kRun - 1) / kRun; }
     // Reads the last compute() back (synchronously) in the CPU's layout.
     analysis::CurvatureField read() const;
 
@@ -54,28 +61,36 @@ public:
     int height() const { return height_; }
 
 private:
-    // The #defines every program of this grid shares (buffer layout, runs' texel offsets).
-    std::string layoutDefines(bool gradients) const;
-    void dispatchRuns(gpu::Program& program);
-    void dispatchBorder(gpu::Program& program);
+    // The programs of one pass (curvature.frag): general, and for a field
+    // without no-data at distance 1 the runs and the one-sample border program.
+    struct Pass {
+        gpu::Program* general = nullptr;
+        gpu::Program* runs = nullptr;
+        gpu::Program* oneSample = nullptr;
+    };
+    // Draws a pass into the bound framebuffer of `layers` attachments;
+    // `gradient`: two samples per attachment (.xy, .zw).
+    void draw(const Pass& pass, int layers, bool gradient);
 
     int width_ = 0, height_ = 0;
     float spacingX_ = 1.0f, spacingZ_ = 1.0f;
-    bool noData_ = false;     // some sample has no data: the per-sample programs only
-    int heightsLead_ = 0;     // floats before sample 0 in heights_
-    int gradientLead_ = 0;    // gradients before sample 0 in gradient_
-    // Built on first use: per NormalMethod, per sample (whole grid or, with
-    // CURVATURE_BORDER, its border) and in runs.
-    std::array<gpu::Program, 3> gradientPrograms_, gradientBorderPrograms_, gradientRunPrograms_;
-    // [CurvatureMethod][distance 1 (CURVATURE_NEAR)][level control (CURVATURE_LEVELS)], built on first use.
-    std::array<std::array<std::array<gpu::Program, 2>, 2>, 4> fieldPrograms_;
-    // [CurvatureMethod][level control]: runs, and the border after them (distance 1, no no-data).
-    std::array<std::array<gpu::Program, 2>, 4> fieldRunPrograms_, fieldBorderPrograms_;
-    gpu::Buffer heights_;   // world heights, float32 row-major after heightsLead_ floats, NaN = no data
-    gpu::Buffer gradient_;  // 2 floats per sample, row-major after gradientLead_ gradients
-    gpu::Buffer field_;     // 4 floats per sample, row-major, rounded up to whole runs
-    gpu::Texture heightsTexture_, gradientTexture_, fieldTexture_;  // buffer textures over them
-    gpu::Texture heights4Texture_, gradient4Texture_;  // RGBA32F views for the runs (from offset 0)
+    bool noData_ = false;  // some sample has no data: the general programs only
+    int pitch_ = 0;        // floats per row of heights_ (a multiple of 4)
+    // Built on first use: per NormalMethod, general, runs and one-sample.
+    std::array<gpu::Program, 3> gradientPrograms_, gradientRunPrograms_, gradientSamplePrograms_;
+    // [CurvatureMethod][level control (CURVATURE_LEVELS)], general, runs and
+    // one-sample (the last two for distance 1 without no-data).
+    std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldRunPrograms_, fieldSamplePrograms_;
+    // World heights, NaN = no data: sample (i, j) at float (j + 1) * pitch_ + i + 1.
+    gpu::Buffer heights_;
+    gpu::Texture heightsTexture_, heights4Texture_;  // R32F and RGBA32F buffer textures over it
+    gpu::Texture fieldTexture_, gradientTexture_;
+    // gradientTexture_'s layers copied for the field pass (a buffer texture
+    // over it, RGBA32F), layer-major: see curvature.frag.
+    gpu::Buffer gradientCopy_;
+    gpu::Texture gradientCopyTexture_;
+    gpu::Framebuffer fieldFramebuffer_, gradientFramebuffer_;  // their layers as colour attachments
+    gpu::VertexArray vertexArray_;  // empty: the full-screen triangle
 };
 
 }  // namespace sierra::render

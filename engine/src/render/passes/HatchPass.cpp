@@ -26,6 +26,7 @@ std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu>
     pass->curvature_ = std::move(curvature);
     pass->desc_ = desc;
     // The view-independent stroke field, once: direction and opacity per sample.
+    static_assert(CurvatureGpu::kRun == 8, "hatch_strokes.comp reads the curvature layout of runs of 8");
     const CurvatureGpu& c = *pass->curvature_;
     gpu::Program strokes = gpu::Program::create({.compute = "hatch_strokes.comp"});
     pass->strokes_ = gpu::Texture::create(
