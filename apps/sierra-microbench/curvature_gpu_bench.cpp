@@ -28,10 +28,12 @@ GpuSetup& setup(int size) {
     if (!s || s->field.width() != size) {
         s.reset();
         s = std::make_unique<GpuSetup>();
-        s->field = sierra::terrain::generateDiamondSquare({.size = size, .seed = 1, .roughness = 1.0f});
+        s->field =
+            sierra::terrain::generateDiamondSquare({.size = size, .seed = 1, .roughness = 1.0f});
         auto [lo, hi] = s->field.range();
         s->field.setVerticalScale(0.1f * float(size - 1) / std::max(1e-6f, hi - lo));
-        s->curvature = std::make_unique<sierra::render::CurvatureGpu>(sierra::render::CurvatureGpu::create(s->field));
+        s->curvature = std::make_unique<sierra::render::CurvatureGpu>(
+            sierra::render::CurvatureGpu::create(s->field));
     }
     return *s;
 }
@@ -53,8 +55,8 @@ void BM_CurvatureGpu(benchmark::State& state) {
         }
     }
     state.SetItemsProcessed(state.iterations() * s.field.sampleCount());
-    state.SetLabel(std::string(analysis::curvatureMethodName(o.method)) + (read ? " + read-back" : "") + " on " +
-                   s.context.renderer());
+    state.SetLabel(std::string(analysis::curvatureMethodName(o.method)) +
+                   (read ? " + read-back" : "") + " on " + s.context.renderer());
 }
 BENCHMARK(BM_CurvatureGpu)
     ->ArgsProduct({{2049}, {0, 1, 2, 3}, {0}})

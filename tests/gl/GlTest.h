@@ -27,19 +27,22 @@ inline void keepGlDriverLoaded() {
     dl_iterate_phdr(
         [](dl_phdr_info* info, size_t, void* out) {
             const std::string name = info->dlpi_name ? info->dlpi_name : "";
-            if (name.find("_dri.so") != std::string::npos || name.find("libgallium") != std::string::npos)
+            if (name.find("_dri.so") != std::string::npos ||
+                name.find("libgallium") != std::string::npos)
                 static_cast<std::vector<std::string>*>(out)->push_back(name);
             return 0;
         },
         &drivers);
     // The handles are kept on purpose: RTLD_NODELETE pins the already loaded driver.
-    for (const std::string& name : drivers) dlopen(name.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+    for (const std::string& name : drivers)
+        dlopen(name.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
 }
 
 class GlTest : public ::testing::Test {
-protected:
+  protected:
     void createContext(int width, int height) {
-        context_.emplace(gpu::EglContext::create({.width = width, .height = height, .debug = true}));
+        context_.emplace(
+            gpu::EglContext::create({.width = width, .height = height, .debug = true}));
         keepGlDriverLoaded();
     }
     void SetUp() override { createContext(640, 360); }
@@ -50,7 +53,7 @@ protected:
     }
     gpu::EglContext& context() { return *context_; }
 
-private:
+  private:
     std::optional<gpu::EglContext> context_;
 };
 

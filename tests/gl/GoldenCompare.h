@@ -48,16 +48,17 @@ constexpr double kGoldenMaxBias = 1.5;
 
 struct GoldenComparison {
     bool matches = false;
-    double psnr = 0.0;            // dB over RGB; infinity for identical images
-    double differingShare = 0.0;  // share of pixels off by more than kGoldenThreshold
-    double bias[3] = {0, 0, 0};   // mean signed difference (image - golden) per channel
-    std::string why;              // the limits that failed, "" on a match
+    double psnr = 0.0;                 // dB over RGB; infinity for identical images
+    double differingShare = 0.0;       // share of pixels off by more than kGoldenThreshold
+    double bias[3] = {0, 0, 0};        // mean signed difference (image - golden) per channel
+    std::string why;                   // the limits that failed, "" on a match
     int threshold = kGoldenThreshold;  // levels beyond which a pixel counts as off
 
     std::string summary() const {
         std::ostringstream out;
         out.precision(4);
-        out << "PSNR " << psnr << " dB, " << 100.0 * differingShare << "% pixels off by more than " << threshold;
+        out << "PSNR " << psnr << " dB, " << 100.0 * differingShare << "% pixels off by more than "
+            << threshold;
         if (threshold == kGoldenThreshold)
             out << ", bias (" << bias[0] << ", " << bias[1] << ", " << bias[2] << ")";
         if (!why.empty()) out << ": " << why;
@@ -67,8 +68,8 @@ struct GoldenComparison {
 
 // Both images non-empty, of one width and height.
 inline bool sameSize(const gpu::Image& image, const gpu::Image& golden) {
-    return image.width == golden.width && image.height == golden.height && image.rgba.size() == golden.rgba.size() &&
-           !image.rgba.empty();
+    return image.width == golden.width && image.height == golden.height &&
+           image.rgba.size() == golden.rgba.size() && !image.rgba.empty();
 }
 
 inline GoldenComparison compareWithGolden(const gpu::Image& image, const gpu::Image& golden) {
@@ -103,7 +104,8 @@ inline GoldenComparison compareWithGolden(const gpu::Image& image, const gpu::Im
     if (c.psnr < kGoldenMinPsnr) why << "PSNR below " << kGoldenMinPsnr << " dB; ";
     if (c.differingShare > kGoldenMaxDiffering)
         why << "more than " << 100.0 * kGoldenMaxDiffering << "% of pixels off; ";
-    if (worstBias > kGoldenMaxBias) why << "a channel is shifted by more than " << kGoldenMaxBias << " levels; ";
+    if (worstBias > kGoldenMaxBias)
+        why << "a channel is shifted by more than " << kGoldenMaxBias << " levels; ";
     c.why = why.str();
     c.matches = c.why.empty();
     return c;
@@ -152,12 +154,13 @@ inline GoldenComparison compareLinesWithGolden(const gpu::Image& image, const gp
             differing += d > kLineThreshold;
         }
     const double mse = squared / (double(w) * h);
-    c.psnr = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
+    c.psnr = mse == 0.0 ? std::numeric_limits<double>::infinity()
+                        : 10.0 * std::log10(255.0 * 255.0 / mse);
     c.differingShare = double(differing) / (double(w) * h);
     if (c.differingShare > kLineMaxDiffering) {
         std::ostringstream why;
-        why << "more than " << 100.0 * kLineMaxDiffering << "% of pixels off by more than " << kLineThreshold
-            << " levels, one pixel of shift allowed";
+        why << "more than " << 100.0 * kLineMaxDiffering << "% of pixels off by more than "
+            << kLineThreshold << " levels, one pixel of shift allowed";
         c.why = why.str();
     }
     c.matches = c.why.empty();
@@ -192,7 +195,9 @@ inline std::string goldenPath(const std::string& name) {
     return updatingGoldens() || std::filesystem::exists(own) ? own : base + name;
 }
 
-inline std::string testOutputPath(const std::string& name) { return std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name; }
+inline std::string testOutputPath(const std::string& name) {
+    return std::string(SIERRA_TEST_OUTPUT_DIR) + "/" + name;
+}
 
 // Writes the frame to the test output folder, then either rewrites its golden
 // (SIERRA_UPDATE_GOLDEN=1: the test is skipped and nullopt returned) or
@@ -217,9 +222,10 @@ inline void expectMatchesGolden(const gpu::Image& image, const std::string& name
                                 GoldenKind kind = GoldenKind::Shaded) {
     const std::optional<gpu::Image> golden = goldenFor(image, name);
     if (!golden) return;
-    const GoldenComparison c =
-        kind == GoldenKind::Lines ? compareLinesWithGolden(image, *golden) : compareWithGolden(image, *golden);
-    std::printf("%s against golden %s: %s\n", name.c_str(), goldenPath(name).c_str(), c.summary().c_str());
+    const GoldenComparison c = kind == GoldenKind::Lines ? compareLinesWithGolden(image, *golden)
+                                                         : compareWithGolden(image, *golden);
+    std::printf("%s against golden %s: %s\n", name.c_str(), goldenPath(name).c_str(),
+                c.summary().c_str());
     EXPECT_TRUE(c.matches) << c.summary() << " (frame written to " << testOutputPath(name) << ")";
 }
 

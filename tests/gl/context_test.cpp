@@ -20,8 +20,8 @@ namespace {
 class GlContext : public test::GlTest {};
 
 TEST_F(GlContext, ComesUpWith45CoreAndLogsRenderer) {
-    std::printf("renderer: %s | %s | %s\n", context().renderer().c_str(), context().version().c_str(),
-                context().platform().c_str());
+    std::printf("renderer: %s | %s | %s\n", context().renderer().c_str(),
+                context().version().c_str(), context().platform().c_str());
     EXPECT_FALSE(context().renderer().empty());
     GLint major = 0, minor = 0, profile = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
@@ -59,9 +59,9 @@ TEST_F(GlContext, ReadBackIsInImageOrder) {
     glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
     gpu::Image image = gpu::readFramebuffer(640, 360);
-    EXPECT_EQ(image.rgba[2], 255);                       // top-left blue
+    EXPECT_EQ(image.rgba[2], 255);  // top-left blue
     EXPECT_EQ(image.rgba[0], 0);
-    EXPECT_EQ(image.rgba[(359u * 640u) * 4 + 0], 255);   // bottom-left red
+    EXPECT_EQ(image.rgba[(359u * 640u) * 4 + 0], 255);  // bottom-left red
 }
 
 TEST_F(GlContext, PixelReaderReturnsEachFrameOnceInOrder) {
@@ -110,10 +110,14 @@ TEST_F(GlContext, EveryShaderFileCompilesAndLinks) {
     for (const gpu::EmbeddedShader& s : gpu::embeddedShaders()) {
         std::string name(s.name);
         gpu::ProgramDesc desc;
-        if (name.ends_with(".vert")) desc.vertex = s.name;
-        else if (name.ends_with(".frag")) desc.fragment = s.name;
-        else if (name.ends_with(".comp")) desc.compute = s.name;
-        else continue;
+        if (name.ends_with(".vert"))
+            desc.vertex = s.name;
+        else if (name.ends_with(".frag"))
+            desc.fragment = s.name;
+        else if (name.ends_with(".comp"))
+            desc.compute = s.name;
+        else
+            continue;
         if (s.source.find("#include \"surface.glsl\"") == std::string_view::npos) {
             EXPECT_NO_THROW(gpu::Program::create(desc)) << name;
         } else {
@@ -128,8 +132,10 @@ TEST_F(GlContext, EveryShaderFileCompilesAndLinks) {
     EXPECT_GE(stages, 4);
     // The programs Sierra draws with.
     gpu::IncludeAlias hypsometric{"surface.glsl", "surface_hypsometric.glsl"};
-    EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "terrain.frag",
-                                          .aliases = std::span<const gpu::IncludeAlias>(&hypsometric, 1)}));
+    EXPECT_NO_THROW(
+        gpu::Program::create({.vertex = "terrain.vert",
+                              .fragment = "terrain.frag",
+                              .aliases = std::span<const gpu::IncludeAlias>(&hypsometric, 1)}));
     EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "depth.frag"}));
     EXPECT_NO_THROW(gpu::Program::create({.vertex = "terrain.vert", .fragment = "wire.frag"}));
     EXPECT_NO_THROW(gpu::Program::create({.vertex = "solid.vert", .fragment = "solid.frag"}));

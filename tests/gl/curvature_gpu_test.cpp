@@ -25,7 +25,9 @@ namespace {
 
 class CurvatureGpuTest : public test::GlTest {};
 
-float withinTolerance(float value) { return std::max(1e-6f, 1e-4f * std::fabs(value)); }
+float withinTolerance(float value) {
+    return std::max(1e-6f, 1e-4f * std::fabs(value));
+}
 
 float levelled(float magnitude, const analysis::Levels& l) {
     float t = std::clamp((magnitude - l.black) / (l.white - l.black), 0.0f, 1.0f);
@@ -39,8 +41,9 @@ float levelled(float magnitude, const analysis::Levels& l) {
 // moves by one float step, as a driver's fused multiply-add does), so a
 // levelled GPU value must be the level of a value within the tolerance of the
 // raw CPU value, with the sign of the CPU's.
-int compareFields(const analysis::CurvatureField& gpu, const analysis::CurvatureField& cpu, const std::string& what,
-                  const analysis::CurvatureField* raw = nullptr, const analysis::Levels& levels = {}) {
+int compareFields(const analysis::CurvatureField& gpu, const analysis::CurvatureField& cpu,
+                  const std::string& what, const analysis::CurvatureField* raw = nullptr,
+                  const analysis::Levels& levels = {}) {
     EXPECT_EQ(gpu.width, cpu.width);
     EXPECT_EQ(gpu.height, cpu.height);
     int bad = 0;
@@ -50,15 +53,17 @@ int compareFields(const analysis::CurvatureField& gpu, const analysis::Curvature
                                 : !std::isnan(g) && std::fabs(g - c) <= withinTolerance(c);
         if (!ok && raw && !std::isnan(c) && !std::isnan(g)) {
             float r = std::fabs(raw->values[k]);
-            float lo = levelled(r - withinTolerance(r), levels), hi = levelled(r + withinTolerance(r), levels);
+            float lo = levelled(r - withinTolerance(r), levels),
+                  hi = levelled(r + withinTolerance(r), levels);
             float m = std::fabs(g);
             ok = m >= lo - withinTolerance(lo) && m <= hi + withinTolerance(hi) &&
                  (g == 0.0f || c == 0.0f || (g < 0.0f) == (c < 0.0f));
         }
         if (!ok && ++bad <= 3) {
             size_t s = k / 4;
-            ADD_FAILURE() << what << ": sample (" << s % size_t(cpu.width) << ", " << s / size_t(cpu.width)
-                          << ") direction " << k % 4 << ": GPU " << g << ", CPU " << c;
+            ADD_FAILURE() << what << ": sample (" << s % size_t(cpu.width) << ", "
+                          << s / size_t(cpu.width) << ") direction " << k % 4 << ": GPU " << g
+                          << ", CPU " << c;
         }
     }
     return bad;
@@ -77,26 +82,31 @@ std::vector<CurvatureOptions> allOptionSets() {
     for (NormalMethod n : {NormalMethod::Edge, NormalMethod::Triangle, NormalMethod::Quad}) {
         sets.push_back({.method = CurvatureMethod::TwoNormal, .normals = n});
         sets.push_back({.method = CurvatureMethod::ThreeNormal, .normals = n});
-        sets.push_back({.method = CurvatureMethod::ThreeNormal, .normals = n, .distance = 3, .scale = 2.0f});
+        sets.push_back(
+            {.method = CurvatureMethod::ThreeNormal, .normals = n, .distance = 3, .scale = 2.0f});
     }
     for (CurvatureMethod m : {CurvatureMethod::ThreeVertex, CurvatureMethod::EdgeAngle}) {
         sets.push_back({.method = m});
         sets.push_back({.method = m, .distance = 2, .scale = 0.5f});
     }
-    CurvatureOptions levels{.method = CurvatureMethod::ThreeVertex, .scale = 4.0f, .signedValues = true};
+    CurvatureOptions levels{
+        .method = CurvatureMethod::ThreeVertex, .scale = 4.0f, .signedValues = true};
     levels.levels = {.enabled = true, .black = 0.1f, .white = 0.9f, .gamma = 2.2f};
     sets.push_back(levels);
     sets.push_back({.method = CurvatureMethod::ThreeNormal, .signedValues = true});
     sets.push_back({.method = CurvatureMethod::EdgeAngle, .signedValues = true});
-    sets.push_back({.method = CurvatureMethod::ThreeVertex, .output = analysis::CurvatureOutput::SecondDerivative});
-    sets.push_back({.method = CurvatureMethod::TwoNormal, .output = analysis::CurvatureOutput::SecondDerivative});
+    sets.push_back({.method = CurvatureMethod::ThreeVertex,
+                    .output = analysis::CurvatureOutput::SecondDerivative});
+    sets.push_back({.method = CurvatureMethod::TwoNormal,
+                    .output = analysis::CurvatureOutput::SecondDerivative});
     return sets;
 }
 
 std::string describe(const CurvatureOptions& o) {
-    return std::string(analysis::curvatureMethodName(o.method)) + "/" + analysis::normalMethodName(o.normals) +
-           " d=" + std::to_string(o.distance) + " scale=" + std::to_string(o.scale) +
-           (o.signedValues ? " signed" : "") + (o.levels.enabled ? " levels" : "") +
+    return std::string(analysis::curvatureMethodName(o.method)) + "/" +
+           analysis::normalMethodName(o.normals) + " d=" + std::to_string(o.distance) +
+           " scale=" + std::to_string(o.scale) + (o.signedValues ? " signed" : "") +
+           (o.levels.enabled ? " levels" : "") +
            (o.output == analysis::CurvatureOutput::SecondDerivative ? " y''" : "");
 }
 
@@ -111,19 +121,22 @@ void checkAllMethods(const terrain::Heightfield& field, const std::string& surfa
             plain.levels.enabled = false;
             raw = analysis::computeCurvature(field, plain);
         }
-        EXPECT_EQ(compareFields(gpu.read(), cpu, surface + " " + describe(o), o.levels.enabled ? &raw : nullptr,
-                                o.levels),
+        EXPECT_EQ(compareFields(gpu.read(), cpu, surface + " " + describe(o),
+                                o.levels.enabled ? &raw : nullptr, o.levels),
                   0)
             << surface << " " << describe(o);
     }
 }
 
-TEST_F(CurvatureGpuTest, FractalMatchesCpuForEveryMethod) { checkAllMethods(fractal(65, 7), "fractal"); }
+TEST_F(CurvatureGpuTest, FractalMatchesCpuForEveryMethod) {
+    checkAllMethods(fractal(65, 7), "fractal");
+}
 
 TEST_F(CurvatureGpuTest, NonSquareGridMatchesCpu) {
     terrain::Heightfield f(37, 21);
     for (int j = 0; j < f.height(); ++j)
-        for (int i = 0; i < f.width(); ++i) f.at(i, j) = std::sin(0.3f * float(i)) * std::cos(0.2f * float(j)) * 3.0f;
+        for (int i = 0; i < f.width(); ++i)
+            f.at(i, j) = std::sin(0.3f * float(i)) * std::cos(0.2f * float(j)) * 3.0f;
     checkAllMethods(f, "non-square waves");
 }
 
@@ -136,7 +149,8 @@ TEST_F(CurvatureGpuTest, RunsMatchCpuForWidthsAroundWholeRuns) {
         terrain::Heightfield f(width, 7);
         for (int j = 0; j < f.height(); ++j)
             for (int i = 0; i < f.width(); ++i)
-                f.at(i, j) = std::sin(0.7f * float(i) + 0.2f * float(j)) * std::cos(0.5f * float(j)) * 2.0f;
+                f.at(i, j) =
+                    std::sin(0.7f * float(i) + 0.2f * float(j)) * std::cos(0.5f * float(j)) * 2.0f;
         checkAllMethods(f, "waves " + std::to_string(width) + "x7");
     }
 }
@@ -155,12 +169,15 @@ TEST_F(CurvatureGpuTest, GradientTextureMatchesCpuNormals) {
         render::CurvatureGpu gpu = render::CurvatureGpu::create(g);
         const int run = render::CurvatureGpu::kRun, runs = gpu.runs();
         for (NormalMethod n : {NormalMethod::Edge, NormalMethod::Triangle, NormalMethod::Quad}) {
-            gpu.compute({.method = CurvatureMethod::ThreeVertex, .normals = n}, /*tangentPlanes=*/true);
+            gpu.compute({.method = CurvatureMethod::ThreeVertex, .normals = n},
+                        /*tangentPlanes=*/true);
             std::vector<float> layers(size_t(runs) * 13 * size_t(run / 2) * 4);
-            glGetTextureImage(gpu.gradient().id(), 0, GL_RGBA, GL_FLOAT, GLsizei(layers.size() * sizeof(float)),
-                              layers.data());
+            glGetTextureImage(gpu.gradient().id(), 0, GL_RGBA, GL_FLOAT,
+                              GLsizei(layers.size() * sizeof(float)), layers.data());
             auto grad = [&](int i, int j, int c) {
-                return layers[((size_t(i % run / 2) * 13 + size_t(j)) * size_t(runs) + size_t(i / run)) * 4 +
+                return layers[((size_t(i % run / 2) * 13 + size_t(j)) * size_t(runs) +
+                               size_t(i / run)) *
+                                  4 +
                               size_t(i % 2) * 2 + size_t(c)];
             };
             analysis::NormalField cpu = analysis::computeNormals(g, n);
@@ -170,10 +187,13 @@ TEST_F(CurvatureGpuTest, GradientTextureMatchesCpuNormals) {
                     const analysis::Vec3& v = cpu.at(i, j);
                     const float ex = -v.x / v.y, ez = -v.z / v.y;
                     const float gx = grad(i, j, 0), gz = grad(i, j, 1);
-                    auto near = [](float a, float b) { return std::fabs(a - b) <= std::max(1e-5f, 1e-4f * std::fabs(b)); };
+                    auto near = [](float a, float b) {
+                        return std::fabs(a - b) <= std::max(1e-5f, 1e-4f * std::fabs(b));
+                    };
                     if ((!near(gx, ex) || !near(gz, ez)) && ++bad <= 3)
-                        ADD_FAILURE() << width << "x13 " << analysis::normalMethodName(n) << " (" << i << ", " << j
-                                      << "): GPU (" << gx << ", " << gz << "), CPU (" << ex << ", " << ez << ")";
+                        ADD_FAILURE() << width << "x13 " << analysis::normalMethodName(n) << " ("
+                                      << i << ", " << j << "): GPU (" << gx << ", " << gz
+                                      << "), CPU (" << ex << ", " << ez << ")";
                 }
             }
             EXPECT_EQ(bad, 0);
@@ -187,7 +207,8 @@ TEST_F(CurvatureGpuTest, AnalyticSurfacesMatchCpu) {
         for (int i = 0; i < 33; ++i) {
             float x = float(i - 16), z = float(j - 16);
             quadric.at(i, j) = (0.05f * x * x + 0.02f * z * z) / 2.0f + 0.01f * x * z;
-            cylinder.at(i, j) = std::sqrt(std::max(400.0f - z * z, 0.0f));  // axis along x, radius 20
+            cylinder.at(i, j) =
+                std::sqrt(std::max(400.0f - z * z, 0.0f));  // axis along x, radius 20
             bump.at(i, j) = 8.0f * std::exp(-(x * x + z * z) / (2.0f * 36.0f));
             plane.at(i, j) = 0.3f * x - 0.2f * z + 5.0f;
         }
@@ -240,7 +261,8 @@ TEST_F(CurvatureGpuTest, BadOptionsGiveTheCpuMessages) {
     };
     EXPECT_NE(message({.distance = 0}).find("distance must be an integer >= 1"), std::string::npos);
     EXPECT_NE(message({.scale = -1.0f}).find("scale must be finite and >= 0"), std::string::npos);
-    EXPECT_NE(message({.distance = 9}).find("too small for reinforcement distance 9"), std::string::npos);
+    EXPECT_NE(message({.distance = 9}).find("too small for reinforcement distance 9"),
+              std::string::npos);
 }
 
 }  // namespace

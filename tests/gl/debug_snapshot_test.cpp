@@ -29,14 +29,15 @@ constexpr int kWidth = 1280;  // the default frame size
 constexpr int kHeight = 720;
 
 class DebugSnapshot : public test::GlTest {
-protected:
+  protected:
     void SetUp() override {
         createContext(kWidth, kHeight);
         scene_.terrain.generateSize = 257;  // small: the snapshot, not the terrain, is tested
         field_ = scene::loadTerrain(scene_.terrain);
-        terrain_.emplace(
-            render::TerrainRenderer::create({.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
-        target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
+        terrain_.emplace(render::TerrainRenderer::create(
+            {.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
+        target_.emplace(
+            render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
         std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
     }
 
@@ -52,10 +53,17 @@ protected:
     }
 
     render::DebugPanel panel(int frameWidth, const render::DrawStats& stats, bool deterministic) {
-        render::SnapshotFacts facts{.scene = &scene_, .field = &field_, .glRenderer = "test renderer",
-                                    .glVersion = "4.5 test", .eglPlatform = "test platform",
-                                    .renderer = &*terrain_, .camera = camera_, .frameWidth = frameWidth,
-                                    .height = kHeight, .draw = draw_, .frames = {stats, stats},
+        render::SnapshotFacts facts{.scene = &scene_,
+                                    .field = &field_,
+                                    .glRenderer = "test renderer",
+                                    .glVersion = "4.5 test",
+                                    .eglPlatform = "test platform",
+                                    .renderer = &*terrain_,
+                                    .camera = camera_,
+                                    .frameWidth = frameWidth,
+                                    .height = kHeight,
+                                    .draw = draw_,
+                                    .frames = {stats, stats},
                                     .frameMs = {12.0f, 14.0f}};
         return render::buildDebugPanel(facts, deterministic);
     }
@@ -68,7 +76,9 @@ protected:
     render::DrawOptions draw_{.threads = 2};
 };
 
-const uint8_t* px(const gpu::Image& image, int x, int y) { return &image.rgba[(size_t(y) * image.width + x) * 4]; }
+const uint8_t* px(const gpu::Image& image, int x, int y) {
+    return &image.rgba[(size_t(y) * image.width + x) * 4];
+}
 
 bool samePixel(const gpu::Image& a, const gpu::Image& b, int x, int y) {
     const uint8_t *p = px(a, x, y), *q = px(b, x, y);
@@ -97,22 +107,26 @@ TEST_F(DebugSnapshot, PanelsBesideTheFrameLeaveTheTerrainUncovered) {
     // Not blank: many distinct colours.
     std::set<uint32_t> colours;
     for (size_t k = 0; k + 3 < shot.rgba.size(); k += 4 * 7)
-        colours.insert(uint32_t(shot.rgba[k]) << 16 | uint32_t(shot.rgba[k + 1]) << 8 | shot.rgba[k + 2]);
+        colours.insert(uint32_t(shot.rgba[k]) << 16 | uint32_t(shot.rgba[k + 1]) << 8 |
+                       shot.rgba[k + 2]);
     EXPECT_GT(colours.size(), 50u);
 
     // The frame beside the column is untouched, its centre shows terrain.
     int changedInFrame = 0;
     for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < frameWidth; ++x) changedInFrame += samePixel(shot, narrowed, x, y) ? 0 : 1;
+        for (int x = 0; x < frameWidth; ++x)
+            changedInFrame += samePixel(shot, narrowed, x, y) ? 0 : 1;
     EXPECT_EQ(changedInFrame, 0) << "the panel covers part of the frame";
     glm::vec3 sky = render::Lighting{}.sky * 255.0f;
     const uint8_t* centre = px(shot, frameWidth / 2, kHeight / 2);
-    EXPECT_GT(glm::length(glm::vec3(centre[0], centre[1], centre[2]) - sky), 30.0f) << "no terrain at the centre";
+    EXPECT_GT(glm::length(glm::vec3(centre[0], centre[1], centre[2]) - sky), 30.0f)
+        << "no terrain at the centre";
 
     // The column differs from the frame that would be beneath it.
     int differing = 0, total = 0;
     for (int y = 0; y < kHeight; ++y)
-        for (int x = frameWidth; x < kWidth; ++x, ++total) differing += samePixel(shot, full, x, y) ? 0 : 1;
+        for (int x = frameWidth; x < kWidth; ++x, ++total)
+            differing += samePixel(shot, full, x, y) ? 0 : 1;
     EXPECT_GT(differing, total * 9 / 10);
 }
 
@@ -138,11 +152,15 @@ TEST_F(DebugSnapshot, SnapshotCamerasKeepTheWholeTerrainInTheNarrowFrame) {
         target_->resolve();
         return gpu::readFramebuffer(kWidth, kHeight);
     };
-    const gpu::Image fitted = drawNarrow(render::snapshotCameras(scene_, terrain_->bounds(), frameWidth).at(0));
+    const gpu::Image fitted =
+        drawNarrow(render::snapshotCameras(scene_, terrain_->bounds(), frameWidth).at(0));
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/debug_narrow_frame.png", fitted);
-    EXPECT_EQ(terrainOnFrameBorder(fitted, frameWidth), 0) << "the terrain touches the snapshot frame's border";
+    EXPECT_EQ(terrainOnFrameBorder(fitted, frameWidth), 0)
+        << "the terrain touches the snapshot frame's border";
     const uint8_t* centre = px(fitted, frameWidth / 2, kHeight / 2);
-    EXPECT_GT(glm::length(glm::vec3(centre[0], centre[1], centre[2]) - render::Lighting{}.sky * 255.0f), 30.0f);
+    EXPECT_GT(
+        glm::length(glm::vec3(centre[0], centre[1], centre[2]) - render::Lighting{}.sky * 255.0f),
+        30.0f);
     // The full frame's camera, drawn narrower, cuts the terrain at the sides.
     const gpu::Image cut = drawNarrow(render::sceneCameras(scene_, terrain_->bounds()).at(0));
     EXPECT_GT(terrainOnFrameBorder(cut, frameWidth), 0);
@@ -152,7 +170,8 @@ TEST_F(DebugSnapshot, UiAloneMatchesGoldenWithPlaceholders) {
     const int column = render::debugColumnWidth(kWidth);
     render::DrawStats stats;
     frame(render::snapshotFrameWidth(kWidth, column), &stats);
-    stats.refineMs = 3.25, stats.uploadMs = 0.5, stats.drawMs = 7.0;  // placeholders must hide these
+    stats.refineMs = 3.25, stats.uploadMs = 0.5,
+    stats.drawMs = 7.0;  // placeholders must hide these
     render::DebugPanel p = panel(render::snapshotFrameWidth(kWidth, column), stats, true);
     p.columnWidth = column;
     render::DebugOverlay overlay;
@@ -183,7 +202,8 @@ TEST_F(DebugSnapshot, UiAloneMatchesGoldenWithPlaceholders) {
 TEST_F(DebugSnapshot, MeshInspectionMatchesTheFrame) {
     render::DrawStats stats;
     frame(kWidth, &stats);
-    render::MeshInspection m = render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, true, 2);
+    render::MeshInspection m =
+        render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, true, 2);
     EXPECT_EQ(uint64_t(m.triangles), stats.triangles);
     EXPECT_EQ(uint64_t(m.indices), stats.indices);
     int64_t sum = 0;
@@ -195,7 +215,8 @@ TEST_F(DebugSnapshot, MeshInspectionMatchesTheFrame) {
     EXPECT_GT(m.maxProjectedErrorPx, 0.0);
     EXPECT_LE(m.maxProjectedErrorPx, 1.0 + 1e-3);
     // A coarser tau leaves larger errors on screen.
-    render::MeshInspection coarse = render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 8.0f, true, 2);
+    render::MeshInspection coarse =
+        render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 8.0f, true, 2);
     EXPECT_LT(coarse.triangles, m.triangles);
     EXPECT_GT(coarse.maxProjectedErrorPx, m.maxProjectedErrorPx);
     EXPECT_LE(coarse.maxProjectedErrorPx, 8.0 + 1e-3);
@@ -209,8 +230,10 @@ TEST_F(DebugSnapshot, MeshPanelCountsCulledSubtrees) {
     camera_.position = b.min + glm::vec3(0.15f * size.x, size.y + 0.05f * size.x, 0.15f * size.z);
     camera_.target = b.min + glm::vec3(0.8f * size.x, 0.0f, 0.5f * size.z);
     render::fitClipPlanes(camera_, b);
-    render::MeshInspection culled = render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, true, 2);
-    render::MeshInspection all = render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, false, 2);
+    render::MeshInspection culled =
+        render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, true, 2);
+    render::MeshInspection all =
+        render::inspectMesh(terrain_->terrain(), camera_, kWidth, kHeight, 1.0f, false, 2);
     EXPECT_GT(culled.culledSubtrees, 0);
     EXPECT_LT(culled.triangles, all.triangles);
     EXPECT_EQ(all.culledSubtrees, 0);
@@ -225,7 +248,8 @@ TEST_F(DebugSnapshot, MeshPanelCountsCulledSubtrees) {
     };
     render::DrawStats stats;
     stats.triangles = uint64_t(culled.triangles);
-    EXPECT_EQ(meshRow(panel(kWidth, stats, true)), std::to_string(culled.culledSubtrees) + " (frustum)");
+    EXPECT_EQ(meshRow(panel(kWidth, stats, true)),
+              std::to_string(culled.culledSubtrees) + " (frustum)");
     draw_.cull = false;
     EXPECT_EQ(meshRow(panel(kWidth, stats, true)), "0 (culling off)");
 }

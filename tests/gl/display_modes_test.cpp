@@ -42,16 +42,19 @@ bool darkNear(const gpu::Image& image, int x, int y) {
 }
 
 class TinyScene : public test::GlTest {
-protected:
+  protected:
     void SetUp() override {
         createContext(kSize, kSize);
         // A 33 x 33 grid with one bump off centre: the SBT refines it unevenly.
         field_ = terrain::Heightfield(kSide, kSide);
         for (int j = 0; j < kSide; ++j)
             for (int i = 0; i < kSide; ++i)
-                field_.at(i, j) = 3.0f * std::exp(-((i - 10.0f) * (i - 10.0f) + (j - 12.0f) * (j - 12.0f)) / 18.0f);
+                field_.at(i, j) =
+                    3.0f *
+                    std::exp(-((i - 10.0f) * (i - 10.0f) + (j - 12.0f) * (j - 12.0f)) / 18.0f);
         terrain_.emplace(render::TerrainRenderer::create({.field = &field_}));
-        target_.emplace(render::FrameTarget::create({.width = kSize, .height = kSize, .samples = 0}));
+        target_.emplace(
+            render::FrameTarget::create({.width = kSize, .height = kSize, .samples = 0}));
         // Straight down, orthographic, the grid filling most of the frame.
         camera_.projection = render::Projection::Orthographic;
         camera_.position = {16.0f, 50.0f, 16.0f};
@@ -70,7 +73,8 @@ protected:
     glm::ivec2 pixel(double i, double j) const {
         glm::vec4 clip = camera_.viewProjection(1.0f) * glm::vec4(float(i), 0.0f, float(j), 1.0f);
         glm::vec2 ndc = glm::vec2(clip) / clip.w;
-        return {int(std::floor((ndc.x * 0.5f + 0.5f) * kSize)), int(std::floor((0.5f - ndc.y * 0.5f) * kSize))};
+        return {int(std::floor((ndc.x * 0.5f + 0.5f) * kSize)),
+                int(std::floor((0.5f - ndc.y * 0.5f) * kSize))};
     }
 
     terrain::Heightfield field_;
@@ -80,13 +84,13 @@ protected:
 };
 
 TEST_F(TinyScene, WireframeShowsExactlyTheEmittedEdges) {
-    const render::DrawOptions options{.tau = 2.0f, .geomorph = false, .wireframe = true, .polygons = false};
+    const render::DrawOptions options{
+        .tau = 2.0f, .geomorph = false, .wireframe = true, .polygons = false};
     gpu::Image image = draw(options);
     std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/tiny_wireframe.png", image);
-    render::MeshInspection mesh =
-        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0,
-                            options.geomorph);
+    render::MeshInspection mesh = render::inspectMesh(
+        terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0, options.geomorph);
     ASSERT_GT(mesh.triangles, 8);
     ASSERT_LT(mesh.triangles, 2 * 32 * 32) << "want a partly refined mesh";
 
@@ -94,7 +98,8 @@ TEST_F(TinyScene, WireframeShowsExactlyTheEmittedEdges) {
     std::set<std::pair<uint32_t, uint32_t>> edges;
     for (const auto& t : mesh.triangleList)
         for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[size_t(k)], t[size_t((k + 1) % 3)]));
-    std::printf("tiny scene: %lld triangles, %zu distinct edges\n", (long long)mesh.triangles, edges.size());
+    std::printf("tiny scene: %lld triangles, %zu distinct edges\n", (long long)mesh.triangles,
+                edges.size());
 
     // Every sample point halfway between neighbouring grid samples (the
     // midpoints of the finest edges, straight and diagonal) is on an emitted
@@ -112,7 +117,8 @@ TEST_F(TinyScene, WireframeShowsExactlyTheEmittedEdges) {
     int checkedOn = 0, checkedOff = 0, missing = 0, extra = 0;
     for (int j = 0; j < kSide; ++j)
         for (int i = 0; i < kSide; ++i) {
-            const std::pair<double, double> halves[] = {{i + 0.5, j}, {i, j + 0.5}, {i + 0.5, j + 0.5}};
+            const std::pair<double, double> halves[] = {
+                {i + 0.5, j}, {i, j + 0.5}, {i + 0.5, j + 0.5}};
             for (auto [x, z] : halves) {
                 if (x > kSide - 1 || z > kSide - 1) continue;
                 const bool want = onEdge(x, z);
@@ -133,12 +139,12 @@ TEST_F(TinyScene, WireframeShowsExactlyTheEmittedEdges) {
 }
 
 TEST_F(TinyScene, PointsShowExactlyTheMeshVertices) {
-    const render::DrawOptions options{.tau = 2.0f, .geomorph = false, .polygons = false, .points = true};
+    const render::DrawOptions options{
+        .tau = 2.0f, .geomorph = false, .polygons = false, .points = true};
     gpu::Image image = draw(options);
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/tiny_points.png", image);
-    render::MeshInspection mesh =
-        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0,
-                            options.geomorph);
+    render::MeshInspection mesh = render::inspectMesh(
+        terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0, options.geomorph);
     std::set<uint32_t> used;
     for (const auto& t : mesh.triangleList) used.insert(t.begin(), t.end());
     int missing = 0, extra = 0;
@@ -146,8 +152,10 @@ TEST_F(TinyScene, PointsShowExactlyTheMeshVertices) {
         for (int i = 0; i < kSide; ++i) {
             glm::ivec2 p = pixel(i, j);
             const bool lit = darkNear(image, p.x, p.y);
-            if (used.count(uint32_t(j * kSide + i))) missing += lit ? 0 : 1;
-            else extra += lit ? 1 : 0;
+            if (used.count(uint32_t(j * kSide + i)))
+                missing += lit ? 0 : 1;
+            else
+                extra += lit ? 1 : 0;
         }
     EXPECT_EQ(missing, 0);
     EXPECT_EQ(extra, 0);
@@ -160,9 +168,8 @@ TEST_F(TinyScene, ColourByLevelIsOneColourPerLevel) {
     const render::DrawOptions options{.tau = 2.0f, .geomorph = false, .colourBy = 1};
     gpu::Image image = draw(options);
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/tiny_level.png", image);
-    render::MeshInspection mesh =
-        render::inspectMesh(terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0,
-                            options.geomorph);
+    render::MeshInspection mesh = render::inspectMesh(
+        terrain_->terrain(), camera_, kSize, kSize, options.tau, options.cull, 0, options.geomorph);
     std::map<int, glm::ivec3> colourOfLevel;
     int mismatched = 0;
     for (const auto& t : mesh.triangleList) {
@@ -179,7 +186,8 @@ TEST_F(TinyScene, ColourByLevelIsOneColourPerLevel) {
     ASSERT_GE(colourOfLevel.size(), 3u);
     for (auto a = colourOfLevel.begin(); a != colourOfLevel.end(); ++a)
         for (auto b = std::next(a); b != colourOfLevel.end(); ++b)
-            EXPECT_GT(glm::length(glm::vec3(a->second - b->second)), 20.0f) << a->first << " vs " << b->first;
+            EXPECT_GT(glm::length(glm::vec3(a->second - b->second)), 20.0f)
+                << a->first << " vs " << b->first;
 }
 
 // Colour by error: the leaves' split-vertex errors are below tau, so no
@@ -199,21 +207,23 @@ TEST_F(TinyScene, ColourByErrorStaysBelowTau) {
 
 // Golden frames of the default scene in each display mode.
 class DisplayGolden : public test::GlTest {
-protected:
+  protected:
     static constexpr int kWidth = 640, kHeight = 360;
     void SetUp() override {
         createContext(kWidth, kHeight);
         field_ = render::loadTerrain({});
-        terrain_.emplace(
-            render::TerrainRenderer::create({.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
-        target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
+        terrain_.emplace(render::TerrainRenderer::create(
+            {.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
+        target_.emplace(
+            render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
     }
     // Wireframes go through the line comparison (test::compareLinesWithGolden);
     // points and the colour modes through the looser one of before: 25 dB, at
     // most 3% of the pixels off by more than 24 levels.
     void check(const render::DrawOptions& options, const std::string& name,
                test::GoldenKind kind = test::GoldenKind::Shaded) {
-        render::Camera camera = render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
+        render::Camera camera =
+            render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
         target_->begin(render::TerrainRenderer::clearColour({}));
         terrain_->draw(camera, kWidth, kHeight, options);
         gpu::Image image = target_->read();
@@ -231,14 +241,20 @@ protected:
     std::optional<render::FrameTarget> target_;
 };
 
-TEST_F(DisplayGolden, Points) { check({.polygons = false, .points = true}, "display_points.png"); }
+TEST_F(DisplayGolden, Points) {
+    check({.polygons = false, .points = true}, "display_points.png");
+}
 TEST_F(DisplayGolden, Wireframe) {
     check({.wireframe = true, .polygons = false}, "display_wireframe.png", test::GoldenKind::Lines);
 }
 TEST_F(DisplayGolden, PolygonsAndWireframe) {
     check({.wireframe = true}, "display_polygons_wireframe.png", test::GoldenKind::Lines);
 }
-TEST_F(DisplayGolden, ColourByLevel) { check({.colourBy = 1}, "display_colour_level.png"); }
-TEST_F(DisplayGolden, ColourByError) { check({.colourBy = 2}, "display_colour_error.png"); }
+TEST_F(DisplayGolden, ColourByLevel) {
+    check({.colourBy = 1}, "display_colour_level.png");
+}
+TEST_F(DisplayGolden, ColourByError) {
+    check({.colourBy = 2}, "display_colour_error.png");
+}
 
 }  // namespace

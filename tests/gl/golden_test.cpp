@@ -32,18 +32,22 @@ bool matchesGolden(const gpu::Image& image, const gpu::Image& golden) {
 }
 
 class Golden : public test::GlTest {
-protected:
+  protected:
     void SetUp() override {
         createContext(kWidth, kHeight);
         field_ = render::loadTerrain({});  // the default scene
-        terrain_.emplace(
-            render::TerrainRenderer::create({.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
-        target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
+        terrain_.emplace(render::TerrainRenderer::create(
+            {.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
+        target_.emplace(
+            render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
     }
 
-    gpu::Image renderFrame(render::Lod lod, float tau = 1.0f) { return renderFrame({.lod = lod, .tau = tau}); }
+    gpu::Image renderFrame(render::Lod lod, float tau = 1.0f) {
+        return renderFrame({.lod = lod, .tau = tau});
+    }
     gpu::Image renderFrame(const render::DrawOptions& options) {
-        render::Camera camera = render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
+        render::Camera camera =
+            render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
         target_->begin(render::TerrainRenderer::clearColour({}));
         stats_ = terrain_->draw(camera, kWidth, kHeight, options);
         return target_->read();
@@ -77,8 +81,10 @@ TEST_F(Golden, FullGridFrameMatchesReference) {
     // blank, and the margin is kept.
     glm::vec3 sky = render::Lighting{}.sky * 255.0f;
     EXPECT_LT(glm::length(meanColour(frame, 0, 10) - sky), 6.0f) << "top rows are not sky";
-    EXPECT_LT(glm::length(meanColour(frame, kHeight - 6, kHeight) - sky), 6.0f) << "bottom rows are not sky";
-    glm::vec3 centre = meanColour(frame, kHeight / 2 - 30, kHeight / 2 + 30, kWidth / 2 - 60, kWidth / 2 + 60);
+    EXPECT_LT(glm::length(meanColour(frame, kHeight - 6, kHeight) - sky), 6.0f)
+        << "bottom rows are not sky";
+    glm::vec3 centre =
+        meanColour(frame, kHeight / 2 - 30, kHeight / 2 + 30, kWidth / 2 - 60, kWidth / 2 + 60);
     EXPECT_GT(glm::length(centre - sky), 40.0f) << "the centre shows no terrain";
     checkAgainstGolden(frame, "default_full.png");
 }
@@ -89,11 +95,14 @@ TEST_F(Golden, SbtFrameMatchesReferenceAndFullGrid) {
     gpu::Image full = renderFrame(render::Lod::Full);
     uint64_t fullTriangles = stats_.triangles;
     render::ImageDifference d = render::compareImages(sbt, full, 8);
-    std::printf("SBT (tau 1 px, %llu triangles) against full grid (%llu): PSNR %.2f dB, %.4f%% pixels differ\n",
-                (unsigned long long)sbtTriangles, (unsigned long long)fullTriangles, d.psnr,
-                100.0 * d.differingShare);
+    std::printf(
+        "SBT (tau 1 px, %llu triangles) against full grid (%llu): PSNR %.2f dB, %.4f%% pixels "
+        "differ\n",
+        (unsigned long long)sbtTriangles, (unsigned long long)fullTriangles, d.psnr,
+        100.0 * d.differingShare);
     EXPECT_GE(d.psnr, 35.0);
-    EXPECT_LT(sbtTriangles * 10, fullTriangles) << "the SBT mesh should be far smaller than the grid";
+    EXPECT_LT(sbtTriangles * 10, fullTriangles)
+        << "the SBT mesh should be far smaller than the grid";
     checkAgainstGolden(sbt, "default_sbt.png");
 }
 
@@ -102,17 +111,20 @@ TEST_F(Golden, ComparisonRejectsBlackFlippedAndMiscolouredFrames) {
     ASSERT_TRUE(matchesGolden(frame, frame));
 
     gpu::Image black = frame;
-    for (size_t p = 0; p < black.rgba.size(); p += 4) black.rgba[p] = black.rgba[p + 1] = black.rgba[p + 2] = 0;
+    for (size_t p = 0; p < black.rgba.size(); p += 4)
+        black.rgba[p] = black.rgba[p + 1] = black.rgba[p + 2] = 0;
     EXPECT_FALSE(matchesGolden(black, frame));
 
     gpu::Image flipped = frame;
     size_t row = size_t(kWidth) * 4;
     for (int y = 0; y < kHeight; ++y)
-        std::copy_n(&frame.rgba[size_t(kHeight - 1 - y) * row], row, &flipped.rgba[size_t(y) * row]);
+        std::copy_n(&frame.rgba[size_t(kHeight - 1 - y) * row], row,
+                    &flipped.rgba[size_t(y) * row]);
     EXPECT_FALSE(matchesGolden(flipped, frame));
 
     gpu::Image swapped = frame;  // RGB -> BGR
-    for (size_t p = 0; p < swapped.rgba.size(); p += 4) std::swap(swapped.rgba[p], swapped.rgba[p + 2]);
+    for (size_t p = 0; p < swapped.rgba.size(); p += 4)
+        std::swap(swapped.rgba[p], swapped.rgba[p + 2]);
     EXPECT_FALSE(matchesGolden(swapped, frame));
 }
 
@@ -167,11 +179,13 @@ TEST_F(Golden, LineComparisonAllowsAPixelOfShiftButNotAnotherMesh) {
     gpu::Image shifted = lines;  // one pixel to the right
     for (int y = 0; y < kHeight; ++y)
         for (int x = kWidth - 1; x > 0; --x)
-            std::copy_n(&lines.rgba[(size_t(y) * kWidth + x - 1) * 4], 4, &shifted.rgba[(size_t(y) * kWidth + x) * 4]);
+            std::copy_n(&lines.rgba[(size_t(y) * kWidth + x - 1) * 4], 4,
+                        &shifted.rgba[(size_t(y) * kWidth + x) * 4]);
     const test::GoldenComparison moved = test::compareLinesWithGolden(shifted, lines);
     std::printf("wireframe one pixel to the right: %s\n", moved.summary().c_str());
     EXPECT_TRUE(moved.matches) << moved.summary();
-    EXPECT_FALSE(test::compareWithGolden(shifted, lines).matches) << "the shaded comparison should not pass it";
+    EXPECT_FALSE(test::compareWithGolden(shifted, lines).matches)
+        << "the shaded comparison should not pass it";
 
     const gpu::Image other = renderFrame({.tau = 1.3f, .wireframe = true, .polygons = false});
     const test::GoldenComparison mesh = test::compareLinesWithGolden(other, lines);
@@ -179,7 +193,8 @@ TEST_F(Golden, LineComparisonAllowsAPixelOfShiftButNotAnotherMesh) {
     EXPECT_FALSE(mesh.matches) << mesh.summary();
 
     gpu::Image black = lines;
-    for (size_t p = 0; p < black.rgba.size(); p += 4) black.rgba[p] = black.rgba[p + 1] = black.rgba[p + 2] = 0;
+    for (size_t p = 0; p < black.rgba.size(); p += 4)
+        black.rgba[p] = black.rgba[p + 1] = black.rgba[p + 2] = 0;
     EXPECT_FALSE(test::compareLinesWithGolden(black, lines).matches);
 }
 
@@ -198,7 +213,8 @@ TEST_F(Golden, DebugSnapshotDrawsAPanelOverTheFrame) {
     render::DebugPanel panel;
     panel.rows = {{"triangles", "12345"}, {"frame", "1.0 ms"}};
     panel.frameTimesMs = {1.0f, 2.0f, 1.5f};
-    render::Camera camera = render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
+    render::Camera camera =
+        render::defaultCamera(terrain_->bounds(), float(kWidth) / float(kHeight));
     target_->begin(render::TerrainRenderer::clearColour({}));
     terrain_->draw(camera, kWidth, kHeight, {});
     target_->resolve();
@@ -245,7 +261,8 @@ TEST_F(Padding, PaddedSamplesAreNotDrawn) {
     camera.nearPlane = 1.0f;
     camera.farPlane = 1000.0f;
     target.begin(render::TerrainRenderer::clearColour({}));
-    terrain.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full, .lighting = {.fogDensity = 0.0f}});
+    terrain.draw(camera, kWidth, kHeight,
+                 {.lod = render::Lod::Full, .lighting = {.fogDensity = 0.0f}});
     gpu::Image image = target.read();
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/padding.png", image);
     glm::vec3 sky = render::Lighting{}.sky * 255.0f;

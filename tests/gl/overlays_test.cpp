@@ -32,7 +32,7 @@ constexpr int kWidth = 320;
 constexpr int kHeight = 180;
 
 class Overlays : public test::GlTest {
-protected:
+  protected:
     void SetUp() override { createContext(kWidth, kHeight); }
 };
 
@@ -51,7 +51,8 @@ TEST_F(Overlays, EveryOverlayPassRestoresTheGlState) {
     auto renderer = render::TerrainRenderer::create({.field = &field});
     auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
     curvature->compute({.scale = 4.0f});
-    analysis::LineSet lines = analysis::traceLines(curvature->read(), {.threshold = 0.3f, .minVertices = 3});
+    analysis::LineSet lines =
+        analysis::traceLines(curvature->read(), {.threshold = 0.3f, .minVertices = 3});
     ASSERT_GT(lines.polylineCount(), 0u);
     renderer.addPass(render::HatchPass::create(curvature));
     renderer.addPass(render::LinePass::create(lines, {.width = 2.0f}));
@@ -131,15 +132,16 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
     for (auto direction : {analysis::HatchDirection::Along, analysis::HatchDirection::Across}) {
         auto r = render::TerrainRenderer::create({.field = &field});
         r.setSurface(render::makePaperSurface());
-        r.addPass(render::HatchPass::create(curvature, {.length = 1.0f, .width = 1.5f, .direction = direction}));
+        r.addPass(render::HatchPass::create(
+            curvature, {.length = 1.0f, .width = 1.5f, .direction = direction}));
         target.begin(render::TerrainRenderer::clearColour({}));
         r.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full});
         gpu::Image image = target.read();
         glm::vec2 d = strokeDirection(image);
         glm::vec2 expected = direction == analysis::HatchDirection::Along ? zAxis : xAxis;
         EXPECT_GT(std::fabs(glm::dot(d, expected)), 0.95f)
-            << analysis::hatchDirectionName(direction) << ": strokes run along (" << d.x << ", " << d.y
-            << ") on screen, expected (" << expected.x << ", " << expected.y << ")";
+            << analysis::hatchDirectionName(direction) << ": strokes run along (" << d.x << ", "
+            << d.y << ") on screen, expected (" << expected.x << ", " << expected.y << ")";
     }
     (void)renderer;
 }
@@ -147,7 +149,8 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
 // Dark pixels of a frame (lines drawn in black over paper).
 int64_t darkPixels(const gpu::Image& image) {
     int64_t n = 0;
-    for (size_t p = 0; p < image.rgba.size(); p += 4) n += image.rgba[p] + image.rgba[p + 1] + image.rgba[p + 2] < 3 * 110;
+    for (size_t p = 0; p < image.rgba.size(); p += 4)
+        n += image.rgba[p] + image.rgba[p + 1] + image.rgba[p + 2] < 3 * 110;
     return n;
 }
 
@@ -159,7 +162,8 @@ TEST_F(Overlays, LinesNeitherSinkNorFloatAtAnyTau) {
     terrain::Heightfield field = fractal(129);
     auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
     curvature->compute({.scale = 4.0f});
-    analysis::LineSet lines = analysis::traceLines(curvature->read(), {.threshold = 0.5f, .minVertices = 4});
+    analysis::LineSet lines =
+        analysis::traceLines(curvature->read(), {.threshold = 0.5f, .minVertices = 4});
     auto renderer = render::TerrainRenderer::create({.field = &field});
     renderer.setSurface(render::makePaperSurface());
     renderer.addPass(render::LinePass::create(lines, {.width = 1.5f}));
@@ -178,16 +182,19 @@ TEST_F(Overlays, LinesNeitherSinkNorFloatAtAnyTau) {
     // mesh where it is drawn).
     for (float tau : {1.0f, 2.0f, 4.0f}) {
         const int64_t sbt = dark(render::Lod::Sbt, tau);
-        std::printf("tau %g: %lld dark pixels, full grid %lld\n", double(tau), (long long)sbt, (long long)full);
-        EXPECT_GT(double(sbt), 0.95 * double(full)) << "tau " << tau << ": lines sink into the mesh";
-        EXPECT_LT(double(sbt), 1.05 * double(full)) << "tau " << tau << ": lines float over the mesh";
+        std::printf("tau %g: %lld dark pixels, full grid %lld\n", double(tau), (long long)sbt,
+                    (long long)full);
+        EXPECT_GT(double(sbt), 0.95 * double(full))
+            << "tau " << tau << ": lines sink into the mesh";
+        EXPECT_LT(double(sbt), 1.05 * double(full))
+            << "tau " << tau << ": lines float over the mesh";
     }
 }
 
 // Golden images of overlays on one terrain, compared with the tolerance of
 // golden_test.cpp.
 class OverlayGolden : public test::GlTest {
-protected:
+  protected:
     static constexpr int kW = 480, kH = 270;
     void SetUp() override { createContext(kW, kH); }
 
@@ -209,13 +216,17 @@ protected:
         render::ImageDifference d = render::compareImages(image, *golden, 24);
         std::printf("%s against golden: PSNR %.2f dB, %.4f%% pixels differ\n", name.c_str(), d.psnr,
                     100.0 * d.differingShare);
-        EXPECT_TRUE(d.psnr >= 30.0 && d.differingShare <= 0.02) << "PSNR " << d.psnr << ", differing "
-                                                                << d.differingShare;
+        EXPECT_TRUE(d.psnr >= 30.0 && d.differingShare <= 0.02)
+            << "PSNR " << d.psnr << ", differing " << d.differingShare;
     }
 };
 
-TEST_F(OverlayGolden, LinePresetFig3a) { check("overlay_fig3a.png", scene::loadPreset("fig3a")); }
-TEST_F(OverlayGolden, HatchPresetFig4a) { check("overlay_fig4a.png", scene::loadPreset("fig4a")); }
+TEST_F(OverlayGolden, LinePresetFig3a) {
+    check("overlay_fig3a.png", scene::loadPreset("fig3a"));
+}
+TEST_F(OverlayGolden, HatchPresetFig4a) {
+    check("overlay_fig4a.png", scene::loadPreset("fig4a"));
+}
 TEST_F(OverlayGolden, ContoursOverShadedTerrain) {
     analysis::StyleParams style;
     style.layers.contours = true;

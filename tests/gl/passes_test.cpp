@@ -9,8 +9,8 @@
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
-#include <sierra/terrain/HeightfieldIO.h>
 #include <sierra/terrain/DiamondSquare.h>
+#include <sierra/terrain/HeightfieldIO.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -24,7 +24,7 @@ constexpr int kWidth = 320;
 constexpr int kHeight = 180;
 
 class Passes : public test::GlTest {
-protected:
+  protected:
     void SetUp() override { createContext(kWidth, kHeight); }
 };
 
@@ -61,7 +61,8 @@ void setUnusualState(gpu::Texture& texture, gpu::Buffer& buffer) {
 
 TEST_F(Passes, EveryPassRestoresTheGlState) {
     terrain::Heightfield field = terrain::generateDiamondSquare({.size = 65, .seed = 3});
-    field.setVerticalScale(0.2f * 64.0f / std::max(field.range().second - field.range().first, 1e-3f));
+    field.setVerticalScale(0.2f * 64.0f /
+                           std::max(field.range().second - field.range().first, 1e-3f));
     auto terrain = render::TerrainRenderer::create({.field = &field, .seaLevel = 0.0f});
     auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
     gpu::Texture texture = gpu::Texture::create({.width = 4, .height = 4});
@@ -74,10 +75,12 @@ TEST_F(Passes, EveryPassRestoresTheGlState) {
     for (render::Lod lod : {render::Lod::Sbt, render::Lod::Full}) {
         terrain.draw(camera, kWidth, kHeight, {.lod = lod, .wireframe = true});
         gpu::GlState after = gpu::GlState::capture();
-        EXPECT_EQ(before.differences(after), "") << "after the frame's passes, lod " << render::lodName(lod);
+        EXPECT_EQ(before.differences(after), "")
+            << "after the frame's passes, lod " << render::lodName(lod);
         terrain.renderDepth(camera, kWidth, kHeight, {.lod = lod});
         after = gpu::GlState::capture();
-        EXPECT_EQ(before.differences(after), "") << "after the depth pass, lod " << render::lodName(lod);
+        EXPECT_EQ(before.differences(after), "")
+            << "after the depth pass, lod " << render::lodName(lod);
     }
 }
 
@@ -160,7 +163,7 @@ TEST_F(Passes, DefaultAndOrbitCamerasFrameEveryTerrainCorner) {
 }
 
 class Views : public Passes {
-protected:
+  protected:
     void SetUp() override {
         Passes::SetUp();
         field_ = terrain::generateDiamondSquare({.size = 129, .seed = 7});
@@ -171,7 +174,8 @@ protected:
     }
     double terrainShareOf(const render::Camera& camera, const std::string& name) {
         target_->begin(render::TerrainRenderer::clearColour({}));
-        render::DrawStats stats = terrain_->draw(camera, kWidth, kHeight, {.lighting = {.fogDensity = 0.0f}});
+        render::DrawStats stats =
+            terrain_->draw(camera, kWidth, kHeight, {.lighting = {.fogDensity = 0.0f}});
         gpu::Image image = target_->read();
         render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/view_" + name + ".png", image);
         EXPECT_GT(stats.triangles, 0u) << name;
@@ -193,18 +197,22 @@ TEST_F(Views, NadirOrthographicAndDistantCamerasSeeTerrain) {
     render::fitClipPlanes(nadir, b);
     EXPECT_GT(terrainShareOf(nadir, "nadir"), 0.95);
 
-    render::Camera ortho = render::framedCamera(
-        b, {.target = centre, .azimuthDeg = 0.0f, .elevationDeg = 90.0f,
-            .projection = render::Projection::Orthographic, .aspect = aspect});
+    render::Camera ortho = render::framedCamera(b, {.target = centre,
+                                                    .azimuthDeg = 0.0f,
+                                                    .elevationDeg = 90.0f,
+                                                    .projection = render::Projection::Orthographic,
+                                                    .aspect = aspect});
     ortho.orthoHeight *= 0.5f;  // zoomed in: the square covers the frame
     EXPECT_GT(terrainShareOf(ortho, "ortho_nadir"), 0.95);
 
     // Ten times the extent away, through a long lens: near and far follow the
     // terrain, so the frame is not emptied by a fixed far plane.
     float extent = std::max(b.size().x, b.size().z);
-    render::Camera distant = render::framedCamera(
-        b, {.target = centre, .elevationDeg = 35.0f, .fovYDegrees = 4.0f, .aspect = aspect,
-            .distance = 10.0f * extent});
+    render::Camera distant = render::framedCamera(b, {.target = centre,
+                                                      .elevationDeg = 35.0f,
+                                                      .fovYDegrees = 4.0f,
+                                                      .aspect = aspect,
+                                                      .distance = 10.0f * extent});
     distant.fovYDegrees = 2.0f;  // narrower than the framing: the terrain overfills the frame
     EXPECT_GT(terrainShareOf(distant, "distant"), 0.5);
 }
@@ -213,9 +221,10 @@ TEST_F(Views, OrthographicTauStillMeansPixels) {
     // Orthographic lambda is pixels per world unit: halving the view height
     // doubles it, so the mesh refines as the terrain grows on screen.
     render::SceneBounds b = terrain_->bounds();
-    render::Camera ortho = render::framedCamera(
-        b, {.target = b.centre(), .elevationDeg = 90.0f, .projection = render::Projection::Orthographic,
-            .aspect = float(kWidth) / kHeight});
+    render::Camera ortho = render::framedCamera(b, {.target = b.centre(),
+                                                    .elevationDeg = 90.0f,
+                                                    .projection = render::Projection::Orthographic,
+                                                    .aspect = float(kWidth) / kHeight});
     EXPECT_FLOAT_EQ(ortho.lambda(kHeight), float(kHeight) / ortho.orthoHeight);
     target_->begin(render::TerrainRenderer::clearColour({}));
     uint64_t wide = terrain_->draw(ortho, kWidth, kHeight, {.cull = false}).triangles;

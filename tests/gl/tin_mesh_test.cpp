@@ -79,7 +79,6 @@ class TinMesh : public test::GlTest {
         return target_->read();
     }
 
-
     scene::Scene scene_;
     size_t tinTriangles_ = 0;
     terrain::Heightfield field_;

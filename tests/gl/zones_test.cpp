@@ -53,15 +53,16 @@ std::vector<float> readDepth(int width, int height) {
 }
 
 // World position under pixel (x, y) (top-down rows) from its depth.
-glm::vec3 unproject(const glm::mat4& inverseViewProjection, int x, int y, float depth, int width, int height) {
-    glm::vec4 ndc((float(x) + 0.5f) / float(width) * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / float(height) * 2.0f,
-                  depth * 2.0f - 1.0f, 1.0f);
+glm::vec3 unproject(const glm::mat4& inverseViewProjection, int x, int y, float depth, int width,
+                    int height) {
+    glm::vec4 ndc((float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
+                  1.0f - (float(y) + 0.5f) / float(height) * 2.0f, depth * 2.0f - 1.0f, 1.0f);
     glm::vec4 w = inverseViewProjection * ndc;
     return glm::vec3(w) / w.w;
 }
 
 class ZoneFrames : public test::GlTest {
-protected:
+  protected:
     void SetUp() override {
         createContext(kWidth, kHeight);
         std::filesystem::create_directories(SIERRA_TEST_OUTPUT_DIR);
@@ -71,7 +72,8 @@ protected:
     void useDefaultScene() {
         field_ = render::loadTerrain({});
         seaLevel_ = scene::heightQuantile(field_, 0.3);
-        terrain_.emplace(render::TerrainRenderer::create({.field = &field_, .seaLevel = seaLevel_}));
+        terrain_.emplace(
+            render::TerrainRenderer::create({.field = &field_, .seaLevel = seaLevel_}));
     }
 
     void useField(terrain::Heightfield field) {
@@ -88,10 +90,13 @@ protected:
         return info;
     }
 
-    gpu::Image renderFrame(const render::Camera& camera, int samples, const render::Lighting& lighting = {}) {
-        target_.emplace(render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = samples}));
+    gpu::Image renderFrame(const render::Camera& camera, int samples,
+                           const render::Lighting& lighting = {}) {
+        target_.emplace(
+            render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = samples}));
         target_->begin(render::TerrainRenderer::clearColour(lighting));
-        terrain_->draw(camera, kWidth, kHeight, {.lod = render::Lod::Sbt, .tau = 1.0f, .lighting = lighting});
+        terrain_->draw(camera, kWidth, kHeight,
+                       {.lod = render::Lod::Sbt, .tau = 1.0f, .lighting = lighting});
         return target_->read();
     }
 
@@ -102,10 +107,10 @@ protected:
     // Close to the coast of the default scene, as README's near picture.
     render::Camera nearCamera() const {
         return render::framedCamera(terrain_->bounds(), {.target = {640.0f, -10.0f, 640.0f},
-                                                          .azimuthDeg = 200.0f,
-                                                          .elevationDeg = 25.0f,
-                                                          .aspect = float(kWidth) / float(kHeight),
-                                                          .distance = 120.0f});
+                                                         .azimuthDeg = 200.0f,
+                                                         .elevationDeg = 25.0f,
+                                                         .aspect = float(kWidth) / float(kHeight),
+                                                         .distance = 120.0f});
     }
 
     void checkAgainstGolden(const gpu::Image& image, const std::string& name) {
@@ -116,7 +121,8 @@ protected:
     // zoneMapPosition (map pixel centres on the real samples).
     glm::vec2 mapPosition(const glm::vec3& world, int mapWidth, int mapHeight) const {
         const glm::vec3 extent = terrain_->bounds().max;
-        return {world.x / extent.x * float(mapWidth - 1) + 0.5f, world.z / extent.z * float(mapHeight - 1) + 0.5f};
+        return {world.x / extent.x * float(mapWidth - 1) + 0.5f,
+                world.z / extent.z * float(mapHeight - 1) + 0.5f};
     }
 
     terrain::Heightfield field_;
@@ -136,7 +142,8 @@ TEST_F(ZoneFrames, AutoZonesMatchReference) {
 
 TEST_F(ZoneFrames, SampleMapWithBandsMatchesReferenceNear) {
     useDefaultScene();
-    render::ZoneSurfaceInfo info = setZones({.map = assetPath("zones/default_zones.png"), .band = 4.0f});
+    render::ZoneSurfaceInfo info =
+        setZones({.map = assetPath("zones/default_zones.png"), .band = 4.0f});
     EXPECT_EQ(info.band, 4.0f);
     checkAgainstGolden(renderFrame(nearCamera(), 4), "zones_map_bands_near.png");
 }
@@ -156,7 +163,8 @@ render::Lighting flatLighting() {
 int zoneOfColour(const uint8_t* p, const zones::Palette& palette) {
     for (size_t k = 0; k < palette.surfaces.size(); ++k) {
         const zones::Colour c = palette.surfaces[k].colour;
-        if (std::abs(int(p[0]) - int((c >> 16) & 255)) <= 2 && std::abs(int(p[1]) - int((c >> 8) & 255)) <= 2 &&
+        if (std::abs(int(p[0]) - int((c >> 16) & 255)) <= 2 &&
+            std::abs(int(p[1]) - int((c >> 8) & 255)) <= 2 &&
             std::abs(int(p[2]) - int(c & 255)) <= 2)
             return int(k);
     }
@@ -172,9 +180,11 @@ struct Agreement {
 // Every pixel the terrain covers: its world position from the depth buffer,
 // the zone map's pixel there against the zone the debug view drew. A Figure 1
 // borderline pixel belongs to no zone: there any zone of its 3x3 neighbourhood agrees.
-Agreement compareWithMap(const gpu::Image& frame, const std::vector<float>& depth, const glm::mat4& inverseVp,
-                         const zones::ZoneMap& map, const zones::Palette& palette,
-                         const std::function<glm::vec2(glm::vec3)>& toMap, gpu::Image* disagreement) {
+Agreement compareWithMap(const gpu::Image& frame, const std::vector<float>& depth,
+                         const glm::mat4& inverseVp, const zones::ZoneMap& map,
+                         const zones::Palette& palette,
+                         const std::function<glm::vec2(glm::vec3)>& toMap,
+                         gpu::Image* disagreement) {
     Agreement a;
     *disagreement = frame;
     for (int y = 0; y < frame.height; ++y)
@@ -182,7 +192,8 @@ Agreement compareWithMap(const gpu::Image& frame, const std::vector<float>& dept
             const size_t p = size_t(y) * frame.width + x;
             if (depth[p] >= 1.0f) continue;  // sky
             ++a.terrainPixels;
-            const glm::vec2 m = toMap(unproject(inverseVp, x, y, depth[p], frame.width, frame.height));
+            const glm::vec2 m =
+                toMap(unproject(inverseVp, x, y, depth[p], frame.width, frame.height));
             const int i = std::clamp(int(std::floor(m.x)), 0, map.width - 1);
             const int j = std::clamp(int(std::floor(m.y)), 0, map.height - 1);
             const int drawn = zoneOfColour(&frame.rgba[p * 4], palette);
@@ -191,7 +202,8 @@ Agreement compareWithMap(const gpu::Image& frame, const std::vector<float>& dept
             if (map.at(i, j) == zones::kBorderlinePixel)
                 for (int dj = -1; dj <= 1 && !ok; ++dj)
                     for (int di = -1; di <= 1 && !ok; ++di) {
-                        const int ii = std::clamp(i + di, 0, map.width - 1), jj = std::clamp(j + dj, 0, map.height - 1);
+                        const int ii = std::clamp(i + di, 0, map.width - 1),
+                                  jj = std::clamp(j + dj, 0, map.height - 1);
                         ok = map.at(ii, jj) == drawn;
                     }
             a.agreeing += ok;
@@ -204,15 +216,18 @@ Agreement compareWithMap(const gpu::Image& frame, const std::vector<float>& dept
 }
 
 void checkDebugViewAgainstMap(const gpu::Image& frame, const std::vector<float>& depth,
-                              const render::Camera& camera, const zones::ZoneMap& map, const zones::Palette& palette,
-                              const std::function<glm::vec2(glm::vec3)>& toMap, const std::string& name) {
+                              const render::Camera& camera, const zones::ZoneMap& map,
+                              const zones::Palette& palette,
+                              const std::function<glm::vec2(glm::vec3)>& toMap,
+                              const std::string& name) {
     gpu::Image marked;
     const glm::mat4 inverseVp = glm::inverse(camera.viewProjection(float(kWidth) / float(kHeight)));
     Agreement a = compareWithMap(frame, depth, inverseVp, map, palette, toMap, &marked);
     render::writePng(testOutputPath(name), marked);
-    std::printf("%s: %zu terrain pixels, %.3f%% agree with the zone map, %zu colours seen\n", name.c_str(),
-                a.terrainPixels, 100.0 * a.share(), a.zonesSeen.size());
-    EXPECT_GT(a.terrainPixels, size_t(kWidth * kHeight / 8)) << "the terrain covers too little of the frame";
+    std::printf("%s: %zu terrain pixels, %.3f%% agree with the zone map, %zu colours seen\n",
+                name.c_str(), a.terrainPixels, 100.0 * a.share(), a.zonesSeen.size());
+    EXPECT_GT(a.terrainPixels, size_t(kWidth * kHeight / 8))
+        << "the terrain covers too little of the frame";
     EXPECT_GE(a.zonesSeen.size(), 4u) << "too few zones in view to tell a wrong mapping";
     EXPECT_GE(a.share(), 0.99) << "disagreeing pixels are magenta in " << testOutputPath(name);
 }
@@ -223,19 +238,22 @@ TEST_F(ZoneFrames, DebugViewZonesAgreesWithAutoZoneMap) {
     const zones::Palette palette = zones::loadPalette(assetPath("palettes/default.json"));
     zones::AutoZoneDesc autoDesc;
     autoDesc.seaLevel = seaLevel_;
-    const zones::ZoneMap map = zones::autoZones(field_, palette, autoDesc);  // the default field needs no padding
+    const zones::ZoneMap map =
+        zones::autoZones(field_, palette, autoDesc);  // the default field needs no padding
     const render::Camera camera = defaultCamera();
     const gpu::Image frame = renderFrame(camera, 0, flatLighting());
     const std::vector<float> depth = readDepth(kWidth, kHeight);
     render::writePng(testOutputPath("zones_debug_auto.png"), frame);
     checkDebugViewAgainstMap(
         frame, depth, camera, map, palette,
-        [&](glm::vec3 w) { return mapPosition(w, map.width, map.height); }, "zones_debug_auto_disagreement.png");
+        [&](glm::vec3 w) { return mapPosition(w, map.width, map.height); },
+        "zones_debug_auto_disagreement.png");
 }
 
 TEST_F(ZoneFrames, DebugViewZonesAgreesWithSampleMapNear) {
     useDefaultScene();
-    setZones({.map = assetPath("zones/default_zones.png"), .band = 4.0f,
+    setZones({.map = assetPath("zones/default_zones.png"),
+              .band = 4.0f,
               .debugView = render::ZoneDebugView::Zones});
     const zones::Palette palette = zones::loadPalette(assetPath("palettes/default.json"));
     const zones::ZoneMap map = zones::loadZoneMap(assetPath("zones/default_zones.png"), palette);
@@ -245,7 +263,8 @@ TEST_F(ZoneFrames, DebugViewZonesAgreesWithSampleMapNear) {
     render::writePng(testOutputPath("zones_debug_map_near.png"), frame);
     checkDebugViewAgainstMap(
         frame, depth, camera, map, palette,
-        [&](glm::vec3 w) { return mapPosition(w, map.width, map.height); }, "zones_debug_map_disagreement.png");
+        [&](glm::vec3 w) { return mapPosition(w, map.width, map.height); },
+        "zones_debug_map_disagreement.png");
 }
 
 // ------------------------------------------- one tile away from borders, two in a band
@@ -255,7 +274,7 @@ TEST_F(ZoneFrames, DebugViewZonesAgreesWithSampleMapNear) {
 // zone's tile one solid primary colour (red, green, blue). Seen from straight
 // above with flat light, a pixel's channels are the tiles' weights.
 class ZoneSampling : public ZoneFrames {
-protected:
+  protected:
     static constexpr int kMap = 64;
 
     void SetUp() override {
@@ -279,8 +298,7 @@ protected:
             }
             render::writePng(dir_ + "/" + names[k] + ".png", tile);
         }
-        std::ofstream(dir_ + "/palette.json")
-            << R"({"zones": [
+        std::ofstream(dir_ + "/palette.json") << R"({"zones": [
                 {"name": "red",   "colour": "#c00000", "tile": "red.png",   "heightBlend": 0},
                 {"name": "green", "colour": "#00c000", "tile": "green.png", "heightBlend": 0},
                 {"name": "blue",  "colour": "#0000c0", "tile": "blue.png",  "heightBlend": 0}]})";
@@ -290,7 +308,8 @@ protected:
             for (int i = 0; i < kMap; ++i) {
                 const int zone = i < kMap / 2 ? 0 : j < kMap / 2 ? 1 : 2;
                 uint8_t* p = &map.rgba[(size_t(j) * kMap + i) * 4];
-                p[0] = zone == 0 ? 0xc0 : 0, p[1] = zone == 1 ? 0xc0 : 0, p[2] = zone == 2 ? 0xc0 : 0;
+                p[0] = zone == 0 ? 0xc0 : 0, p[1] = zone == 1 ? 0xc0 : 0,
+                p[2] = zone == 2 ? 0xc0 : 0;
             }
         render::writePng(dir_ + "/map.png", map);
         palette_ = zones::loadPalette(dir_ + "/palette.json");
@@ -353,7 +372,8 @@ TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
                                              .palette = dir_ + "/palette.json",
                                              .band = band,
                                              .heightBlend = false});
-    const zones::BorderField field = zones::buildBorderField(lines_, {.texelsPerPixel = info.texelsPerPixel});
+    const zones::BorderField field =
+        zones::buildBorderField(lines_, {.texelsPerPixel = info.texelsPerPixel});
     const render::Camera camera = topCamera();
     const gpu::Image frame = renderFrame(camera, 0, flatLighting());
     const std::vector<float> depth = readDepth(kWidth, kHeight);
@@ -367,7 +387,8 @@ TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
         for (int x = 0; x < kWidth; ++x) {
             const size_t p = size_t(y) * kWidth + x;
             if (depth[p] >= 1.0f) continue;
-            const glm::vec2 m = mapPosition(unproject(inverseVp, x, y, depth[p], kWidth, kHeight), kMap, kMap);
+            const glm::vec2 m =
+                mapPosition(unproject(inverseVp, x, y, depth[p], kWidth, kHeight), kMap, kMap);
             const uint8_t* c = &frame.rgba[p * 4];
             int present = 0;
             for (int ch = 0; ch < 3; ++ch) present += c[ch] > 3;
@@ -375,7 +396,8 @@ TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
             // others, y = 32 right of it), in map pixels.
             const float toBorder =
                 std::min(std::abs(m.x - 32.0f), m.x > 32.0f ? std::abs(m.y - 32.0f) : 1e9f);
-            if (m.x < 1.5f || m.y < 1.5f || m.x > kMap - 1.5f || m.y > kMap - 1.5f) continue;  // the frame's margin
+            if (m.x < 1.5f || m.y < 1.5f || m.x > kMap - 1.5f || m.y > kMap - 1.5f)
+                continue;  // the frame's margin
             if (toBorder > 0.5f * band + 1.5f) {
                 ++far;
                 const bool pure = present == 1 && std::max({c[0], c[1], c[2]}) >= 252;
@@ -390,27 +412,35 @@ TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
             if (!e || e->low == e->high) continue;
             ++formulaChecked;
             const float weight = smoothStep(-0.5f * band, 0.5f * band, e->distance);
-            const float lowShare = float(c[e->low]) / 255.0f, highShare = float(c[e->high]) / 255.0f;
+            const float lowShare = float(c[e->low]) / 255.0f,
+                        highShare = float(c[e->high]) / 255.0f;
             const int other = 3 - e->low - e->high;
-            const float error = std::max(std::abs(highShare - weight), std::abs(lowShare - (1.0f - weight)));
+            const float error =
+                std::max(std::abs(highShare - weight), std::abs(lowShare - (1.0f - weight)));
             worstWeightError = std::max(worstWeightError, error);
             formulaOk += error <= 0.03f && c[other] <= 3;
         }
-    std::printf("far from borders: %zu of %zu pixels one tile; in bands: %zu of %zu at most two tiles; "
-                "blend weight within 0.03 of smoothstep(-W/2, W/2, d): %zu of %zu (worst %.3f)\n",
-                farPure, far, bandTwoAtMost, banded, formulaOk, formulaChecked, worstWeightError);
+    std::printf(
+        "far from borders: %zu of %zu pixels one tile; in bands: %zu of %zu at most two tiles; "
+        "blend weight within 0.03 of smoothstep(-W/2, W/2, d): %zu of %zu (worst %.3f)\n",
+        farPure, far, bandTwoAtMost, banded, formulaOk, formulaChecked, worstWeightError);
     ASSERT_GT(far, size_t(50000));
     ASSERT_GT(banded, size_t(5000));
     ASSERT_GT(formulaChecked, banded / 2);
-    EXPECT_EQ(mixedFar, 0u) << "pixels away from every band mix tiles (see " << testOutputPath("zone_sampling.png") << ")";
+    EXPECT_EQ(mixedFar, 0u) << "pixels away from every band mix tiles (see "
+                            << testOutputPath("zone_sampling.png") << ")";
     EXPECT_EQ(bandTwoAtMost, banded) << "band pixels mix more than two tiles";
-    EXPECT_GE(double(formulaOk), 0.995 * double(formulaChecked)) << "worst weight error " << worstWeightError;
+    EXPECT_GE(double(formulaOk), 0.995 * double(formulaChecked))
+        << "worst weight error " << worstWeightError;
 }
 
 // Height blending and tile variation move the weight inside a band but never
 // bring in a third tile, nor a second one away from the band.
 TEST_F(ZoneSampling, HeightBlendKeepsAtMostTwoTiles) {
-    setZones({.map = dir_ + "/map.png", .palette = dir_ + "/palette.json", .band = 6.0f, .heightBlend = true,
+    setZones({.map = dir_ + "/map.png",
+              .palette = dir_ + "/palette.json",
+              .band = 6.0f,
+              .heightBlend = true,
               .variation = true});
     const render::Camera camera = topCamera();
     const gpu::Image frame = renderFrame(camera, 0, flatLighting());

@@ -15,7 +15,9 @@ using sierra::analysis::test::sampleSurface;
 
 namespace {
 
-float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+float dot(const Vec3& a, const Vec3& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
 }  // namespace
 
@@ -31,12 +33,13 @@ TEST(AnalysisHatch, CylinderStrokesRunAcrossOrAlongItsAxis) {
         double ax, az;  // horizontal axis of the cylinder
     };
     for (Case cs : {Case{1, 0}, Case{0, 1}, Case{inv, inv}}) {
-        auto f = sampleSurface(31, 31, 1.0, 1.0,
-                               [&](double x, double z) {
-                                   double across = -x * cs.az + z * cs.ax;  // distance to the axis line
-                                   return std::sqrt(R * R - across * across);
-                               },
-                               -15.0, -15.0);
+        auto f = sampleSurface(
+            31, 31, 1.0, 1.0,
+            [&](double x, double z) {
+                double across = -x * cs.az + z * cs.ax;  // distance to the axis line
+                return std::sqrt(R * R - across * across);
+            },
+            -15.0, -15.0);
         auto c = computeCurvature(f, {.method = CurvatureMethod::ThreeVertex});
         auto normals = computeNormals(f);
         for (HatchDirection dir : {HatchDirection::Along, HatchDirection::Across}) {
@@ -97,13 +100,17 @@ TEST(AnalysisHatch, MismatchedFieldsAndNoData) {
 }
 
 TEST(AnalysisHatch, ThreadCountDoesNotChangeTheField) {
-    auto f = sampleSurface(257, 257, 1.0, 1.0,
-                           [](double x, double z) { return 3.0 * std::sin(0.1 * x) * std::cos(0.07 * z); });
+    auto f = sampleSurface(257, 257, 1.0, 1.0, [](double x, double z) {
+        return 3.0 * std::sin(0.1 * x) * std::cos(0.07 * z);
+    });
     auto c = computeCurvature(f, {.method = CurvatureMethod::ThreeNormal, .distance = 2});
     for (HatchDirection dir : {HatchDirection::Along, HatchDirection::Across}) {
         auto a = computeHatchField(f, c, {.direction = dir, .threads = 1});
         auto b = computeHatchField(f, c, {.direction = dir, .threads = 3});
-        ASSERT_EQ(std::memcmp(a.direction.data(), b.direction.data(), a.direction.size() * sizeof(Vec3)), 0);
-        ASSERT_EQ(std::memcmp(a.opacity.data(), b.opacity.data(), a.opacity.size() * sizeof(float)), 0);
+        ASSERT_EQ(
+            std::memcmp(a.direction.data(), b.direction.data(), a.direction.size() * sizeof(Vec3)),
+            0);
+        ASSERT_EQ(std::memcmp(a.opacity.data(), b.opacity.data(), a.opacity.size() * sizeof(float)),
+                  0);
     }
 }

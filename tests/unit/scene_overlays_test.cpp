@@ -41,7 +41,8 @@ std::string parseError(const std::vector<std::string>& args) {
 TEST(SceneOverlays, DefaultIsTheShadedTerrainAlone) {
     Scene s = parse({});
     EXPECT_TRUE(s.style.overlay.layers.shaded);
-    EXPECT_FALSE(s.style.overlay.layers.lines || s.style.overlay.layers.hatch || s.style.overlay.layers.contours);
+    EXPECT_FALSE(s.style.overlay.layers.lines || s.style.overlay.layers.hatch ||
+                 s.style.overlay.layers.contours);
 }
 
 TEST(SceneOverlays, EveryPresetLoads) {
@@ -66,9 +67,26 @@ TEST(SceneOverlays, OptionsAfterAPresetOverrideIt) {
 }
 
 TEST(SceneOverlays, EveryOptionLandsInItsField) {
-    Scene s = parse({"--style", "lines,hatch,contours", "--curvature", "edge-angle", "--curvature-distance", "3",
-                     "--normals", "edge", "--signed", "--levels", "0.1,0.8,2", "--line-width", "2.5",
-                     "--min-length", "7", "--line-threshold", "0.25", "--hatch-width", "1.5", "--hatch-direction",
+    Scene s = parse({"--style",
+                     "lines,hatch,contours",
+                     "--curvature",
+                     "edge-angle",
+                     "--curvature-distance",
+                     "3",
+                     "--normals",
+                     "edge",
+                     "--signed",
+                     "--levels",
+                     "0.1,0.8,2",
+                     "--line-width",
+                     "2.5",
+                     "--min-length",
+                     "7",
+                     "--line-threshold",
+                     "0.25",
+                     "--hatch-width",
+                     "1.5",
+                     "--hatch-direction",
                      "across"});
     const analysis::StyleParams& o = s.style.overlay;
     EXPECT_FALSE(o.layers.shaded);
@@ -88,17 +106,22 @@ TEST(SceneOverlays, EveryOptionLandsInItsField) {
 }
 
 TEST(SceneOverlays, BadValuesGiveClearErrors) {
-    EXPECT_THAT(parseError({"--preset", "fig5a"}), HasSubstr("unknown preset 'fig5a' (expected fig3a..fig3n"));
-    EXPECT_THAT(parseError({"--curvature-distance", "0"}), HasSubstr("distance must be an integer >= 1"));
-    EXPECT_THAT(parseError({"--curvature-scale", "-1"}), HasSubstr("scale must be finite and >= 0"));
-    EXPECT_THAT(parseError({"--curvature", "four-normal"}), HasSubstr("unknown curvature method 'four-normal'"));
+    EXPECT_THAT(parseError({"--preset", "fig5a"}),
+                HasSubstr("unknown preset 'fig5a' (expected fig3a..fig3n"));
+    EXPECT_THAT(parseError({"--curvature-distance", "0"}),
+                HasSubstr("distance must be an integer >= 1"));
+    EXPECT_THAT(parseError({"--curvature-scale", "-1"}),
+                HasSubstr("scale must be finite and >= 0"));
+    EXPECT_THAT(parseError({"--curvature", "four-normal"}),
+                HasSubstr("unknown curvature method 'four-normal'"));
     EXPECT_THAT(parseError({"--style", "lines,shadows"}), HasSubstr("unknown layer 'shadows'"));
     EXPECT_THAT(parseError({"--hatch-length", "0"}), HasSubstr("style.hatch.length"));
     EXPECT_THAT(parseError({"--levels", "0.1,0.9"}), HasSubstr("expected BLACK,WHITE,GAMMA"));
 }
 
 TEST(SceneOverlays, SceneFileKeysOverAPreset) {
-    Json json = Json::parse(R"({"style": {"preset": "fig3b", "lines": {"width": 3}, "contours": true}})");
+    Json json =
+        Json::parse(R"({"style": {"preset": "fig3b", "lines": {"width": 3}, "contours": true}})");
     Scene s = sceneFromJson(json, "test.json");
     EXPECT_EQ(s.style.preset, "fig3b");
     EXPECT_TRUE(s.style.overlay.layers.lines);

@@ -18,8 +18,8 @@ HatchDirection parseHatchDirection(const std::string& name) {
     throw Error(msg("unknown hatch direction '", name, "' (expected along or across)"));
 }
 
-bool blendedCurvatureAxis(const float curvature[kDirectionCount], float spacingX, float spacingZ, float& ux,
-                          float& uz) {
+bool blendedCurvatureAxis(const float curvature[kDirectionCount], float spacingX, float spacingZ,
+                          float& ux, float& uz) {
     float sx = 0.0f, sz = 0.0f, largest = 0.0f;
     int best = -1;
     float bestAngle = 0.0f;
@@ -44,14 +44,15 @@ bool blendedCurvatureAxis(const float curvature[kDirectionCount], float spacingX
     return true;
 }
 
-Vec3 hatchStrokeDirection(const float curvature[kDirectionCount], const Vec3& n, float spacingX, float spacingZ,
-                          HatchDirection direction) {
+Vec3 hatchStrokeDirection(const float curvature[kDirectionCount], const Vec3& n, float spacingX,
+                          float spacingZ, HatchDirection direction) {
     if (std::isnan(n.x) || std::isnan(n.y) || std::isnan(n.z)) return {NAN, NAN, NAN};
     float ax = 1.0f, az = 0.0f;
     blendedCurvatureAxis(curvature, spacingX, spacingZ, ax, az);
     // Lift the horizontal axis onto the tangent plane: n . t = 0.
     detail::V3 t = detail::normalized({ax, -(n.x * ax + n.z * az) / n.y, az});
-    if (direction == HatchDirection::Across) t = detail::normalized(detail::cross({n.x, n.y, n.z}, t));
+    if (direction == HatchDirection::Across)
+        t = detail::normalized(detail::cross({n.x, n.y, n.z}, t));
     return {t.x, t.y, t.z};
 }
 
@@ -72,7 +73,8 @@ HatchField computeHatchField(const terrain::Heightfield& field, const CurvatureF
             for (int i = 0; i < out.width; ++i) {
                 size_t k = out.index(i, j);
                 const float* c = &curvature.values[k * kDirectionCount];
-                out.direction[k] = hatchStrokeDirection(c, normals.normals[k], sx, sz, options.direction);
+                out.direction[k] =
+                    hatchStrokeDirection(c, normals.normals[k], sx, sz, options.direction);
                 float m = curvature.maxMagnitude(i, j);
                 out.opacity[k] = std::isnan(m) ? NAN : std::min(1.0f, m);
             }

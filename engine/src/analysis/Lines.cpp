@@ -10,9 +10,12 @@ namespace sierra::analysis {
 
 const char* linePolarityName(LinePolarity polarity) {
     switch (polarity) {
-        case LinePolarity::Any: return "any";
-        case LinePolarity::Ridges: return "ridges";
-        case LinePolarity::Valleys: return "valleys";
+        case LinePolarity::Any:
+            return "any";
+        case LinePolarity::Ridges:
+            return "ridges";
+        case LinePolarity::Valleys:
+            return "valleys";
     }
     return "?";
 }
@@ -25,12 +28,14 @@ LinePolarity parseLinePolarity(const std::string& name) {
 }
 
 void validate(const LineOptions& o) {
-    SIERRA_CHECK(std::isfinite(o.threshold) && o.threshold >= 0.0f, "lines: threshold must be finite and >= 0, got ",
-                 o.threshold);
-    SIERRA_CHECK(o.minVertices >= 2, "lines: minimum length must be at least 2 vertices, got ", o.minVertices);
+    SIERRA_CHECK(std::isfinite(o.threshold) && o.threshold >= 0.0f,
+                 "lines: threshold must be finite and >= 0, got ", o.threshold);
+    SIERRA_CHECK(o.minVertices >= 2, "lines: minimum length must be at least 2 vertices, got ",
+                 o.minVertices);
     SIERRA_CHECK(std::isfinite(o.step) && o.step > 0.0f && o.step <= 2.0f,
                  "lines: blended step must be in (0, 2] grid units, got ", o.step);
-    SIERRA_CHECK(o.maxPoints >= 0, "lines: maximum points must be >= 0 (0 = automatic), got ", o.maxPoints);
+    SIERRA_CHECK(o.maxPoints >= 0, "lines: maximum points must be >= 0 (0 = automatic), got ",
+                 o.maxPoints);
 }
 
 namespace {
@@ -38,9 +43,12 @@ namespace {
 // The curvature of direction d as this polarity counts it (NaN stays NaN).
 inline float counted(float k, LinePolarity p) {
     switch (p) {
-        case LinePolarity::Any: return std::fabs(k);
-        case LinePolarity::Ridges: return k < 0.0f ? -k : (std::isnan(k) ? k : 0.0f);
-        case LinePolarity::Valleys: return k > 0.0f ? k : (std::isnan(k) ? k : 0.0f);
+        case LinePolarity::Any:
+            return std::fabs(k);
+        case LinePolarity::Ridges:
+            return k < 0.0f ? -k : (std::isnan(k) ? k : 0.0f);
+        case LinePolarity::Valleys:
+            return k > 0.0f ? k : (std::isnan(k) ? k : 0.0f);
     }
     return k;
 }
@@ -49,7 +57,7 @@ inline float counted(float k, LinePolarity p) {
 constexpr int kPerpendicular[kDirectionCount] = {1, 0, 3, 2};
 
 class DiscreteTracer {
-public:
+  public:
     DiscreteTracer(const CurvatureField& c, const LineOptions& o) : c_(c), o_(o) {
         const size_t n = size_t(c.width) * size_t(c.height);
         strength_.resize(n);
@@ -95,7 +103,8 @@ public:
                     continue;
                 }
                 for (size_t k : path)
-                    out.vertices.push_back({float(k % size_t(c_.width)), float(k / size_t(c_.width)),
+                    out.vertices.push_back({float(k % size_t(c_.width)),
+                                            float(k / size_t(c_.width)),
                                             std::min(1.0f, strength_[k])});
                 out.offsets.push_back(uint32_t(out.vertices.size()));
                 ++id;
@@ -103,7 +112,7 @@ public:
         return out;
     }
 
-private:
+  private:
     size_t index(int i, int j) const { return size_t(j) * size_t(c_.width) + size_t(i); }
     bool inside(int i, int j) const { return i >= 0 && j >= 0 && i < c_.width && j < c_.height; }
     bool passes(size_t k) const { return strength_[k] >= o_.threshold; }  // false for NaN
@@ -157,7 +166,7 @@ private:
 };
 
 class BlendedTracer {
-public:
+  public:
     BlendedTracer(const CurvatureField& c, const LineOptions& o) : c_(c), o_(o) {
         const size_t n = size_t(c.width) * size_t(c.height);
         owner_.assign(n, -1);
@@ -178,7 +187,9 @@ public:
                 // Cheap test first: at a vertex the interpolated strength is its own.
                 float strongest = 0.0f;
                 for (int d = 0; d < kDirectionCount; ++d)
-                    strongest = std::max(strongest, counted(c_.values[v * kDirectionCount + size_t(d)], o_.polarity));
+                    strongest =
+                        std::max(strongest,
+                                 counted(c_.values[v * kDirectionCount + size_t(d)], o_.polarity));
                 if (!(strongest >= o_.threshold)) continue;
                 Sample s0;
                 if (!sample(float(i), float(j), s0) || !(s0.strength >= o_.threshold)) continue;
@@ -204,10 +215,11 @@ public:
         return out;
     }
 
-private:
+  private:
     struct Sample {
         float strength = 0.0f;
-        float px = 0.0f, pz = 1.0f;  // unit step perpendicular to the axis of largest curvature, grid units
+        float px = 0.0f,
+              pz = 1.0f;  // unit step perpendicular to the axis of largest curvature, grid units
     };
     struct Claim {
         int trace = 0;   // 0: the start point, 1: forward, 2: backward
@@ -217,7 +229,8 @@ private:
 
     // Bilinear curvature at (x, z); false outside the grid or next to no data.
     bool sample(float x, float z, Sample& s) const {
-        if (!(x >= 0.0f && z >= 0.0f && x <= float(c_.width - 1) && z <= float(c_.height - 1))) return false;
+        if (!(x >= 0.0f && z >= 0.0f && x <= float(c_.width - 1) && z <= float(c_.height - 1)))
+            return false;
         int i0 = std::min(int(x), c_.width - 2), j0 = std::min(int(z), c_.height - 2);
         float fx = x - float(i0), fz = z - float(j0);
         float k[kDirectionCount];
@@ -257,8 +270,9 @@ private:
             size_t v = size_t(std::lround(nz)) * size_t(c_.width) + size_t(std::lround(nx));
             if (owner_[v] >= 0) {
                 const Claim& c = claims_[v];
-                bool nearby = owner_[v] == id && ((c.trace == traceNo && serial - c.serial <= recent_) ||
-                                                  (c.trace == 0 && serial <= recent_));
+                bool nearby =
+                    owner_[v] == id && ((c.trace == traceNo && serial - c.serial <= recent_) ||
+                                        (c.trace == 0 && serial <= recent_));
                 if (!nearby) {
                     // Another line, or this one coming back: end on its point.
                     Sample j;
@@ -298,9 +312,10 @@ private:
 LineSet traceLines(const CurvatureField& curvature, const LineOptions& options) {
     validate(options);
     SIERRA_CHECK(curvature.width >= 2 && curvature.height >= 2 &&
-                     curvature.values.size() == size_t(curvature.width) * size_t(curvature.height) * kDirectionCount,
-                 "lines: the curvature field is empty or its values do not match its ", curvature.width, "x",
-                 curvature.height, " size");
+                     curvature.values.size() ==
+                         size_t(curvature.width) * size_t(curvature.height) * kDirectionCount,
+                 "lines: the curvature field is empty or its values do not match its ",
+                 curvature.width, "x", curvature.height, " size");
     if (options.blended) return BlendedTracer(curvature, options).run();
     return DiscreteTracer(curvature, options).run();
 }

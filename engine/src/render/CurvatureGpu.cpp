@@ -12,7 +12,9 @@ namespace sierra::render {
 
 namespace {
 
-std::string define(const char* name, int value) { return std::string("#define ") + name + " " + std::to_string(value) + "\n"; }
+std::string define(const char* name, int value) {
+    return std::string("#define ") + name + " " + std::to_string(value) + "\n";
+}
 
 // A buffer texture over all of `buffer` (texelFetch by linear index in the shaders).
 gpu::Texture bufferTexture(const gpu::Buffer& buffer, GLenum format) {
@@ -24,7 +26,8 @@ gpu::Texture bufferTexture(const gpu::Buffer& buffer, GLenum format) {
 
 // An RGBA32F 2D array texture of `layers` layers, and a framebuffer with
 // layer k as colour attachment k, all drawn.
-void layeredTarget(int width, int height, int layers, gpu::Texture& texture, gpu::Framebuffer& framebuffer) {
+void layeredTarget(int width, int height, int layers, gpu::Texture& texture,
+                   gpu::Framebuffer& framebuffer) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
     glTextureStorage3D(id, 1, GL_RGBA32F, width, height, layers);
@@ -34,7 +37,8 @@ void layeredTarget(int width, int height, int layers, gpu::Texture& texture, gpu
     framebuffer = gpu::Framebuffer::create();
     std::vector<GLenum> buffers;
     for (int k = 0; k < layers; ++k) {
-        glNamedFramebufferTextureLayer(framebuffer.id(), GLenum(GL_COLOR_ATTACHMENT0 + k), id, 0, k);
+        glNamedFramebufferTextureLayer(framebuffer.id(), GLenum(GL_COLOR_ATTACHMENT0 + k), id, 0,
+                                       k);
         buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + k));
     }
     glNamedFramebufferDrawBuffers(framebuffer.id(), layers, buffers.data());
@@ -81,7 +85,8 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
             heights[size_t(j + 1) * size_t(c.pitch_) + size_t(i) + 1] = y;
         }
     }
-    c.heights_ = gpu::Buffer::create({.size = heights.size() * sizeof(float), .data = heights.data()});
+    c.heights_ =
+        gpu::Buffer::create({.size = heights.size() * sizeof(float), .data = heights.data()});
     c.heightsTexture_ = bufferTexture(c.heights_, GL_R32F);
     c.heights4Texture_ = bufferTexture(c.heights_, GL_RGBA32F);
     layeredTarget(c.runs(), c.height_, kRun, c.fieldTexture_, c.fieldFramebuffer_);
@@ -112,7 +117,8 @@ void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
     drawIn(*pass.general, 0, height_ - 1, cols, 1);
     for (int x : {0, width_ - 1}) {
         const int k = x % kRun;
-        for (int b = 0; b < layers; ++b) glColorMaski(GLuint(b), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        for (int b = 0; b < layers; ++b)
+            glColorMaski(GLuint(b), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         if (gradient) {
             const GLboolean even = k % 2 == 0 ? GL_TRUE : GL_FALSE, odd = even ? GL_FALSE : GL_TRUE;
             glColorMaski(GLuint(k / 2), even, even, odd, odd);
@@ -130,18 +136,22 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     analysis::validate(o);
     const int minSide = std::max(3, 2 * o.distance + 1);
     SIERRA_CHECK(width_ >= minSide && height_ >= minSide, "curvature: a ", width_, "x", height_,
-                 " grid is too small for reinforcement distance ", o.distance, " (each side needs at least ",
-                 minSide, " samples)");
+                 " grid is too small for reinforcement distance ", o.distance,
+                 " (each side needs at least ", minSide, " samples)");
     // Runs over the interior where the formulas need no border rule, no
     // no-data checks and no reinforcement.
     const bool interiorRuns = o.distance == 1 && !noData_;
     const int levels = o.levels.enabled ? 1 : 0;
-    const std::string layout = define("CURVATURE_PITCH", pitch_) + define("CURVATURE_RUNS_PER_ROW", runs());
+    const std::string layout =
+        define("CURVATURE_PITCH", pitch_) + define("CURVATURE_RUNS_PER_ROW", runs());
     const std::string method = layout + define("CURVATURE_METHOD", int(o.method)) +
                                (levels ? "#define CURVATURE_LEVELS 1\n" : "");
-    const std::string normals = layout + define("CURVATURE_NORMALS", int(o.normals)) + "#define CURVATURE_GRADIENT 1\n";
+    const std::string normals =
+        layout + define("CURVATURE_NORMALS", int(o.normals)) + "#define CURVATURE_GRADIENT 1\n";
     auto build = [](gpu::Program& p, const std::string& defines) -> gpu::Program& {
-        if (!p) p = gpu::Program::create({.vertex = "solid.vert", .fragment = "curvature.frag", .defines = defines});
+        if (!p)
+            p = gpu::Program::create(
+                {.vertex = "solid.vert", .fragment = "curvature.frag", .defines = defines});
         return p;
     };
     const std::string runsDefine = "#define CURVATURE_RUNS 1\n";
@@ -156,8 +166,8 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     glBindVertexArray(vertexArray_.id());
     glBindTextureUnit(2, heightsTexture_.id());
     glBindTextureUnit(3, heights4Texture_.id());
-    const bool normalBased =
-        o.method == analysis::CurvatureMethod::TwoNormal || o.method == analysis::CurvatureMethod::ThreeNormal;
+    const bool normalBased = o.method == analysis::CurvatureMethod::TwoNormal ||
+                             o.method == analysis::CurvatureMethod::ThreeNormal;
     if (normalBased || tangentPlanes) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gradientFramebuffer_.id());
         const size_t n = size_t(o.normals);
@@ -168,7 +178,8 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         }
         draw(pass, kRun / 2, true);
         if (normalBased) {
-            // A copy the field pass reads as a buffer texture (see curvature.frag), made on first use.
+            // A copy the field pass reads as a buffer texture (see curvature.frag), made on first
+            // use.
             if (!gradientCopy_) {
                 const size_t texels = size_t(runs()) * size_t(height_) * (kRun / 2);
                 gradientCopy_ = gpu::Buffer::create({.size = texels * 4 * sizeof(float)});
@@ -178,7 +189,8 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
             glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
             glBindBuffer(GL_PIXEL_PACK_BUFFER, gradientCopy_.id());
             glPixelStorei(GL_PACK_ALIGNMENT, 4);
-            glGetTextureImage(gradientTexture_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gradientCopy_.size()), nullptr);
+            glGetTextureImage(gradientTexture_.id(), 0, GL_RGBA, GL_FLOAT,
+                              GLsizei(gradientCopy_.size()), nullptr);
             glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         }
@@ -194,10 +206,11 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         glUseProgram(p->id());
         glUniform1i(p->uniform("uDistance"), o.distance);
         glUniform1f(p->uniform("uScale"), o.scale);
-        glUniform4f(p->uniform("uLevels"), o.levels.enabled ? 1.0f : 0.0f, o.levels.black, o.levels.white,
-                    o.levels.gamma);
+        glUniform4f(p->uniform("uLevels"), o.levels.enabled ? 1.0f : 0.0f, o.levels.black,
+                    o.levels.white, o.levels.gamma);
         glUniform1i(p->uniform("uSigned"), o.signedValues ? 1 : 0);
-        glUniform1i(p->uniform("uSecond"), o.output == analysis::CurvatureOutput::SecondDerivative ? 1 : 0);
+        glUniform1i(p->uniform("uSecond"),
+                    o.output == analysis::CurvatureOutput::SecondDerivative ? 1 : 0);
     }
     glBindTextureUnit(1, gradientCopyTexture_.id());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fieldFramebuffer_.id());
@@ -219,7 +232,8 @@ analysis::CurvatureField CurvatureGpu::read() const {
     glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glGetTextureImage(fieldTexture_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(layers.size() * sizeof(float)), layers.data());
+    glGetTextureImage(fieldTexture_.id(), 0, GL_RGBA, GL_FLOAT,
+                      GLsizei(layers.size() * sizeof(float)), layers.data());
     glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(packBuffer));
     // Texel (i / kRun, j) of layer i % kRun to sample (i, j).
     for (size_t j = 0; j < rows; ++j) {

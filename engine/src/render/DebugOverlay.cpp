@@ -41,10 +41,11 @@ DebugOverlay::~DebugOverlay() {
 std::pair<float, float> medianAndP95(std::vector<float> values) {
     if (values.empty()) return {0.0f, 0.0f};
     std::sort(values.begin(), values.end());
-    auto rank = [&](double q) {  // nearest rank: the smallest value with >= q of the values at or below it
-        size_t k = size_t(std::ceil(q * double(values.size())));
-        return values[std::clamp<size_t>(k, 1, values.size()) - 1];
-    };
+    auto rank =
+        [&](double q) {  // nearest rank: the smallest value with >= q of the values at or below it
+            size_t k = size_t(std::ceil(q * double(values.size())));
+            return values[std::clamp<size_t>(k, 1, values.size()) - 1];
+        };
     return {rank(0.5), rank(0.95)};
 }
 
@@ -97,12 +98,13 @@ void series(const StageSeries& s, bool deterministic, float width) {
         return;
     }
     auto [median, p95] = medianAndP95(s.values);
-    const std::string overlay = msg("median ", fixed(median, 2), " ", s.unit, ", p95 ", fixed(p95, 2), " ", s.unit);
+    const std::string overlay =
+        msg("median ", fixed(median, 2), " ", s.unit, ", p95 ", fixed(p95, 2), " ", s.unit);
     ImGui::TextUnformatted(msg(s.name, " (", s.unit, ", ", s.values.size(), " frames)").c_str());
     if (s.values.size() >= 2) {
         const float top = *std::max_element(s.values.begin(), s.values.end());
-        ImGui::PlotLines(("##" + s.name).c_str(), s.values.data(), int(s.values.size()), 0, overlay.c_str(), 0.0f,
-                         std::max(top * 1.15f, 1e-3f), ImVec2(width, 26.0f));
+        ImGui::PlotLines(("##" + s.name).c_str(), s.values.data(), int(s.values.size()), 0,
+                         overlay.c_str(), 0.0f, std::max(top * 1.15f, 1e-3f), ImVec2(width, 26.0f));
     } else {
         ImGui::TextUnformatted(overlay.c_str());
     }
@@ -119,11 +121,13 @@ void histogram(const Histogram& h, float width) {
     }
     ImGui::Text("%s (%s %d..%d, left to right)", h.name.c_str(), h.binLabel.c_str(), h.firstBin,
                 h.firstBin + int(h.counts.size()) - 1);
-    const std::string overlay = first < 0 ? std::string("empty")
-                                          : msg(fixed(total, 0), " in ", h.binLabel, " ", h.firstBin + first, "..",
-                                                h.firstBin + last, ", peak ", fixed(top, 0));
-    ImGui::PlotHistogram(("##" + h.name).c_str(), values.data(), int(values.size()), 0, overlay.c_str(), 0.0f,
-                         float(std::max(top, 1.0) * 1.15), ImVec2(width, 44.0f));
+    const std::string overlay =
+        first < 0 ? std::string("empty")
+                  : msg(fixed(total, 0), " in ", h.binLabel, " ", h.firstBin + first, "..",
+                        h.firstBin + last, ", peak ", fixed(top, 0));
+    ImGui::PlotHistogram(("##" + h.name).c_str(), values.data(), int(values.size()), 0,
+                         overlay.c_str(), 0.0f, float(std::max(top, 1.0) * 1.15),
+                         ImVec2(width, 44.0f));
 }
 
 void param(const StyleParam& p) {
@@ -165,11 +169,13 @@ void DebugOverlay::layout(const DebugPanel& panel, int width, int height) {
     rowsTable("figures", panel.rows);
     if (panel.frameTimesMs.size() >= 2) {
         float top = *std::max_element(panel.frameTimesMs.begin(), panel.frameTimesMs.end());
-        ImGui::PlotLines("frame ms", panel.frameTimesMs.data(), int(panel.frameTimesMs.size()), 0, nullptr, 0.0f,
-                         top * 1.1f, ImVec2(260.0f, 60.0f));
+        ImGui::PlotLines("frame ms", panel.frameTimesMs.data(), int(panel.frameTimesMs.size()), 0,
+                         nullptr, 0.0f, top * 1.1f, ImVec2(260.0f, 60.0f));
     }
-    const bool halves = panel.columnWidth > 0 && !panel.sections.empty() &&
-                        ImGui::BeginTable("halves", 2, ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerV);
+    const bool halves =
+        panel.columnWidth > 0 && !panel.sections.empty() &&
+        ImGui::BeginTable("halves", 2,
+                          ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerV);
     if (halves) ImGui::TableNextRow();
     for (int half = 0; half < (halves ? 2 : 1); ++half) {
         if (halves) ImGui::TableSetColumnIndex(half);

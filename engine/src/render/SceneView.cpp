@@ -16,69 +16,81 @@
 
 namespace sierra::render {
 
-glm::vec3 toGlm(const scene::Vec3& v) { return {v.x, v.y, v.z}; }
+glm::vec3 toGlm(const scene::Vec3& v) {
+    return {v.x, v.y, v.z};
+}
 
 std::vector<Camera> sceneCameras(const scene::Scene& s, const SceneBounds& bounds) {
     const scene::CameraDesc& c = s.camera;
     float aspect = float(s.output.width) / float(s.output.height);
-    Projection projection =
-        c.projection == scene::Projection::Orthographic ? Projection::Orthographic : Projection::Perspective;
+    Projection projection = c.projection == scene::Projection::Orthographic
+                                ? Projection::Orthographic
+                                : Projection::Perspective;
     glm::vec3 target = c.target ? toGlm(*c.target) : defaultTarget(bounds);
     int frames = s.path.frames;
     std::vector<Camera> cameras;
     switch (s.path.type) {
-    case scene::PathType::Orbit: {
-        SIERRA_CHECK(!c.position, "an orbit path sets the camera position itself: leave out the camera position");
-        cameras = orbitPath(bounds, frames, aspect, c.fov, c.elevation.value_or(30.0f));
-        for (Camera& cam : cameras) {
-            if (c.target) {
-                cam.position += target - cam.target;
+        case scene::PathType::Orbit: {
+            SIERRA_CHECK(
+                !c.position,
+                "an orbit path sets the camera position itself: leave out the camera position");
+            cameras = orbitPath(bounds, frames, aspect, c.fov, c.elevation.value_or(30.0f));
+            for (Camera& cam : cameras) {
+                if (c.target) {
+                    cam.position += target - cam.target;
+                    cam.target = target;
+                }
+                if (c.distance)
+                    cam.position =
+                        cam.target + glm::normalize(cam.position - cam.target) * *c.distance;
+                cam.projection = projection;
+                if (projection == Projection::Orthographic) {
+                    Camera framed = framedCamera(bounds, {.target = cam.target,
+                                                          .fovYDegrees = c.fov,
+                                                          .projection = projection,
+                                                          .aspect = aspect});
+                    cam.orthoHeight = framed.orthoHeight;
+                }
+                fitClipPlanes(cam, bounds);
+            }
+            break;
+        }
+        case scene::PathType::Flyover:
+            cameras = flyoverPath(bounds, frames, c.fov);
+            break;
+        case scene::PathType::Keyframes: {
+            std::vector<Keyframe> keys;
+            for (const scene::Keyframe& k : s.path.keyframes)
+                keys.push_back(
+                    {.time = k.time, .position = toGlm(k.position), .target = toGlm(k.target)});
+            cameras = keyframePath(bounds, keys, frames, c.fov);
+            break;
+        }
+        case scene::PathType::None: {
+            Camera cam;
+            if (c.position) {
+                cam.position = toGlm(*c.position);
                 cam.target = target;
+                cam.fovYDegrees = c.fov;
+                cam.projection = projection;
+                if (projection == Projection::Orthographic)
+                    cam.orthoHeight =
+                        framedCamera(bounds,
+                                     {.target = target, .projection = projection, .aspect = aspect})
+                            .orthoHeight;
+                fitClipPlanes(cam, bounds);
+            } else {
+                cam = framedCamera(bounds, {.target = target,
+                                            .azimuthDeg = c.azimuth.value_or(225.0f),
+                                            .elevationDeg = c.elevation.value_or(30.0f),
+                                            .fovYDegrees = c.fov,
+                                            .projection = projection,
+                                            .aspect = aspect,
+                                            .distance = c.distance.value_or(0.0f)});
             }
-            if (c.distance) cam.position = cam.target + glm::normalize(cam.position - cam.target) * *c.distance;
-            cam.projection = projection;
-            if (projection == Projection::Orthographic) {
-                Camera framed = framedCamera(bounds, {.target = cam.target, .fovYDegrees = c.fov,
-                                                      .projection = projection, .aspect = aspect});
-                cam.orthoHeight = framed.orthoHeight;
-            }
-            fitClipPlanes(cam, bounds);
+            cameras.assign(size_t(frames), cam);
+            break;
         }
-        break;
-    }
-    case scene::PathType::Flyover:
-        cameras = flyoverPath(bounds, frames, c.fov);
-        break;
-    case scene::PathType::Keyframes: {
-        std::vector<Keyframe> keys;
-        for (const scene::Keyframe& k : s.path.keyframes)
-            keys.push_back({.time = k.time, .position = toGlm(k.position), .target = toGlm(k.target)});
-        cameras = keyframePath(bounds, keys, frames, c.fov);
-        break;
-    }
-    case scene::PathType::None: {
-        Camera cam;
-        if (c.position) {
-            cam.position = toGlm(*c.position);
-            cam.target = target;
-            cam.fovYDegrees = c.fov;
-            cam.projection = projection;
-            if (projection == Projection::Orthographic)
-                cam.orthoHeight = framedCamera(bounds, {.target = target, .projection = projection, .aspect = aspect})
-                                      .orthoHeight;
-            fitClipPlanes(cam, bounds);
-        } else {
-            cam = framedCamera(bounds, {.target = target,
-                                        .azimuthDeg = c.azimuth.value_or(225.0f),
-                                        .elevationDeg = c.elevation.value_or(30.0f),
-                                        .fovYDegrees = c.fov,
-                                        .projection = projection,
-                                        .aspect = aspect,
-                                        .distance = c.distance.value_or(0.0f)});
-        }
-        cameras.assign(size_t(frames), cam);
-        break;
-    }
     }
     for (Camera& cam : cameras) cam.forward();  // throws for position == target
     return cameras;
@@ -94,8 +106,8 @@ Lighting sceneLighting(const scene::LightingDesc& l, bool transparent) {
     return out;
 }
 
-std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field,
-                              float seaLevel) {
+std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s,
+                              const terrain::Heightfield& field, float seaLevel) {
     const scene::ZonesDesc& z = s.zones;
     if (!s.style.overlay.layers.shaded) {
         // Line and hatch styles without shading draw on plain paper, as the
@@ -112,7 +124,7 @@ std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s, 
     desc.heightBlend = z.blend == "height";
     desc.triplanar = z.triplanar;
     desc.variation = z.variation;
-    desc.debugView = z.debugView == "zones" ? ZoneDebugView::Zones
+    desc.debugView = z.debugView == "zones"   ? ZoneDebugView::Zones
                      : z.debugView == "bands" ? ZoneDebugView::Bands
                                               : ZoneDebugView::None;
     // Without water every sample is land: the sea sits below the lowest height.
@@ -123,12 +135,14 @@ std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s, 
     desc.autoZones.rockSlope = z.rockSlope;
     ZoneSurfaceInfo info;
     renderer.setSurface(makeZoneSurface(renderer.terrain(), field, desc, &info));
-    return msg("zones: ", z.map == "auto" ? std::string("auto") : z.map, ", ", info.mapWidth, "x", info.mapHeight,
-               ", ", info.zoneCount, " surface types, ", info.borderEdges, " borderline edges, band ", info.band,
-               " px, field ", info.texelsPerPixel, " texel(s) per pixel, built in ", info.buildMs, " ms");
+    return msg("zones: ", z.map == "auto" ? std::string("auto") : z.map, ", ", info.mapWidth, "x",
+               info.mapHeight, ", ", info.zoneCount, " surface types, ", info.borderEdges,
+               " borderline edges, band ", info.band, " px, field ", info.texelsPerPixel,
+               " texel(s) per pixel, built in ", info.buildMs, " ms");
 }
 
-TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& field, float seaLevel) {
+TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& field,
+                             float seaLevel) {
     return {.field = &field,
             .seaLevel = seaLevel,
             .threads = s.lod.threads,
@@ -138,7 +152,8 @@ TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& 
             .cpt = s.style.cpt};
 }
 
-std::vector<Camera> snapshotCameras(const scene::Scene& s, const SceneBounds& bounds, int frameWidth) {
+std::vector<Camera> snapshotCameras(const scene::Scene& s, const SceneBounds& bounds,
+                                    int frameWidth) {
     scene::Scene narrow = s;
     narrow.output.width = frameWidth;
     return sceneCameras(narrow, bounds);
@@ -154,12 +169,15 @@ DrawOptions sceneDrawOptions(const scene::Scene& s) {
             .wireframe = s.style.wireframe,
             .polygons = s.style.polygons,
             .points = s.style.points,
-            .colourBy = s.style.colourBy == "level" ? 1 : s.style.colourBy == "error" ? 2 : 0,
+            .colourBy = s.style.colourBy == "level"   ? 1
+                        : s.style.colourBy == "error" ? 2
+                                                      : 0,
             .threads = s.lod.threads,
             .lighting = sceneLighting(s.lighting, s.output.alpha)};
 }
 
-std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field) {
+std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& s,
+                           const terrain::Heightfield& field) {
     if (s.lod.mesh.empty()) return {};
     const std::string& path = s.lod.mesh;
     const tin::ObjFile obj = tin::readObj(path);
@@ -176,16 +194,18 @@ std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& s, con
         const auto& p = obj.positions[v];
         const double gi = double(p[0]) / spacing.x, gj = double(p[2]) / spacing.y;
         const long i = std::lround(gi), j = std::lround(gj);
-        const bool onSample = std::abs(gi - double(i)) < 1e-3 && std::abs(gj - double(j)) < 1e-3 && i >= 0 &&
-                              j >= 0 && i < realW && j < realH;
+        const bool onSample = std::abs(gi - double(i)) < 1e-3 && std::abs(gj - double(j)) < 1e-3 &&
+                              i >= 0 && j >= 0 && i < realW && j < realH;
         if (!onSample)
             throw Error(msg("mesh ", path, ": vertex ", v + 1, " at (", p[0], ", ", p[2],
-                            ") is not a sample of the terrain's ", realW, "x", realH, " grid (spacing ", spacing.x,
+                            ") is not a sample of the terrain's ", realW, "x", realH,
+                            " grid (spacing ", spacing.x,
                             "); make the mesh with sierra-tin and the same terrain options"));
         const double h = double(field.at(int(i), int(j))) * field.verticalScale();
         if (std::abs(double(p[1]) - h) > heightTolerance)
-            throw Error(msg("mesh ", path, ": vertex ", v + 1, " has height ", p[1], ", the terrain ", h, " at sample (",
-                            i, ", ", j, "); make the mesh with sierra-tin and the same terrain options"));
+            throw Error(msg("mesh ", path, ": vertex ", v + 1, " has height ", p[1],
+                            ", the terrain ", h, " at sample (", i, ", ", j,
+                            "); make the mesh with sierra-tin and the same terrain options"));
         linear[v] = uint32_t(j) * uint32_t(terrain.side()) + uint32_t(i);
     }
     std::vector<uint32_t> triangles;
@@ -193,10 +213,12 @@ std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& s, con
     for (const auto& f : obj.faces)
         for (int32_t v : f) triangles.push_back(linear[size_t(v)]);
     terrain.setMesh(triangles);
-    return msg("mesh: ", path, ", ", obj.faces.size(), " triangles, ", obj.positions.size(), " vertices");
+    return msg("mesh: ", path, ", ", obj.faces.size(), " triangles, ", obj.positions.size(),
+               " vertices");
 }
 
-OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field) {
+OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s,
+                             const terrain::Heightfield& field) {
     const analysis::StyleParams& style = s.style.overlay;
     OverlayInfo info;
     if (!style.layers.lines && !style.layers.hatch && !style.layers.contours) return info;
@@ -213,7 +235,8 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s, c
         }
         if (style.layers.lines) {
             // Traced once per terrain and style, from the GPU field read back.
-            analysis::LineSet lines = analysis::traceLines(curvature->read(), analysis::lineOptions(style));
+            analysis::LineSet lines =
+                analysis::traceLines(curvature->read(), analysis::lineOptions(style));
             info.lines = lines.polylineCount();
             auto pass = LinePass::create(lines, {.width = style.lines.width});
             info.segments = pass->segmentCount();
@@ -221,8 +244,10 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s, c
         }
     }
     if (style.layers.contours) renderer.addPass(ContourPass::create());
-    log::info("overlays: ", style.layers.hatch ? "hatches, " : "", style.layers.lines ? msg(info.lines, " lines (",
-              info.segments, " segments), ") : std::string(), style.layers.contours ? "contour edges, " : "",
+    log::info("overlays: ", style.layers.hatch ? "hatches, " : "",
+              style.layers.lines ? msg(info.lines, " lines (", info.segments, " segments), ")
+                                 : std::string(),
+              style.layers.contours ? "contour edges, " : "",
               analysis::curvatureMethodName(style.curvature.method), " curvature on the GPU");
     return info;
 }

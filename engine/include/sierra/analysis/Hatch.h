@@ -36,14 +36,14 @@ HatchDirection parseHatchDirection(const std::string& name);
 // vector (ux, uz) in world x-z, from the 4 magnitudes of one vertex (NaN and
 // negative weights count as their absolute value, NaN as 0). Returns false,
 // leaving ux, uz alone, when all four are zero or NaN.
-bool blendedCurvatureAxis(const float curvature[kDirectionCount], float spacingX, float spacingZ, float& ux,
-                          float& uz);
+bool blendedCurvatureAxis(const float curvature[kDirectionCount], float spacingX, float spacingZ,
+                          float& ux, float& uz);
 
 // One vertex's stroke direction: a unit world vector on the tangent plane of
 // the unit normal n. NaN when the normal is NaN; along +x lifted onto the
 // plane when the vertex has no curvature at all (its opacity is then 0).
-Vec3 hatchStrokeDirection(const float curvature[kDirectionCount], const Vec3& normal, float spacingX,
-                          float spacingZ, HatchDirection direction);
+Vec3 hatchStrokeDirection(const float curvature[kDirectionCount], const Vec3& normal,
+                          float spacingX, float spacingZ, HatchDirection direction);
 
 struct HatchOptions {
     HatchDirection direction = HatchDirection::Along;

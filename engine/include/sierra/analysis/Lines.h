@@ -52,9 +52,9 @@ struct LineOptions {
     float threshold = 0.5f;  // strength a vertex needs to be on a line, >= 0 (after scale/levels)
     int minVertices = 5;     // shortest polyline kept, in vertices, >= 2
     LinePolarity polarity = LinePolarity::Any;
-    bool blended = false;    // the refinement: blended directions, interpolated points
-    float step = 1.0f;       // blended: step length in grid units, in (0, 2]
-    int maxPoints = 0;       // blended: longest polyline, 0 = 4 * (width + height)
+    bool blended = false;  // the refinement: blended directions, interpolated points
+    float step = 1.0f;     // blended: step length in grid units, in (0, 2]
+    int maxPoints = 0;     // blended: longest polyline, 0 = 4 * (width + height)
 };
 
 // Throws sierra::Error with one clear message for a bad option.

@@ -24,7 +24,7 @@
 namespace sierra::render {
 
 class CurvatureGpu {
-public:
+  public:
     // Uploads the heightfield's world heights (stored height * vertical
     // scale; NaN for no-data samples); the programs are built on first use. Throws
     // sierra::Error for an empty heightfield or one larger than the driver's
@@ -60,7 +60,7 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
 
-private:
+  private:
     // The programs of one pass (curvature.frag): general, and for a field
     // without no-data at distance 1 the runs and the one-sample border program.
     struct Pass {
@@ -80,7 +80,8 @@ private:
     std::array<gpu::Program, 3> gradientPrograms_, gradientRunPrograms_, gradientSamplePrograms_;
     // [CurvatureMethod][level control (CURVATURE_LEVELS)], general, runs and
     // one-sample (the last two for distance 1 without no-data).
-    std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldRunPrograms_, fieldSamplePrograms_;
+    std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldRunPrograms_,
+        fieldSamplePrograms_;
     // World heights, NaN = no data: sample (i, j) at float (j + 1) * pitch_ + i + 1.
     gpu::Buffer heights_;
     gpu::Texture heightsTexture_, heights4Texture_;  // R32F and RGBA32F buffer textures over it
@@ -90,7 +91,7 @@ private:
     gpu::Buffer gradientCopy_;
     gpu::Texture gradientCopyTexture_;
     gpu::Framebuffer fieldFramebuffer_, gradientFramebuffer_;  // their layers as colour attachments
-    gpu::VertexArray vertexArray_;  // empty: the full-screen triangle
+    gpu::VertexArray vertexArray_;                             // empty: the full-screen triangle
 };
 
 }  // namespace sierra::render

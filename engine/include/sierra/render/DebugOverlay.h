@@ -75,7 +75,7 @@ std::pair<float, float> medianAndP95(std::vector<float> values);
 int snapshotFrameWidth(int width, int columnWidth);
 
 class DebugOverlay {
-public:
+  public:
     // Creates the ImGui context and its OpenGL3 backend on the current GL context.
     DebugOverlay();
     ~DebugOverlay();
@@ -86,7 +86,7 @@ public:
     // restoring the GL state it changes.
     void draw(const DebugPanel& panel, int width, int height);
 
-private:
+  private:
     void layout(const DebugPanel& panel, int width, int height);
     struct State;
     std::unique_ptr<State> state_;

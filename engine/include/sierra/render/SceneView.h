@@ -25,14 +25,16 @@ std::vector<Camera> sceneCameras(const scene::Scene& scene, const SceneBounds& b
 // The cameras of a debug snapshot, whose frame is `frameWidth` pixels wide
 // beside the panel column: sceneCameras for that narrower frame, so a camera
 // framed automatically keeps the whole terrain in view; a fixed one is unchanged.
-std::vector<Camera> snapshotCameras(const scene::Scene& scene, const SceneBounds& bounds, int frameWidth);
+std::vector<Camera> snapshotCameras(const scene::Scene& scene, const SceneBounds& bounds,
+                                    int frameWidth);
 
 DrawOptions sceneDrawOptions(const scene::Scene& scene);
 
 // The renderer's description of the scene's terrain: `field` as loaded by
 // scene::loadTerrain, the sea level from scene::resolveSeaLevel, metric
 // colouring when its heights are metres.
-TerrainDesc sceneTerrainDesc(const scene::Scene& scene, const terrain::Heightfield& field, float seaLevel);
+TerrainDesc sceneTerrainDesc(const scene::Scene& scene, const terrain::Heightfield& field,
+                             float seaLevel);
 Lighting sceneLighting(const scene::LightingDesc& lighting, bool transparent);
 
 glm::vec3 toGlm(const scene::Vec3& v);
@@ -40,15 +42,16 @@ glm::vec3 toGlm(const scene::Vec3& v);
 // Gives the renderer the scene's surface when it is not the default colour
 // ramp (zone tiles), and returns one line saying what was built ("" for none).
 // `field` and `seaLevel` as for sceneTerrainDesc.
-std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& scene, const terrain::Heightfield& field,
-                              float seaLevel);
+std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& scene,
+                              const terrain::Heightfield& field, float seaLevel);
 // Gives the renderer the scene's TIN (lod.mesh, an OBJ from sierra-tin) and
 // returns one line saying what was loaded ("" for none; sceneDrawOptions then
 // picks Lod::Mesh). Every OBJ vertex must be a real sample of `field` (x =
 // i * spacing, z = j * spacing, within 1e-3 of a sample) with its height
 // (within 1e-3 of the height range): a mesh made for another terrain is
 // refused with sierra::Error naming the file.
-std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& scene, const terrain::Heightfield& field);
+std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& scene,
+                           const terrain::Heightfield& field);
 
 // What addOverlayPasses added.
 struct OverlayInfo {
@@ -60,6 +63,7 @@ struct OverlayInfo {
 // contour edges, over the terrain) to `renderer`, whose terrain is `field`:
 // the curvature field computed on the GPU once, the lines traced once from
 // it. Nothing when the style has no overlay layer.
-OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& scene, const terrain::Heightfield& field);
+OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& scene,
+                             const terrain::Heightfield& field);
 
 }  // namespace sierra::render

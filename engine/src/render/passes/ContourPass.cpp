@@ -8,8 +8,8 @@
 namespace sierra::render {
 
 std::unique_ptr<ContourPass> ContourPass::create(const ContourPassDesc& desc) {
-    SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f, "contour pass: width must be > 0 pixels, got ",
-                 desc.width);
+    SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f,
+                 "contour pass: width must be > 0 pixels, got ", desc.width);
     auto pass = std::make_unique<ContourPass>();
     pass->desc_ = desc;
     return pass;

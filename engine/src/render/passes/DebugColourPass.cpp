@@ -17,16 +17,20 @@ ColourBy parseColourBy(const std::string& name) {
 
 const char* colourByName(ColourBy mode) {
     switch (mode) {
-        case ColourBy::Level: return "level";
-        case ColourBy::Error: return "error";
-        default: return "surface";
+        case ColourBy::Level:
+            return "level";
+        case ColourBy::Error:
+            return "error";
+        default:
+            return "surface";
     }
 }
 
 std::unique_ptr<DebugColourPass> DebugColourPass::create() {
     auto pass = std::make_unique<DebugColourPass>();
-    pass->program_ = gpu::Program::create(
-        {.vertex = "debug_colour.vert", .fragment = "debug_colour.frag", .geometry = "debug_colour_geom.glsl"});
+    pass->program_ = gpu::Program::create({.vertex = "debug_colour.vert",
+                                           .fragment = "debug_colour.frag",
+                                           .geometry = "debug_colour_geom.glsl"});
     pass->modeLocation_ = pass->program_.uniform("uMode");
     return pass;
 }

@@ -12,15 +12,16 @@
 namespace sierra::render {
 
 std::unique_ptr<DepthPass> DepthPass::create(int width, int height) {
-    SIERRA_CHECK(width > 0 && height > 0, "depth pass needs a frame size, got ", width, "x", height);
+    SIERRA_CHECK(width > 0 && height > 0, "depth pass needs a frame size, got ", width, "x",
+                 height);
     auto pass = std::make_unique<DepthPass>();
     pass->width_ = width;
     pass->height_ = height;
     pass->program_ = gpu::Program::create({.vertex = "terrain.vert", .fragment = "depth.frag"});
-    pass->depthValue_ = gpu::Texture::create({.format = GL_R32F, .width = width, .height = height,
-                                              .filter = GL_NEAREST});
-    pass->depthBuffer_ = gpu::Texture::create({.format = GL_DEPTH_COMPONENT32F, .width = width, .height = height,
-                                               .filter = GL_NEAREST});
+    pass->depthValue_ = gpu::Texture::create(
+        {.format = GL_R32F, .width = width, .height = height, .filter = GL_NEAREST});
+    pass->depthBuffer_ = gpu::Texture::create(
+        {.format = GL_DEPTH_COMPONENT32F, .width = width, .height = height, .filter = GL_NEAREST});
     pass->fbo_ = gpu::Framebuffer::create();
     pass->fbo_.attach(GL_COLOR_ATTACHMENT0, pass->depthValue_);
     pass->fbo_.attach(GL_DEPTH_ATTACHMENT, pass->depthBuffer_);
@@ -46,13 +47,14 @@ DepthImage DepthPass::read() const {
     gpu::GlStateScope scope;
     std::vector<float> raw(size_t(width_) * height_);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTextureImage(depthValue_.id(), 0, GL_RED, GL_FLOAT, GLsizei(raw.size() * sizeof(float)), raw.data());
+    glGetTextureImage(depthValue_.id(), 0, GL_RED, GL_FLOAT, GLsizei(raw.size() * sizeof(float)),
+                      raw.data());
     gpu::checkGlErrors("glGetTextureImage (depth)");
     DepthImage out{width_, height_, std::vector<float>(raw.size())};
     // GL's rows run bottom-up; images run top-down.
     for (int y = 0; y < height_; ++y)
-        std::memcpy(out.depth.data() + size_t(y) * width_, raw.data() + size_t(height_ - 1 - y) * width_,
-                    size_t(width_) * sizeof(float));
+        std::memcpy(out.depth.data() + size_t(y) * width_,
+                    raw.data() + size_t(height_ - 1 - y) * width_, size_t(width_) * sizeof(float));
     return out;
 }
 

@@ -1,8 +1,8 @@
 #include <sierra/render/passes/HatchPass.h>
 
+#include "render/passes/PassState.h"
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
-#include "render/passes/PassState.h"
 #include <sierra/render/TerrainGpu.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -15,18 +15,19 @@ namespace sierra::render {
 std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu> curvature,
                                              const HatchPassDesc& desc) {
     SIERRA_CHECK(curvature != nullptr, "hatch pass: no curvature field");
-    SIERRA_CHECK(std::isfinite(desc.length) && desc.length > 0.0f, "hatch pass: length must be > 0 grid units, got ",
-                 desc.length);
-    SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f, "hatch pass: width must be > 0 pixels, got ",
-                 desc.width);
+    SIERRA_CHECK(std::isfinite(desc.length) && desc.length > 0.0f,
+                 "hatch pass: length must be > 0 grid units, got ", desc.length);
+    SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f,
+                 "hatch pass: width must be > 0 pixels, got ", desc.width);
     auto pass = std::make_unique<HatchPass>();
-    pass->program_ =
-        gpu::Program::create({.vertex = "hatch.vert", .fragment = "line.frag", .geometry = "hatch_geom.glsl"});
+    pass->program_ = gpu::Program::create(
+        {.vertex = "hatch.vert", .fragment = "line.frag", .geometry = "hatch_geom.glsl"});
     pass->vao_ = gpu::VertexArray::create();
     pass->curvature_ = std::move(curvature);
     pass->desc_ = desc;
     // The view-independent stroke field, once: direction and opacity per sample.
-    static_assert(CurvatureGpu::kRun == 8, "hatch_strokes.comp reads the curvature layout of runs of 8");
+    static_assert(CurvatureGpu::kRun == 8,
+                  "hatch_strokes.comp reads the curvature layout of runs of 8");
     const CurvatureGpu& c = *pass->curvature_;
     gpu::Program strokes = gpu::Program::create({.compute = "hatch_strokes.comp"});
     pass->strokes_ = gpu::Texture::create(
@@ -36,7 +37,8 @@ std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu>
         glUseProgram(strokes.id());
         glUniform2i(strokes.uniform("uSize"), c.width(), c.height());
         glUniform2f(strokes.uniform("uSpacing"), c.spacing().x, c.spacing().y);
-        glUniform1i(strokes.uniform("uAcross"), desc.direction == analysis::HatchDirection::Across ? 1 : 0);
+        glUniform1i(strokes.uniform("uAcross"),
+                    desc.direction == analysis::HatchDirection::Across ? 1 : 0);
         glBindTextureUnit(0, c.texture().id());
         glBindTextureUnit(1, c.gradient().id());
         glBindImageTexture(0, pass->strokes_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -58,7 +60,8 @@ int HatchPass::baseStride(const FrameContext& frame) {
         cellPx = spacing * float(frame.height) / std::max(c.orthoHeight, 1e-6f);
     } else {
         if (distance <= 0.0f) return 1;  // the camera is inside the terrain's box
-        cellPx = spacing * float(frame.height) / (2.0f * std::tan(glm::radians(c.fovYDegrees) * 0.5f) * distance);
+        cellPx = spacing * float(frame.height) /
+                 (2.0f * std::tan(glm::radians(c.fovYDegrees) * 0.5f) * distance);
     }
     int stride = 1;
     // hatch.vert keeps a vertex when its stride s (the smallest power of two
@@ -72,9 +75,10 @@ int HatchPass::baseStride(const FrameContext& frame) {
 }
 
 void HatchPass::draw(const FrameContext& frame) {
-    SIERRA_CHECK(curvature_->width() == frame.terrain.side() && curvature_->height() == frame.terrain.side(),
-                 "hatch pass: the curvature field is ", curvature_->width(), "x", curvature_->height(),
-                 " but the terrain has ", frame.terrain.side(), " samples a side");
+    SIERRA_CHECK(
+        curvature_->width() == frame.terrain.side() && curvature_->height() == frame.terrain.side(),
+        "hatch pass: the curvature field is ", curvature_->width(), "x", curvature_->height(),
+        " but the terrain has ", frame.terrain.side(), " samples a side");
     gpu::GlStateScope scope;
     setOverlayState();
     glUseProgram(program_.id());

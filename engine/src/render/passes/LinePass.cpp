@@ -1,9 +1,9 @@
 #include <sierra/render/passes/LinePass.h>
 
-#include <sierra/core/Error.h>
-#include <sierra/gpu/GlStateScope.h>
 #include "render/passes/PassState.h"
 #include "render/passes/QuadBatch.h"
+#include <sierra/core/Error.h>
+#include <sierra/gpu/GlStateScope.h>
 #include <sierra/render/TerrainGpu.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -13,9 +13,10 @@
 
 namespace sierra::render {
 
-std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines, const LinePassDesc& desc) {
-    SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f, "line pass: width must be > 0 pixels, got ",
-                 desc.width);
+std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines,
+                                           const LinePassDesc& desc) {
+    SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f,
+                 "line pass: width must be > 0 pixels, got ", desc.width);
     auto pass = std::make_unique<LinePass>();
     pass->desc_ = desc;
     pass->program_ = gpu::Program::create({.vertex = "line.vert", .fragment = "line.frag"});
@@ -30,7 +31,9 @@ std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines, const
         }
     }
     pass->segments_ = data.size() / 8;
-    if (!data.empty()) pass->buffer_ = gpu::Buffer::create({.size = data.size() * sizeof(float), .data = data.data()});
+    if (!data.empty())
+        pass->buffer_ =
+            gpu::Buffer::create({.size = data.size() * sizeof(float), .data = data.data()});
     pass->vao_ = gpu::VertexArray::create();
     pass->quadIndices_ = createQuadIndices(pass->vao_);
     return pass;

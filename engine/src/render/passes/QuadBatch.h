@@ -29,8 +29,10 @@ inline gpu::Buffer createQuadIndices(const gpu::VertexArray& vao) {
     std::vector<uint16_t> indices;
     indices.reserve(size_t(kQuadsPerBatch) * 6);
     for (uint32_t q = 0; q < uint32_t(kQuadsPerBatch); ++q)
-        for (uint32_t corner : {0u, 1u, 2u, 2u, 1u, 3u}) indices.push_back(uint16_t(4 * q + corner));
-    gpu::Buffer buffer = gpu::Buffer::create({.size = indices.size() * sizeof(uint16_t), .data = indices.data()});
+        for (uint32_t corner : {0u, 1u, 2u, 2u, 1u, 3u})
+            indices.push_back(uint16_t(4 * q + corner));
+    gpu::Buffer buffer =
+        gpu::Buffer::create({.size = indices.size() * sizeof(uint16_t), .data = indices.data()});
     glVertexArrayElementBuffer(vao.id(), buffer.id());
     return buffer;
 }

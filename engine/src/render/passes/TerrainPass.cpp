@@ -14,7 +14,9 @@ namespace {
 
 gpu::Program buildProgram(const std::string& surfaceFile, const std::string& defines) {
     gpu::IncludeAlias alias{"surface.glsl", surfaceFile};
-    return gpu::Program::create({.vertex = "terrain.vert", .fragment = "terrain.frag", .defines = defines,
+    return gpu::Program::create({.vertex = "terrain.vert",
+                                 .fragment = "terrain.frag",
+                                 .defines = defines,
                                  .aliases = std::span<const gpu::IncludeAlias>(&alias, 1)});
 }
 

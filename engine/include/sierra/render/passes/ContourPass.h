@@ -23,7 +23,7 @@ struct ContourPassDesc {
 };
 
 class ContourPass final : public Pass {
-public:
+  public:
     // Throws sierra::Error for a width <= 0.
     static std::unique_ptr<ContourPass> create(const ContourPassDesc& desc = {});
     const char* name() const override { return "contours"; }
@@ -31,7 +31,7 @@ public:
     void draw(const FrameContext& frame) override;
     void shadeTerrain(TerrainShading& shading) const override;
 
-private:
+  private:
     ContourPassDesc desc_;
 };
 

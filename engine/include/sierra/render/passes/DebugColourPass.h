@@ -19,13 +19,13 @@ ColourBy parseColourBy(const std::string& name);
 const char* colourByName(ColourBy mode);
 
 class DebugColourPass final : public Pass {
-public:
+  public:
     static std::unique_ptr<DebugColourPass> create();
     const char* name() const override { return "debug-colour"; }
     void setMode(ColourBy mode) { mode_ = mode; }
     void draw(const FrameContext& frame) override;
 
-private:
+  private:
     gpu::Program program_;
     GLint modeLocation_ = -1;
     ColourBy mode_ = ColourBy::Level;

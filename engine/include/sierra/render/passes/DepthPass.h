@@ -18,7 +18,7 @@ struct DepthImage {
 };
 
 class DepthPass final : public Pass {
-public:
+  public:
     static std::unique_ptr<DepthPass> create(int width, int height);
     const char* name() const override { return "depth"; }
     // Renders into the pass's own target (the bound framebuffer is untouched).
@@ -28,7 +28,7 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
 
-private:
+  private:
     int width_ = 0, height_ = 0;
     gpu::Program program_;
     gpu::Framebuffer fbo_;

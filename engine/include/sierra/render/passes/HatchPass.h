@@ -30,7 +30,7 @@ struct HatchPassDesc {
 };
 
 class HatchPass final : public Pass {
-public:
+  public:
     // `curvature` (computed, same grid as the terrain drawn) is read once
     // into the pass's stroke field; compute() it again and the pass keeps
     // the strokes of the field it was created with. Throws
@@ -43,7 +43,7 @@ public:
     // Screen size of a grid cell below which strokes thin out (hatch.vert).
     static constexpr float kMinCellPixels = 6.0f;
 
-private:
+  private:
     // The lattice stride of this frame's instances (a power of two).
     static int baseStride(const FrameContext& frame);
 

@@ -19,20 +19,21 @@
 namespace sierra::render {
 
 struct LinePassDesc {
-    float width = 1.0f;                    // pixels, > 0
+    float width = 1.0f;                        // pixels, > 0
     glm::vec4 colour{0.0f, 0.0f, 0.0f, 1.0f};  // RGBA 0..1; alpha multiplies the curvature
 };
 
 class LinePass final : public Pass {
-public:
+  public:
     // Uploads the segments of `lines` (grid coordinates of the terrain the
     // pass draws over). Throws sierra::Error for a width <= 0.
-    static std::unique_ptr<LinePass> create(const analysis::LineSet& lines, const LinePassDesc& desc = {});
+    static std::unique_ptr<LinePass> create(const analysis::LineSet& lines,
+                                            const LinePassDesc& desc = {});
     const char* name() const override { return "lines"; }
     void draw(const FrameContext& frame) override;
     size_t segmentCount() const { return segments_; }
 
-private:
+  private:
     gpu::Program program_;
     gpu::Buffer buffer_;
     gpu::VertexArray vao_;

@@ -18,12 +18,12 @@ struct PointsPassDesc {
 };
 
 class PointsPass final : public Pass {
-public:
+  public:
     static std::unique_ptr<PointsPass> create(const PointsPassDesc& desc = {});
     const char* name() const override { return "points"; }
     void draw(const FrameContext& frame) override;
 
-private:
+  private:
     gpu::Program program_;
     GLint colourLocation_ = -1;
     PointsPassDesc desc_;

@@ -28,14 +28,14 @@ struct TerrainShading {
 };
 
 class TerrainPass final : public Pass {
-public:
+  public:
     static std::unique_ptr<TerrainPass> create(std::unique_ptr<Surface> surface);
     const char* name() const override { return "terrain"; }
     void draw(const FrameContext& frame) override;
     // The effects of the next draws (none until set).
     void setShading(const TerrainShading& shading) { shading_ = shading; }
 
-private:
+  private:
     gpu::Program program_;         // the surface alone
     gpu::Program contourProgram_;  // with contour edges (SIERRA_CONTOURS), built on first use
     std::string defines_;          // the surface's

@@ -17,12 +17,12 @@ struct WireframePassDesc {
 };
 
 class WireframePass final : public Pass {
-public:
+  public:
     static std::unique_ptr<WireframePass> create(const WireframePassDesc& desc = {});
     const char* name() const override { return "wireframe"; }
     void draw(const FrameContext& frame) override;
 
-private:
+  private:
     gpu::Program program_;
     GLint colourLocation_ = -1;
     glm::vec4 colour_{0.0f};
