@@ -15,7 +15,7 @@ packages=(
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libglm-dev libstb-dev libimgui-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev glslang-tools
+  libcli11-dev nlohmann-json3-dev glslang-tools clang-format
   libspng-dev libgdal-dev
   python-matplotlib-data
 )
