@@ -20,7 +20,8 @@ namespace analysis = sierra::analysis;
 struct GpuSetup {
     sierra::gpu::EglContext context = sierra::gpu::EglContext::create({.width = 16, .height = 16});
     sierra::terrain::Heightfield field;
-    std::unique_ptr<sierra::render::CurvatureGpu> curvature;
+    std::unique_ptr<sierra::render::CurvatureGpu> curvature;  // the driver's default path
+    std::unique_ptr<sierra::render::CurvatureGpu> other;      // the other path
 };
 
 GpuSetup& setup(int size) {
@@ -34,21 +35,32 @@ GpuSetup& setup(int size) {
         s->field.setVerticalScale(0.1f * float(size - 1) / std::max(1e-6f, hi - lo));
         s->curvature = std::make_unique<sierra::render::CurvatureGpu>(
             sierra::render::CurvatureGpu::create(s->field));
+        using Path = sierra::render::CurvatureGpu::Path;
+        s->other =
+            std::make_unique<sierra::render::CurvatureGpu>(sierra::render::CurvatureGpu::create(
+                s->field, s->curvature->path() == Path::Fragment ? Path::Compute : Path::Fragment));
     }
     return *s;
 }
 
+const char* pathName(const sierra::render::CurvatureGpu& c) {
+    return c.path() == sierra::render::CurvatureGpu::Path::Fragment ? "fragment runs" : "compute";
+}
+
+// Args: grid side, method, read back (1) or not, the driver's default path
+// (0) or the other one (1).
 void BM_CurvatureGpu(benchmark::State& state) {
     GpuSetup& s = setup(int(state.range(0)));
     analysis::CurvatureOptions o{.method = analysis::CurvatureMethod(state.range(1))};
     const bool read = state.range(2) != 0;
+    sierra::render::CurvatureGpu& gpu = state.range(3) != 0 ? *s.other : *s.curvature;
     // The field alone: the gradient pass only where the method needs it.
-    s.curvature->compute(o, false);
+    gpu.compute(o, false);
     glFinish();
     for (auto _ : state) {
-        s.curvature->compute(o, false);
+        gpu.compute(o, false);
         if (read) {
-            auto f = s.curvature->read();
+            auto f = gpu.read();
             benchmark::DoNotOptimize(f.values.data());
         } else {
             glFinish();
@@ -56,11 +68,12 @@ void BM_CurvatureGpu(benchmark::State& state) {
     }
     state.SetItemsProcessed(state.iterations() * s.field.sampleCount());
     state.SetLabel(std::string(analysis::curvatureMethodName(o.method)) +
-                   (read ? " + read-back" : "") + " on " + s.context.renderer());
+                   (read ? " + read-back" : "") + ", " + pathName(gpu) + " on " +
+                   s.context.renderer());
 }
 BENCHMARK(BM_CurvatureGpu)
-    ->ArgsProduct({{2049}, {0, 1, 2, 3}, {0}})
-    ->Args({2049, 1, 1})
+    ->ArgsProduct({{2049}, {0, 1, 2, 3}, {0}, {0, 1}})
+    ->Args({2049, 1, 1, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -110,21 +110,31 @@ std::string describe(const CurvatureOptions& o) {
            (o.output == analysis::CurvatureOutput::SecondDerivative ? " y''" : "");
 }
 
-void checkAllMethods(const terrain::Heightfield& field, const std::string& surface) {
-    render::CurvatureGpu gpu = render::CurvatureGpu::create(field);
-    for (const CurvatureOptions& o : allOptionSets()) {
-        gpu.compute(o);
-        analysis::CurvatureField cpu = analysis::computeCurvature(field, o);
-        analysis::CurvatureField raw;
-        if (o.levels.enabled) {
-            CurvatureOptions plain = o;
-            plain.levels.enabled = false;
-            raw = analysis::computeCurvature(field, plain);
+constexpr render::CurvatureGpu::Path kPaths[] = {render::CurvatureGpu::Path::Fragment,
+                                                 render::CurvatureGpu::Path::Compute};
+const char* pathName(render::CurvatureGpu::Path p) {
+    return p == render::CurvatureGpu::Path::Fragment ? "fragment runs" : "compute";
+}
+
+// Every option set on both paths against the CPU.
+void checkAllMethods(const terrain::Heightfield& field, const std::string& name) {
+    for (render::CurvatureGpu::Path path : kPaths) {
+        render::CurvatureGpu gpu = render::CurvatureGpu::create(field, path);
+        const std::string surface = name + " (" + pathName(path) + ")";
+        for (const CurvatureOptions& o : allOptionSets()) {
+            gpu.compute(o);
+            analysis::CurvatureField cpu = analysis::computeCurvature(field, o);
+            analysis::CurvatureField raw;
+            if (o.levels.enabled) {
+                CurvatureOptions plain = o;
+                plain.levels.enabled = false;
+                raw = analysis::computeCurvature(field, plain);
+            }
+            EXPECT_EQ(compareFields(gpu.read(), cpu, surface + " " + describe(o),
+                                    o.levels.enabled ? &raw : nullptr, o.levels),
+                      0)
+                << surface << " " << describe(o);
         }
-        EXPECT_EQ(compareFields(gpu.read(), cpu, surface + " " + describe(o),
-                                o.levels.enabled ? &raw : nullptr, o.levels),
-                  0)
-            << surface << " " << describe(o);
     }
 }
 
@@ -166,37 +176,41 @@ TEST_F(CurvatureGpuTest, GradientTextureMatchesCpuNormals) {
         for (int j = 0; j < g.height(); ++j)
             for (int i = 0; i < g.width(); ++i) g.at(i, j) = f.at(i, j) * 3.0f;
         g.setSpacing(1.5f, 1.0f);
-        render::CurvatureGpu gpu = render::CurvatureGpu::create(g);
-        const int run = render::CurvatureGpu::kRun, runs = gpu.runs();
-        for (NormalMethod n : {NormalMethod::Edge, NormalMethod::Triangle, NormalMethod::Quad}) {
-            gpu.compute({.method = CurvatureMethod::ThreeVertex, .normals = n},
-                        /*tangentPlanes=*/true);
-            std::vector<float> layers(size_t(runs) * 13 * size_t(run / 2) * 4);
-            glGetTextureImage(gpu.gradient().id(), 0, GL_RGBA, GL_FLOAT,
-                              GLsizei(layers.size() * sizeof(float)), layers.data());
-            auto grad = [&](int i, int j, int c) {
-                return layers[((size_t(i % run / 2) * 13 + size_t(j)) * size_t(runs) +
-                               size_t(i / run)) *
-                                  4 +
-                              size_t(i % 2) * 2 + size_t(c)];
-            };
-            analysis::NormalField cpu = analysis::computeNormals(g, n);
-            int bad = 0;
-            for (int j = 0; j < g.height(); ++j) {
-                for (int i = 0; i < g.width(); ++i) {
-                    const analysis::Vec3& v = cpu.at(i, j);
-                    const float ex = -v.x / v.y, ez = -v.z / v.y;
-                    const float gx = grad(i, j, 0), gz = grad(i, j, 1);
-                    auto near = [](float a, float b) {
-                        return std::fabs(a - b) <= std::max(1e-5f, 1e-4f * std::fabs(b));
-                    };
-                    if ((!near(gx, ex) || !near(gz, ez)) && ++bad <= 3)
-                        ADD_FAILURE() << width << "x13 " << analysis::normalMethodName(n) << " ("
-                                      << i << ", " << j << "): GPU (" << gx << ", " << gz
-                                      << "), CPU (" << ex << ", " << ez << ")";
+        for (render::CurvatureGpu::Path path : kPaths) {
+            render::CurvatureGpu gpu = render::CurvatureGpu::create(g, path);
+            const int run = render::CurvatureGpu::kRun, runs = gpu.runs();
+            for (NormalMethod n :
+                 {NormalMethod::Edge, NormalMethod::Triangle, NormalMethod::Quad}) {
+                gpu.compute({.method = CurvatureMethod::ThreeVertex, .normals = n},
+                            /*tangentPlanes=*/true);
+                std::vector<float> layers(size_t(runs) * 13 * size_t(run / 2) * 4);
+                glGetTextureImage(gpu.gradient().id(), 0, GL_RGBA, GL_FLOAT,
+                                  GLsizei(layers.size() * sizeof(float)), layers.data());
+                auto grad = [&](int i, int j, int c) {
+                    return layers[((size_t(i % run / 2) * 13 + size_t(j)) * size_t(runs) +
+                                   size_t(i / run)) *
+                                      4 +
+                                  size_t(i % 2) * 2 + size_t(c)];
+                };
+                analysis::NormalField cpu = analysis::computeNormals(g, n);
+                int bad = 0;
+                for (int j = 0; j < g.height(); ++j) {
+                    for (int i = 0; i < g.width(); ++i) {
+                        const analysis::Vec3& v = cpu.at(i, j);
+                        const float ex = -v.x / v.y, ez = -v.z / v.y;
+                        const float gx = grad(i, j, 0), gz = grad(i, j, 1);
+                        auto near = [](float a, float b) {
+                            return std::fabs(a - b) <= std::max(1e-5f, 1e-4f * std::fabs(b));
+                        };
+                        if ((!near(gx, ex) || !near(gz, ez)) && ++bad <= 3)
+                            ADD_FAILURE() << width << "x13 " << pathName(path) << " "
+                                          << analysis::normalMethodName(n) << " (" << i << ", " << j
+                                          << "): GPU (" << gx << ", " << gz << "), CPU (" << ex
+                                          << ", " << ez << ")";
+                    }
                 }
+                EXPECT_EQ(bad, 0);
             }
-            EXPECT_EQ(bad, 0);
         }
     }
 }
@@ -242,11 +256,39 @@ TEST_F(CurvatureGpuTest, NoDataIsNanAndDoesNotSpread) {
 
 TEST_F(CurvatureGpuTest, ComputeLeavesGlStateAlone) {
     terrain::Heightfield f = fractal(33, 5);
-    render::CurvatureGpu gpu = render::CurvatureGpu::create(f);
-    gpu::GlState before = gpu::GlState::capture();
-    gpu.compute({.method = CurvatureMethod::TwoNormal});
-    (void)gpu.read();
-    EXPECT_EQ(before.differences(gpu::GlState::capture()), "");
+    for (render::CurvatureGpu::Path path : kPaths) {
+        render::CurvatureGpu gpu = render::CurvatureGpu::create(f, path);
+        gpu::GlState before = gpu::GlState::capture();
+        gpu.compute({.method = CurvatureMethod::TwoNormal});
+        (void)gpu.read();
+        EXPECT_EQ(before.differences(gpu::GlState::capture()), "") << pathName(path);
+    }
+}
+
+// The two paths compute the same field to the bit on a fractal (the same
+// per-sample code, or the runs' formulas in the same order); the default
+// is the fragment runs on a software rasteriser and compute elsewhere.
+TEST_F(CurvatureGpuTest, PathsAgreeAndTheDefaultSuitsTheDriver) {
+    terrain::Heightfield f = fractal(65, 9);
+    render::CurvatureGpu fragment = render::CurvatureGpu::create(f, kPaths[0]);
+    render::CurvatureGpu compute = render::CurvatureGpu::create(f, kPaths[1]);
+    for (CurvatureMethod m : {CurvatureMethod::TwoNormal, CurvatureMethod::ThreeNormal,
+                              CurvatureMethod::ThreeVertex, CurvatureMethod::EdgeAngle}) {
+        fragment.compute({.method = m});
+        compute.compute({.method = m});
+        analysis::CurvatureField a = fragment.read(), b = compute.read();
+        ASSERT_EQ(a.values.size(), b.values.size());
+        size_t differ = 0;
+        for (size_t k = 0; k < a.values.size(); ++k)
+            differ += std::fabs(a.values[k] - b.values[k]) >
+                      std::max(1e-6f, 1e-5f * std::fabs(a.values[k]));
+        EXPECT_EQ(differ, 0u) << analysis::curvatureMethodName(m);
+    }
+    const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const bool software = renderer.find("llvmpipe") != std::string::npos;
+    EXPECT_EQ(render::CurvatureGpu::create(f).path(),
+              software ? render::CurvatureGpu::Path::Fragment : render::CurvatureGpu::Path::Compute)
+        << renderer;
 }
 
 TEST_F(CurvatureGpuTest, BadOptionsGiveTheCpuMessages) {

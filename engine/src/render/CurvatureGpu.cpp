@@ -24,36 +24,48 @@ gpu::Texture bufferTexture(const gpu::Buffer& buffer, GLenum format) {
     return gpu::Texture(id, gpu::kAdopt);
 }
 
-// An RGBA32F 2D array texture of `layers` layers, and a framebuffer with
-// layer k as colour attachment k, all drawn.
+// An RGBA32F 2D array texture of `layers` layers, and unless `framebuffer`
+// is null a framebuffer with layer k as colour attachment k, all drawn.
 void layeredTarget(int width, int height, int layers, gpu::Texture& texture,
-                   gpu::Framebuffer& framebuffer) {
+                   gpu::Framebuffer* framebuffer) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
     glTextureStorage3D(id, 1, GL_RGBA32F, width, height, layers);
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     texture = gpu::Texture(id, gpu::kAdopt);
-    framebuffer = gpu::Framebuffer::create();
+    if (!framebuffer) return;
+    *framebuffer = gpu::Framebuffer::create();
     std::vector<GLenum> buffers;
     for (int k = 0; k < layers; ++k) {
-        glNamedFramebufferTextureLayer(framebuffer.id(), GLenum(GL_COLOR_ATTACHMENT0 + k), id, 0,
+        glNamedFramebufferTextureLayer(framebuffer->id(), GLenum(GL_COLOR_ATTACHMENT0 + k), id, 0,
                                        k);
         buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + k));
     }
-    glNamedFramebufferDrawBuffers(framebuffer.id(), layers, buffers.data());
-    framebuffer.checkComplete("GPU curvature");
+    glNamedFramebufferDrawBuffers(framebuffer->id(), layers, buffers.data());
+    framebuffer->checkComplete("GPU curvature");
 }
 
 }  // namespace
 
-CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
+CurvatureGpu::Path CurvatureGpu::defaultPath() {
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string name = renderer ? renderer : "";
+    const bool software =
+        name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+    return software ? Path::Fragment : Path::Compute;
+}
+
+CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field, std::optional<Path> path) {
     SIERRA_CHECK(!field.empty(), "GPU curvature: the heightfield is empty");
-    GLint drawBuffers = 0;
-    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
-    SIERRA_CHECK(drawBuffers >= kRun, "GPU curvature: the driver draws to ", drawBuffers,
-                 " colour attachments at once, ", kRun, " needed");
     CurvatureGpu c;
+    c.path_ = path.value_or(defaultPath());
+    if (c.path_ == Path::Fragment) {
+        GLint drawBuffers = 0;
+        glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+        SIERRA_CHECK(drawBuffers >= kRun, "GPU curvature: the driver draws to ", drawBuffers,
+                     " colour attachments at once, ", kRun, " needed");
+    }
     c.width_ = field.width();
     c.height_ = field.height();
     c.spacingX_ = field.spacingX();
@@ -89,8 +101,11 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field) {
         gpu::Buffer::create({.size = heights.size() * sizeof(float), .data = heights.data()});
     c.heightsTexture_ = bufferTexture(c.heights_, GL_R32F);
     c.heights4Texture_ = bufferTexture(c.heights_, GL_RGBA32F);
-    layeredTarget(c.runs(), c.height_, kRun, c.fieldTexture_, c.fieldFramebuffer_);
-    layeredTarget(c.runs(), c.height_, kRun / 2, c.gradientTexture_, c.gradientFramebuffer_);
+    const bool fragment = c.path_ == Path::Fragment;
+    layeredTarget(c.runs(), c.height_, kRun, c.fieldTexture_,
+                  fragment ? &c.fieldFramebuffer_ : nullptr);
+    layeredTarget(c.runs(), c.height_, kRun / 2, c.gradientTexture_,
+                  fragment ? &c.gradientFramebuffer_ : nullptr);
     c.vertexArray_ = gpu::VertexArray::create();
     return c;
 }
@@ -132,12 +147,90 @@ void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
+void CurvatureGpu::ensureGradientCopy() {
+    if (gradientCopy_) return;
+    const size_t texels = size_t(runs()) * size_t(height_) * (kRun / 2);
+    gradientCopy_ = gpu::Buffer::create({.size = texels * 4 * sizeof(float)});
+    gradientCopyTexture_ = bufferTexture(gradientCopy_, GL_RGBA32F);
+}
+
+void CurvatureGpu::dispatch(const analysis::CurvatureOptions& o, bool normalBased, bool gradients) {
+    const std::string layout =
+        define("CURVATURE_PITCH", pitch_) + define("CURVATURE_RUNS_PER_ROW", runs());
+    auto build = [](gpu::Program& p, const std::string& defines) -> gpu::Program& {
+        if (!p) p = gpu::Program::create({.compute = "curvature.comp", .defines = defines});
+        return p;
+    };
+    // Image units 0 and 1 as they were (not part of GlState).
+    struct ImageBinding {
+        GLint name = 0, level = 0, layered = 0, layer = 0, access = GL_READ_ONLY,
+              format = GL_RGBA32F;
+    } saved[2];
+    for (GLuint u = 0; u < 2; ++u) {
+        glGetIntegeri_v(GL_IMAGE_BINDING_NAME, u, &saved[u].name);
+        glGetIntegeri_v(GL_IMAGE_BINDING_LEVEL, u, &saved[u].level);
+        glGetIntegeri_v(GL_IMAGE_BINDING_LAYERED, u, &saved[u].layered);
+        glGetIntegeri_v(GL_IMAGE_BINDING_LAYER, u, &saved[u].layer);
+        glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, u, &saved[u].access);
+        glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, u, &saved[u].format);
+    }
+    auto groups = [](int n) { return GLuint((n + 7) / 8); };
+    if (gradients) {
+        gpu::Program& p = build(gradientComputePrograms_[size_t(o.normals)],
+                                layout + define("CURVATURE_NORMALS", int(o.normals)) +
+                                    "#define CURVATURE_GRADIENT 1\n");
+        glUseProgram(p.id());
+        glUniform2i(p.uniform("uSize"), width_, height_);
+        glUniform2f(p.uniform("uSpacing"), spacingX_, spacingZ_);
+        glUniform1i(p.uniform("uGradientCopy"), normalBased ? 1 : 0);
+        glBindImageTexture(0, gradientTexture_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        if (normalBased)
+            glBindImageTexture(1, gradientCopyTexture_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                               GL_RGBA32F);
+        glDispatchCompute(groups(runs() * kRun / 2), groups(height_), 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    const int levels = o.levels.enabled ? 1 : 0;
+    gpu::Program& p = build(fieldComputePrograms_[size_t(o.method)][size_t(levels)],
+                            layout + define("CURVATURE_METHOD", int(o.method)) +
+                                (levels ? "#define CURVATURE_LEVELS 1\n" : ""));
+    glUseProgram(p.id());
+    glUniform2i(p.uniform("uSize"), width_, height_);
+    glUniform2f(p.uniform("uSpacing"), spacingX_, spacingZ_);
+    glUniform1i(p.uniform("uDistance"), o.distance);
+    glUniform1f(p.uniform("uScale"), o.scale);
+    glUniform4f(p.uniform("uLevels"), o.levels.enabled ? 1.0f : 0.0f, o.levels.black,
+                o.levels.white, o.levels.gamma);
+    glUniform1i(p.uniform("uSigned"), o.signedValues ? 1 : 0);
+    glUniform1i(p.uniform("uSecond"),
+                o.output == analysis::CurvatureOutput::SecondDerivative ? 1 : 0);
+    glBindTextureUnit(1, gradientCopyTexture_.id());
+    glBindImageTexture(0, fieldTexture_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glDispatchCompute(groups(runs() * kRun), groups(height_), 1);
+    // The field is read by texel fetches (the overlays), texture reads
+    // (read()) and anything else a caller may do next.
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    for (GLuint u = 0; u < 2; ++u)
+        glBindImageTexture(u, GLuint(saved[u].name), saved[u].level, GLboolean(saved[u].layered),
+                           saved[u].layer, GLenum(saved[u].access), GLenum(saved[u].format));
+}
+
 void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlanes) {
     analysis::validate(o);
     const int minSide = std::max(3, 2 * o.distance + 1);
     SIERRA_CHECK(width_ >= minSide && height_ >= minSide, "curvature: a ", width_, "x", height_,
                  " grid is too small for reinforcement distance ", o.distance,
                  " (each side needs at least ", minSide, " samples)");
+    const bool normalBased = o.method == analysis::CurvatureMethod::TwoNormal ||
+                             o.method == analysis::CurvatureMethod::ThreeNormal;
+    if (path_ == Path::Compute) {
+        if (normalBased) ensureGradientCopy();
+        gpu::GlStateScope scope;
+        glBindTextureUnit(2, heightsTexture_.id());
+        glBindTextureUnit(3, heights4Texture_.id());
+        dispatch(o, normalBased, normalBased || tangentPlanes);
+        return;
+    }
     // Runs over the interior where the formulas need no border rule, no
     // no-data checks and no reinforcement.
     const bool interiorRuns = o.distance == 1 && !noData_;
@@ -166,8 +259,6 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     glBindVertexArray(vertexArray_.id());
     glBindTextureUnit(2, heightsTexture_.id());
     glBindTextureUnit(3, heights4Texture_.id());
-    const bool normalBased = o.method == analysis::CurvatureMethod::TwoNormal ||
-                             o.method == analysis::CurvatureMethod::ThreeNormal;
     if (normalBased || tangentPlanes) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gradientFramebuffer_.id());
         const size_t n = size_t(o.normals);
@@ -180,11 +271,7 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         if (normalBased) {
             // A copy the field pass reads as a buffer texture (see curvature.frag), made on first
             // use.
-            if (!gradientCopy_) {
-                const size_t texels = size_t(runs()) * size_t(height_) * (kRun / 2);
-                gradientCopy_ = gpu::Buffer::create({.size = texels * 4 * sizeof(float)});
-                gradientCopyTexture_ = bufferTexture(gradientCopy_, GL_RGBA32F);
-            }
+            ensureGradientCopy();
             GLint packBuffer = 0;  // not part of GlState
             glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
             glBindBuffer(GL_PIXEL_PACK_BUFFER, gradientCopy_.id());

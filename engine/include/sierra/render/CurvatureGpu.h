@@ -1,12 +1,16 @@
 #pragma once
-// The curvature field on the GPU (shaders/curvature.frag): the same field as
-// analysis::computeCurvature, drawn as full-screen fragment passes (vertex
-// gradients from the chosen normals, then the four directions), each
-// fragment a run of kRun samples of a row written to kRun colour
-// attachments: on llvmpipe a fragment's colour outputs are stored as
-// vectors, far cheaper than a compute shader's storage-buffer stores
-// (docs/curvature.md, "GPU against CPU"). It agrees with the CPU reference
-// within 1e-4 relative or 1e-6 absolute (tests/gl/curvature_gpu_test.cpp).
+// The curvature field on the GPU (shaders/curvature_field.glsl): the same
+// field as analysis::computeCurvature, in two passes (vertex gradients from
+// the chosen normals, then the four directions), by one of two paths:
+// - Fragment: full-screen fragment passes, each fragment a run of kRun
+//   samples of a row written to kRun colour attachments. On llvmpipe a
+//   fragment's colour outputs are stored as vectors, far cheaper than a
+//   compute shader's storage stores (docs/curvature.md, "GPU against CPU").
+// - Compute: a compute shader, one sample per invocation, into the same
+//   layers as images. On a GPU compute units outnumber the units that run
+//   fragments (an H100 runs fragments on a few of its units only).
+// Both agree with the CPU reference within 1e-4 relative or 1e-6 absolute
+// (tests/gl/curvature_gpu_test.cpp), and with each other.
 //
 // Texture units and framebuffers are those of the passes only; compute()
 // leaves the GL state as it found it.
@@ -19,17 +23,25 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <optional>
 #include <string>
 
 namespace sierra::render {
 
 class CurvatureGpu {
   public:
+    enum class Path { Fragment, Compute };
+
+    // The path for the current context's driver: Fragment on a software
+    // rasteriser (llvmpipe, softpipe), Compute on any other.
+    static Path defaultPath();
+
     // Uploads the heightfield's world heights (stored height * vertical
     // scale; NaN for no-data samples); the programs are built on first use. Throws
     // sierra::Error for an empty heightfield or one larger than the driver's
-    // buffer textures or textures hold.
-    static CurvatureGpu create(const terrain::Heightfield& field);
+    // buffer textures or textures hold. `path`: defaultPath() when not given.
+    static CurvatureGpu create(const terrain::Heightfield& field,
+                               std::optional<Path> path = std::nullopt);
 
     // Computes the field into texture(); throws sierra::Error for bad options
     // (analysis::validate) or a grid too small for the stencil, with the
@@ -56,6 +68,7 @@ class CurvatureGpu {
     // Reads the last compute() back (synchronously) in the CPU's layout.
     analysis::CurvatureField read() const;
 
+    Path path() const { return path_; }
     glm::vec2 spacing() const { return {spacingX_, spacingZ_}; }  // world units between samples
     int width() const { return width_; }
     int height() const { return height_; }
@@ -71,7 +84,12 @@ class CurvatureGpu {
     // Draws a pass into the bound framebuffer of `layers` attachments;
     // `gradient`: two samples per attachment (.xy, .zw).
     void draw(const Pass& pass, int layers, bool gradient);
+    // The Compute path's two dispatches (see compute()).
+    void dispatch(const analysis::CurvatureOptions& options, bool normalBased, bool gradients);
+    // The buffer the field pass reads the gradients from, made on first use.
+    void ensureGradientCopy();
 
+    Path path_ = Path::Fragment;
     int width_ = 0, height_ = 0;
     float spacingX_ = 1.0f, spacingZ_ = 1.0f;
     bool noData_ = false;  // some sample has no data: the general programs only
@@ -82,6 +100,9 @@ class CurvatureGpu {
     // one-sample (the last two for distance 1 without no-data).
     std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldRunPrograms_,
         fieldSamplePrograms_;
+    // The Compute path's (curvature.comp), likewise.
+    std::array<gpu::Program, 3> gradientComputePrograms_;
+    std::array<std::array<gpu::Program, 2>, 4> fieldComputePrograms_;
     // World heights, NaN = no data: sample (i, j) at float (j + 1) * pitch_ + i + 1.
     gpu::Buffer heights_;
     gpu::Texture heightsTexture_, heights4Texture_;  // R32F and RGBA32F buffer textures over it
