@@ -36,7 +36,7 @@
 // shader instead, one sample (or gradient texel) per invocation, stored into
 // the same layers as images: the path for GPUs, whose compute units outnumber
 // the units that run fragments (on an H100 the fragment runs take 1.3-2.4 ms
-// per 2049^2 field, the compute shader 0.2-0.3 ms); render::CurvatureGpu
+// per 2049^2 field, the compute shader 0.1-0.3 ms); render::CurvatureGpu
 // picks it for every driver but a software rasteriser.
 const int kRun = 8;  // samples per fragment; CurvatureGpu::kRun
 

@@ -11,6 +11,20 @@
 
 namespace sierra::analysis {
 
+bool StyleLayers::enable(std::string_view name) {
+    if (name == "shaded")
+        shaded = true;
+    else if (name == "lines")
+        lines = true;
+    else if (name == "hatch")
+        hatch = true;
+    else if (name == "contours")
+        contours = true;
+    else
+        return false;
+    return true;
+}
+
 using nlohmann::json;
 
 namespace {
@@ -190,18 +204,9 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
             r.fail(r.key("styles"), msg("must be an array of names, got ", Reader::typeName(list)));
         layers = {.shaded = false};
         for (const json& item : list) {
-            std::string name = item.is_string() ? item.get<std::string>() : item.dump();
-            if (name == "shaded")
-                layers.shaded = true;
-            else if (name == "lines")
-                layers.lines = true;
-            else if (name == "hatch")
-                layers.hatch = true;
-            else if (name == "contours")
-                layers.contours = true;
-            else
-                r.fail(r.key("styles"), msg("has an unknown style ", item.dump(),
-                                            " (expected shaded, lines, hatch or contours)"));
+            if (!item.is_string() || !layers.enable(item.get<std::string>()))
+                r.fail(r.key("styles"), msg("has an unknown style ", item.dump(), " (expected ",
+                                            kStyleLayerNames, ")"));
         }
     } else {
         layers.lines = r.has("lines");

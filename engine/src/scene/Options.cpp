@@ -428,17 +428,9 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
                         name += w[0][k];
                         continue;
                     }
-                    if (name == "shaded")
-                        layers.shaded = true;
-                    else if (name == "lines")
-                        layers.lines = true;
-                    else if (name == "hatch")
-                        layers.hatch = true;
-                    else if (name == "contours")
-                        layers.contours = true;
-                    else
-                        throw Error(msg("--style: unknown layer '", name,
-                                        "' (expected shaded, lines, hatch or contours)"));
+                    if (!layers.enable(name))
+                        throw Error(msg("--style: unknown layer '", name, "' (expected ",
+                                        analysis::kStyleLayerNames, ")"));
                     name.clear();
                 }
                 s.style.overlay.layers = layers;

@@ -36,6 +36,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include <string>
+#include <string_view>
 
 namespace sierra::analysis {
 
@@ -45,7 +46,14 @@ struct StyleLayers {
     bool hatch = false;     // hatch strokes (hatch shading)
     bool contours = false;  // view-dependent contour edges
     bool operator==(const StyleLayers&) const = default;
+
+    // Turns on the layer named `name` (shaded, lines, hatch or contours);
+    // false for any other name, which is left to the caller to report.
+    bool enable(std::string_view name);
 };
+
+// The layer names StyleLayers::enable takes, for messages.
+inline constexpr const char* kStyleLayerNames = "shaded, lines, hatch or contours";
 
 struct LineStyle {
     int minLength = 5;       // shortest polyline kept, in vertices (Figure 3 "Min. Len")
