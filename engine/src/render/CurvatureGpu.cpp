@@ -114,8 +114,7 @@ void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
     auto drawIn = [&](gpu::Program& p, int x, int y, int w, int h) {
         if (w <= 0 || h <= 0) return;
         glUseProgram(p.id());
-        glUniform2i(p.uniform("uSize"), width_, height_);
-        glUniform2f(p.uniform("uSpacing"), spacingX_, spacingZ_);
+        setGridUniforms(p);
         glScissor(x, y, w, h);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     };
@@ -147,6 +146,33 @@ void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
+std::string CurvatureGpu::gradientDefines(analysis::NormalMethod normals) const {
+    return define("CURVATURE_PITCH", pitch_) + define("CURVATURE_RUNS_PER_ROW", runs()) +
+           define("CURVATURE_NORMALS", int(normals)) + "#define CURVATURE_GRADIENT 1\n";
+}
+
+std::string CurvatureGpu::fieldDefines(const analysis::CurvatureOptions& o) const {
+    return define("CURVATURE_PITCH", pitch_) + define("CURVATURE_RUNS_PER_ROW", runs()) +
+           define("CURVATURE_METHOD", int(o.method)) +
+           (o.levels.enabled ? "#define CURVATURE_LEVELS 1\n" : "");
+}
+
+void CurvatureGpu::setGridUniforms(const gpu::Program& p) const {
+    glUniform2i(p.uniform("uSize"), width_, height_);
+    glUniform2f(p.uniform("uSpacing"), spacingX_, spacingZ_);
+}
+
+void CurvatureGpu::setFieldUniforms(const gpu::Program& p, const analysis::CurvatureOptions& o) {
+    glUseProgram(p.id());
+    glUniform1i(p.uniform("uDistance"), o.distance);
+    glUniform1f(p.uniform("uScale"), o.scale);
+    glUniform4f(p.uniform("uLevels"), o.levels.enabled ? 1.0f : 0.0f, o.levels.black,
+                o.levels.white, o.levels.gamma);
+    glUniform1i(p.uniform("uSigned"), o.signedValues ? 1 : 0);
+    glUniform1i(p.uniform("uSecond"),
+                o.output == analysis::CurvatureOutput::SecondDerivative ? 1 : 0);
+}
+
 void CurvatureGpu::ensureGradientCopy() {
     if (gradientCopy_) return;
     const size_t texels = size_t(runs()) * size_t(height_) * (kRun / 2);
@@ -155,8 +181,6 @@ void CurvatureGpu::ensureGradientCopy() {
 }
 
 void CurvatureGpu::dispatch(const analysis::CurvatureOptions& o, bool normalBased, bool gradients) {
-    const std::string layout =
-        define("CURVATURE_PITCH", pitch_) + define("CURVATURE_RUNS_PER_ROW", runs());
     auto build = [](gpu::Program& p, const std::string& defines) -> gpu::Program& {
         if (!p) p = gpu::Program::create({.compute = "curvature.comp", .defines = defines});
         return p;
@@ -176,12 +200,10 @@ void CurvatureGpu::dispatch(const analysis::CurvatureOptions& o, bool normalBase
     }
     auto groups = [](int n) { return GLuint((n + 7) / 8); };
     if (gradients) {
-        gpu::Program& p = build(gradientComputePrograms_[size_t(o.normals)],
-                                layout + define("CURVATURE_NORMALS", int(o.normals)) +
-                                    "#define CURVATURE_GRADIENT 1\n");
+        gpu::Program& p =
+            build(gradientComputePrograms_[size_t(o.normals)], gradientDefines(o.normals));
         glUseProgram(p.id());
-        glUniform2i(p.uniform("uSize"), width_, height_);
-        glUniform2f(p.uniform("uSpacing"), spacingX_, spacingZ_);
+        setGridUniforms(p);
         glUniform1i(p.uniform("uGradientCopy"), normalBased ? 1 : 0);
         glBindImageTexture(0, gradientTexture_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         if (normalBased)
@@ -190,20 +212,10 @@ void CurvatureGpu::dispatch(const analysis::CurvatureOptions& o, bool normalBase
         glDispatchCompute(groups(runs() * kRun / 2), groups(height_), 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    const int levels = o.levels.enabled ? 1 : 0;
-    gpu::Program& p = build(fieldComputePrograms_[size_t(o.method)][size_t(levels)],
-                            layout + define("CURVATURE_METHOD", int(o.method)) +
-                                (levels ? "#define CURVATURE_LEVELS 1\n" : ""));
-    glUseProgram(p.id());
-    glUniform2i(p.uniform("uSize"), width_, height_);
-    glUniform2f(p.uniform("uSpacing"), spacingX_, spacingZ_);
-    glUniform1i(p.uniform("uDistance"), o.distance);
-    glUniform1f(p.uniform("uScale"), o.scale);
-    glUniform4f(p.uniform("uLevels"), o.levels.enabled ? 1.0f : 0.0f, o.levels.black,
-                o.levels.white, o.levels.gamma);
-    glUniform1i(p.uniform("uSigned"), o.signedValues ? 1 : 0);
-    glUniform1i(p.uniform("uSecond"),
-                o.output == analysis::CurvatureOutput::SecondDerivative ? 1 : 0);
+    gpu::Program& p =
+        build(fieldComputePrograms_[size_t(o.method)][o.levels.enabled ? 1 : 0], fieldDefines(o));
+    setFieldUniforms(p, o);
+    setGridUniforms(p);
     glBindTextureUnit(1, gradientCopyTexture_.id());
     glBindImageTexture(0, fieldTexture_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(groups(runs() * kRun), groups(height_), 1);
@@ -234,13 +246,7 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     // Runs over the interior where the formulas need no border rule, no
     // no-data checks and no reinforcement.
     const bool interiorRuns = o.distance == 1 && !noData_;
-    const int levels = o.levels.enabled ? 1 : 0;
-    const std::string layout =
-        define("CURVATURE_PITCH", pitch_) + define("CURVATURE_RUNS_PER_ROW", runs());
-    const std::string method = layout + define("CURVATURE_METHOD", int(o.method)) +
-                               (levels ? "#define CURVATURE_LEVELS 1\n" : "");
-    const std::string normals =
-        layout + define("CURVATURE_NORMALS", int(o.normals)) + "#define CURVATURE_GRADIENT 1\n";
+    const std::string method = fieldDefines(o), normals = gradientDefines(o.normals);
     auto build = [](gpu::Program& p, const std::string& defines) -> gpu::Program& {
         if (!p)
             p = gpu::Program::create(
@@ -282,23 +288,14 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         }
     }
-    const size_t m = size_t(o.method), l = size_t(levels);
+    const size_t m = size_t(o.method), l = o.levels.enabled ? 1 : 0;
     Pass pass{.general = &build(fieldPrograms_[m][l], method)};
     if (interiorRuns) {
         pass.runs = &build(fieldRunPrograms_[m][l], method + runsDefine);
         pass.oneSample = &build(fieldSamplePrograms_[m][l], method + oneSampleDefine);
     }
-    for (gpu::Program* p : {pass.general, pass.runs, pass.oneSample}) {
-        if (!p) continue;
-        glUseProgram(p->id());
-        glUniform1i(p->uniform("uDistance"), o.distance);
-        glUniform1f(p->uniform("uScale"), o.scale);
-        glUniform4f(p->uniform("uLevels"), o.levels.enabled ? 1.0f : 0.0f, o.levels.black,
-                    o.levels.white, o.levels.gamma);
-        glUniform1i(p->uniform("uSigned"), o.signedValues ? 1 : 0);
-        glUniform1i(p->uniform("uSecond"),
-                    o.output == analysis::CurvatureOutput::SecondDerivative ? 1 : 0);
-    }
+    for (gpu::Program* p : {pass.general, pass.runs, pass.oneSample})
+        if (p) setFieldUniforms(*p, o);
     glBindTextureUnit(1, gradientCopyTexture_.id());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fieldFramebuffer_.id());
     draw(pass, kRun, false);

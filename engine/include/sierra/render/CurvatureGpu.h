@@ -88,6 +88,14 @@ class CurvatureGpu {
     void dispatch(const analysis::CurvatureOptions& options, bool normalBased, bool gradients);
     // The buffer the field pass reads the gradients from, made on first use.
     void ensureGradientCopy();
+    // The programs' #defines (grid layout, method or normals) and uniforms,
+    // shared by both paths.
+    std::string gradientDefines(analysis::NormalMethod normals) const;
+    std::string fieldDefines(const analysis::CurvatureOptions& options) const;
+    void setGridUniforms(const gpu::Program& program) const;  // uSize, uSpacing
+    // Uses `program` and sets the options' uniforms.
+    static void setFieldUniforms(const gpu::Program& program,
+                                 const analysis::CurvatureOptions& options);
 
     Path path_ = Path::Fragment;
     int width_ = 0, height_ = 0;
