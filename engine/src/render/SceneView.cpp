@@ -11,8 +11,10 @@
 #include <sierra/scene/Terrain.h>
 #include <sierra/tin/Export.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 namespace sierra::render {
 
@@ -217,6 +219,46 @@ std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& s,
                " vertices");
 }
 
+namespace {
+
+// Curvature has world units (1 / length), so a style whose scale suits a grid
+// of unit spacing draws next to nothing on metric data spaced tens of metres
+// apart: say so, with the scale that would show it, rather than render a
+// blank overlay silently.
+void warnIfFaint(const analysis::CurvatureField& values, const analysis::StyleParams& style,
+                 const terrain::Heightfield& field) {
+    // Per sample the largest of the 4 values (what lines and hatches use).
+    std::vector<float> largest;
+    largest.reserve(size_t(values.width) * size_t(values.height));
+    for (int j = 0; j < values.height; ++j)
+        for (int i = 0; i < values.width; ++i)
+            if (const float v = values.maxMagnitude(i, j); std::isfinite(v)) largest.push_back(v);
+    if (largest.empty()) return;
+    // Hatch opacity is the value itself: below this a stroke is barely seen.
+    constexpr float kFaintHatch = 0.1f;
+    const float needed = style.layers.lines ? style.lines.threshold : kFaintHatch;
+    if (*std::max_element(largest.begin(), largest.end()) >= needed) return;
+    // The suggestion brings the top 5% of samples to the threshold (lines) or
+    // to full opacity (hatches).
+    const float target = style.layers.lines ? needed : 1.0f;
+    auto top = largest.begin() + std::ptrdiff_t(0.95 * double(largest.size() - 1));
+    std::nth_element(largest.begin(), top, largest.end());
+    const float scale = style.curvature.scale;
+    const std::string suggestion = *top > 0.0f && !style.curvature.levels.enabled
+                                       ? msg(" (--curvature-scale ", scale * target / *top,
+                                             " brings the top 5% of samples to ", target, ")")
+                                       : std::string();
+    log::warn("overlays: the curvature field's largest value is ",
+              *std::max_element(largest.begin(), largest.end()), " at a curvature scale of ", scale,
+              ", so ",
+              style.layers.lines ? msg("no curvature line reaches the threshold ", needed)
+                                 : msg("the hatches are all but transparent"),
+              ". Curvature is in world units (1 / length) and this grid is spaced ",
+              field.spacingX(), " x ", field.spacingZ(), " apart; raise the scale", suggestion);
+}
+
+}  // namespace
+
 OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s,
                              const terrain::Heightfield& field) {
     const analysis::StyleParams& style = s.style.overlay;
@@ -228,6 +270,10 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s,
     if (style.layers.lines || style.layers.hatch) {
         auto curvature = std::make_shared<CurvatureGpu>(CurvatureGpu::create(field));
         curvature->compute(style.curvature, style.layers.hatch);
+        // Read back once per terrain and style: the lines are traced from it,
+        // and an overlay that would draw nothing is reported.
+        const analysis::CurvatureField values = curvature->read();
+        warnIfFaint(values, style, field);
         if (style.layers.hatch) {
             renderer.addPass(HatchPass::create(curvature, {.length = style.hatch.length,
                                                            .width = style.hatch.width,
@@ -235,8 +281,7 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s,
         }
         if (style.layers.lines) {
             // Traced once per terrain and style, from the GPU field read back.
-            analysis::LineSet lines =
-                analysis::traceLines(curvature->read(), analysis::lineOptions(style));
+            analysis::LineSet lines = analysis::traceLines(values, analysis::lineOptions(style));
             info.lines = lines.polylineCount();
             auto pass = LinePass::create(lines, {.width = style.lines.width});
             info.segments = pass->segmentCount();
