@@ -20,18 +20,20 @@
 //   field: RGBA32F, layer k = sample c * 8 + k, the 4 directions;
 //   gradient: RGBA32F, layer q = samples c * 8 + 2q (.xy) and 2q + 1 (.zw).
 // Three programs per pass:
-//   CURVATURE_RUNS: the interior formulas only, the run's window (3 rows of
-//     10 heights or gradients) read once as vec4 texels and shared by its
-//     samples; drawn over rows 1 ... height - 2 of a field without no-data at
-//     distance 1, where all but the first and last samples of a row are
-//     interior; then
+//   CURVATURE_RUNS: the interior formulas only, the run's window (rows
+//     j - 1 ... j + 1 of 10 heights or gradients; at a reinforcement
+//     distance D > 1 (CURVATURE_RUN_DISTANCE) rows j - D, j - 1 ... j + 1 and
+//     j + D of 8 + 2D) read once as vec4 texels and shared by its samples;
+//     drawn over rows R ... height - 1 - R of a field without no-data, R = 1
+//     for the gradients and R = D for the field, where all but the first and
+//     last R samples of a row are interior; then
 //   the general program: every sample on its own (border rule, no data,
-//     reinforcement), the CPU's per-sample code; drawn over rows 0 and
-//     height - 1 after the runs, or over the whole grid otherwise; and
+//     reinforcement), the CPU's per-sample code; drawn over the first and
+//     last R rows after the runs, or over the whole grid otherwise; and
 //   CURVATURE_ONE_SAMPLE: the general code for sample uSample of the run
-//     only, into every output; drawn over the first and the last run of rows
-//     1 ... height - 2 with the other outputs masked (glColorMaski), for the
-//     first and last sample of those rows.
+//     only, into every output; drawn over one run of rows R ... height - 1 -
+//     R with the other outputs masked (glColorMaski), once for each of the
+//     first and last R samples of those rows.
 // With CURVATURE_COMPUTE (curvature.comp) the general code runs as a compute
 // shader instead, one sample (or gradient texel) per invocation, stored into
 // the same layers as images: the path for GPUs, whose compute units outnumber
@@ -256,70 +258,109 @@ float shaped(float value, float ypp) {
 
 #ifdef CURVATURE_RUNS
 
-// One window row of gradients, samples c * 8 - 1 ... c * 8 + 8 of row j
-// (6 texels of the gradient buffer).
-void gradientRow(int c, int j, out vec2 w[kRun + 2]) {
-    w[0] = gradientTexel(c - 1, j, kRun / 2 - 1).zw;
-    for (int q = 0; q < kRun / 2; ++q) {
-        vec4 v = gradientTexel(c, j, q);
-        w[1 + 2 * q] = v.xy;
-        w[2 + 2 * q] = v.zw;
-    }
-    w[kRun + 1] = gradientTexel(c + 1, j, 0).xy;
-}
+// The reinforcement distance D the runs are compiled for (1 = none;
+// CurvatureGpu::kMaxRunDistance at most): the window reaches D samples
+// beyond the run on either side, and rows j - D and j + D.
+#ifndef CURVATURE_RUN_DISTANCE
+#define CURVATURE_RUN_DISTANCE 1
+#endif
+const int kD = CURVATURE_RUN_DISTANCE;
+const int kW = kRun + 2 * kD;  // window samples per row: c * 8 - D ... c * 8 + 7 + D
 
-void windowRow(int c, int j, out vec2 w[kRun + 2]) {
+// One window row of row j: the gradients (normal methods) or the heights (in
+// .x; the others) of samples c * 8 - D ... c * 8 + 7 + D, read as whole
+// texels (the bounds are constants: the loops unroll and the tests fold).
+void windowRow(int c, int j, out vec2 w[kW]) {
     if (uMethod == 0 || uMethod == 1) {
-        gradientRow(c, j, w);
+        // Texel p (relative to the run, negative before it) holds samples
+        // c * 8 + 2p and 2p + 1: run c + floor(p / 4), layer p mod 4.
+        for (int p = (-kD) >> 1; p <= (kRun - 1 + kD) >> 1; ++p) {
+            vec4 v = gradientTexel(c + (p >> 2), j, p & 3);
+            int e = 2 * p + kD;  // window index of sample c * 8 + 2p
+            if (e >= 0) w[e] = v.xy;
+            if (e + 1 < kW) w[e + 1] = v.zw;
+        }
     } else {
-        float h[kRun + 2];
-        heightRow(c, j, h);
-        for (int k = 0; k < kRun + 2; ++k) w[k] = vec2(h[k], 0.0);
+        // Texel t + q holds samples c * 8 - 1 + 4q ... c * 8 + 2 + 4q.
+        int t = (j + 1) * (CURVATURE_PITCH / 4) + c * (kRun / 4);
+        for (int q = (1 - kD) >> 2; q <= (kRun + kD) >> 2; ++q) {
+            vec4 v = texelFetch(uHeights4, t + q);
+            for (int k = 0; k < 4; ++k) {
+                int e = 4 * q + k - 1 + kD;
+                if (e >= 0 && e < kW) w[e] = vec2(v[k], 0.0);
+            }
+        }
     }
 }
 
-// The measure of the interior stencil (p, v, n) along direction s: the
-// CPU's arithmetic (analysis: Curvature.cpp, measure) without the no-data
-// checks (the runs draw fields without no data only).
-float runValue(vec2 p, vec2 v, vec2 n, ivec2 s) {
+// The measure of the interior stencil (p, v, n) along direction s, m steps
+// apart: the CPU's arithmetic (analysis: Curvature.cpp, measure) without the
+// no-data checks (the runs draw fields without no data only).
+float runMeasure(vec2 p, vec2 v, vec2 n, ivec2 s, int m, out float ypp) {
     vec2 world = vec2(s) * uSpacing;
-    float invStep = 1.0 / length(world);
-    vec2 u = world * invStep;
-    float value, ypp;
+    float invLength = 1.0 / length(world);
+    vec2 u = world * invLength;
+    float invStep = invLength / float(m);
     if (uMethod == 0) {
         float sv = dot(v, u), sn = dot(n, u);
         ypp = (sn - sv) * invStep;
-        value = equation1(ypp, sv);
+        return equation1(ypp, sv);
     } else if (uMethod == 1) {
         float sp = dot(p, u), sv = dot(v, u), sn = dot(n, u);
         ypp = 0.5 * (sn - sp) * invStep;
         float t = 1.0 + sv * sv;
-        value = 0.5 * (abs(sv - sp) + abs(sn - sv)) * invStep / (t * sqrt(t));
+        return 0.5 * (abs(sv - sp) + abs(sn - sv)) * invStep / (t * sqrt(t));
     } else if (uMethod == 2) {
         float s1 = (v.x - p.x) * invStep, s2 = (n.x - v.x) * invStep;
         ypp = (s2 - s1) * invStep;
-        value = equation1(ypp, 0.5 * (s1 + s2));
+        return equation1(ypp, 0.5 * (s1 + s2));
     } else {
-        float hx = world.x, hz = world.y;
+        float hx = float(s.x * m) * uSpacing.x, hz = float(s.y * m) * uSpacing.y;
         float a = p.x - v.x, b = n.x - v.x;
         float d = -hx * hx + a * b - hz * hz;
         float cosTheta = d / sqrt((hx * hx + hz * hz + a * a) * (hx * hx + hz * hz + b * b));
         ypp = a + b;
-        value = clamp(1.0 + cosTheta, 0.0, 1.0);
+        return clamp(1.0 + cosTheta, 0.0, 1.0);
     }
-    return uSecond == 1 ? ypp : shaped(value * uScale, ypp);
+}
+
+// One direction's output from its near stencil (p, v, n) and, at distance
+// D > 1, its reinforcement stencil (fp, v, fn): the general code's order of
+// operations (directionValue).
+float runValue(vec2 p, vec2 v, vec2 n, vec2 fp, vec2 fn, ivec2 s) {
+    float ypp;
+    float value = runMeasure(p, v, n, s, 1, ypp);
+    if (uSecond == 1) return ypp;
+    value *= uScale;
+#if CURVATURE_RUN_DISTANCE > 1
+    float farYpp;
+    value *= runMeasure(fp, v, fn, s, kD, farYpp);
+#endif
+    return shaped(value, ypp);
 }
 
 void main() {
     ivec2 f = ivec2(gl_FragCoord.xy);
-    vec2 s[kRun + 2], m[kRun + 2], n[kRun + 2];  // rows -1 (south), 0, +1 (north)
+    vec2 s[kW], m[kW], n[kW];  // rows -1 (south), 0, +1 (north)
     windowRow(f.x, f.y - 1, s);
     windowRow(f.x, f.y, m);
     windowRow(f.x, f.y + 1, n);
+#if CURVATURE_RUN_DISTANCE > 1
+    vec2 fs[kW], fn[kW];  // rows -D and +D
+    windowRow(f.x, f.y - kD, fs);
+    windowRow(f.x, f.y + kD, fn);
+#else
+#define fs s  // the reinforcement's stencils are never read at D = 1
+#define fn n
+#endif
     for (int k = 0; k < kRun; ++k) {
-        // Direction steps (1, 0), (0, 1), (1, 1), (1, -1): previous, vertex, next.
-        oValue[k] = vec4(runValue(m[k], m[k + 1], m[k + 2], ivec2(1, 0)), runValue(s[k + 1], m[k + 1], n[k + 1], ivec2(0, 1)),
-                         runValue(s[k], m[k + 1], n[k + 2], ivec2(1, 1)), runValue(n[k], m[k + 1], s[k + 2], ivec2(1, -1)));
+        // Direction steps (1, 0), (0, 1), (1, 1), (1, -1): previous, vertex,
+        // next, then the reinforcement's previous and next (unused at D = 1).
+        int v = k + kD;  // window index of sample c * 8 + k
+        oValue[k] = vec4(runValue(m[v - 1], m[v], m[v + 1], m[v - kD], m[v + kD], ivec2(1, 0)),
+                         runValue(s[v], m[v], n[v], fs[v], fn[v], ivec2(0, 1)),
+                         runValue(s[v - 1], m[v], n[v + 1], fs[v - kD], fn[v + kD], ivec2(1, 1)),
+                         runValue(n[v - 1], m[v], s[v + 1], fn[v - kD], fs[v + kD], ivec2(1, -1)));
     }
 }
 

@@ -56,7 +56,7 @@ void BM_Curvature(benchmark::State& state) {
 }
 BENCHMARK(BM_Curvature)
     ->ArgsProduct({{2049}, {0, 1, 2, 3}, {1}, {0, 1}, {0}})
-    ->Args({2049, 1, 2, 0, 0})
+    ->ArgsProduct({{2049}, {1, 2, 3}, {2}, {0}, {0}})
     ->Args({2049, 1, 1, 0, 1})
     ->Args({513, 1, 2, 0, 0})
     ->Unit(benchmark::kMillisecond)

@@ -48,10 +48,11 @@ const char* pathName(const sierra::render::CurvatureGpu& c) {
 }
 
 // Args: grid side, method, read back (1) or not, the driver's default path
-// (0) or the other one (1).
+// (0) or the other one (1), reinforcement distance.
 void BM_CurvatureGpu(benchmark::State& state) {
     GpuSetup& s = setup(int(state.range(0)));
-    analysis::CurvatureOptions o{.method = analysis::CurvatureMethod(state.range(1))};
+    analysis::CurvatureOptions o{.method = analysis::CurvatureMethod(state.range(1)),
+                                 .distance = int(state.range(4))};
     const bool read = state.range(2) != 0;
     sierra::render::CurvatureGpu& gpu = state.range(3) != 0 ? *s.other : *s.curvature;
     // The field alone: the gradient pass only where the method needs it.
@@ -68,12 +69,14 @@ void BM_CurvatureGpu(benchmark::State& state) {
     }
     state.SetItemsProcessed(state.iterations() * s.field.sampleCount());
     state.SetLabel(std::string(analysis::curvatureMethodName(o.method)) +
+                   (o.distance > 1 ? ", distance " + std::to_string(o.distance) : "") +
                    (read ? " + read-back" : "") + ", " + pathName(gpu) + " on " +
                    s.context.renderer());
 }
 BENCHMARK(BM_CurvatureGpu)
-    ->ArgsProduct({{2049}, {0, 1, 2, 3}, {0}, {0, 1}})
-    ->Args({2049, 1, 1, 0})
+    ->ArgsProduct({{2049}, {0, 1, 2, 3}, {0}, {0, 1}, {1}})
+    ->Args({2049, 1, 1, 0, 1})
+    ->ArgsProduct({{2049}, {1, 2, 3}, {0}, {0}, {2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

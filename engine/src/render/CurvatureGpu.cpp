@@ -123,13 +123,16 @@ void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
         drawIn(*pass.general, 0, 0, cols, height_);
         return;
     }
-    // Rows 1 ... height - 2 in runs (their first and last samples wrong),
-    // rows 0 and height - 1 per sample, then the first and the last sample of
-    // the other rows alone, every other output masked.
-    drawIn(*pass.runs, 0, 1, cols, height_ - 2);
-    drawIn(*pass.general, 0, 0, cols, 1);
-    drawIn(*pass.general, 0, height_ - 1, cols, 1);
-    for (int x : {0, width_ - 1}) {
+    // Rows R ... height - 1 - R in runs (their first and last R samples
+    // wrong), the first and last R rows per sample, then the first and the
+    // last R samples of the other rows alone, every other output masked.
+    // (compute() checks that both sides have at least 2R + 1 samples.)
+    const int r = pass.reach;
+    drawIn(*pass.runs, 0, r, cols, height_ - 2 * r);
+    drawIn(*pass.general, 0, 0, cols, r);
+    drawIn(*pass.general, 0, height_ - r, cols, r);
+    for (int e = 0; e < 2 * r; ++e) {
+        const int x = e < r ? e : width_ - 2 * r + e;
         const int k = x % kRun;
         for (int b = 0; b < layers; ++b)
             glColorMaski(GLuint(b), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -141,7 +144,7 @@ void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
         }
         glUseProgram(pass.oneSample->id());
         glUniform1i(pass.oneSample->uniform("uSample"), k);
-        drawIn(*pass.oneSample, x / kRun, 1, 1, height_ - 2);
+        drawIn(*pass.oneSample, x / kRun, r, 1, height_ - 2 * r);
     }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
@@ -243,9 +246,11 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         dispatch(o, normalBased, normalBased || tangentPlanes);
         return;
     }
-    // Runs over the interior where the formulas need no border rule, no
-    // no-data checks and no reinforcement.
-    const bool interiorRuns = o.distance == 1 && !noData_;
+    // Runs over the interior where the formulas need no border rule and no
+    // no-data checks (the gradients', and the field's up to
+    // kMaxRunDistance).
+    const bool gradientRuns = !noData_;
+    const bool fieldRuns = !noData_ && o.distance <= kMaxRunDistance;
     const std::string method = fieldDefines(o), normals = gradientDefines(o.normals);
     auto build = [](gpu::Program& p, const std::string& defines) -> gpu::Program& {
         if (!p)
@@ -269,7 +274,7 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gradientFramebuffer_.id());
         const size_t n = size_t(o.normals);
         Pass pass{.general = &build(gradientPrograms_[n], normals)};
-        if (interiorRuns) {
+        if (gradientRuns) {
             pass.runs = &build(gradientRunPrograms_[n], normals + runsDefine);
             pass.oneSample = &build(gradientSamplePrograms_[n], normals + oneSampleDefine);
         }
@@ -290,9 +295,11 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     }
     const size_t m = size_t(o.method), l = o.levels.enabled ? 1 : 0;
     Pass pass{.general = &build(fieldPrograms_[m][l], method)};
-    if (interiorRuns) {
-        pass.runs = &build(fieldRunPrograms_[m][l], method + runsDefine);
+    if (fieldRuns) {
+        pass.runs = &build(fieldRunPrograms_[m][l][size_t(o.distance - 1)],
+                           method + runsDefine + define("CURVATURE_RUN_DISTANCE", o.distance));
         pass.oneSample = &build(fieldSamplePrograms_[m][l], method + oneSampleDefine);
+        pass.reach = o.distance;
     }
     for (gpu::Program* p : {pass.general, pass.runs, pass.oneSample})
         if (p) setFieldUniforms(*p, o);

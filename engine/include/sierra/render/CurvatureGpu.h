@@ -52,6 +52,9 @@ class CurvatureGpu {
 
     // Samples per run: the layers of texture() and twice those of gradient().
     static constexpr int kRun = 8;
+    // The largest reinforcement distance the Fragment path computes in runs
+    // (farther ones take the per-sample program everywhere).
+    static constexpr int kMaxRunDistance = 4;
 
     // A 2D array texture (RGBA32F, runs() x height x kRun layers): the 4
     // directions of Curvature.h of sample (i, j) at texel (i / kRun, j),
@@ -75,11 +78,14 @@ class CurvatureGpu {
 
   private:
     // The programs of one pass (curvature.frag): general, and for a field
-    // without no-data at distance 1 the runs and the one-sample border program.
+    // without no-data the runs and the one-sample border program; the runs
+    // are wrong within `reach` samples of the border (1, or the field's
+    // reinforcement distance).
     struct Pass {
         gpu::Program* general = nullptr;
         gpu::Program* runs = nullptr;
         gpu::Program* oneSample = nullptr;
+        int reach = 1;
     };
     // Draws a pass into the bound framebuffer of `layers` attachments;
     // `gradient`: two samples per attachment (.xy, .zw).
@@ -104,10 +110,11 @@ class CurvatureGpu {
     int pitch_ = 0;        // floats per row of heights_ (a multiple of 4)
     // Built on first use: per NormalMethod, general, runs and one-sample.
     std::array<gpu::Program, 3> gradientPrograms_, gradientRunPrograms_, gradientSamplePrograms_;
-    // [CurvatureMethod][level control (CURVATURE_LEVELS)], general, runs and
-    // one-sample (the last two for distance 1 without no-data).
-    std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldRunPrograms_,
-        fieldSamplePrograms_;
+    // [CurvatureMethod][level control (CURVATURE_LEVELS)], general and
+    // one-sample; the runs also per reinforcement distance (1 ...
+    // kMaxRunDistance).
+    std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldSamplePrograms_;
+    std::array<std::array<std::array<gpu::Program, kMaxRunDistance>, 2>, 4> fieldRunPrograms_;
     // The Compute path's (curvature.comp), likewise.
     std::array<gpu::Program, 3> gradientComputePrograms_;
     std::array<std::array<gpu::Program, 2>, 4> fieldComputePrograms_;
