@@ -166,6 +166,7 @@ inline void forNormalRows(const WorldGrid& g, int j0, int j1, const Fn& row) {
     float* ox = buf.data();
     float* oy = ox + g.width;
     float* oz = oy + g.width;
+    std::vector<uint8_t> columnOk;  // no data: column i of rows j - 1 ... j + 1 has none
     auto checked = [&](int i, int j) {
         V3 s{NAN, NAN, NAN};
         if (!std::isnan(g.at(i, j))) {
@@ -177,11 +178,33 @@ inline void forNormalRows(const WorldGrid& g, int j0, int j1, const Fn& row) {
         oz[i] = s.z;
     };
     for (int j = j0; j < j1; ++j) {
-        if (g.hasNoData || j == 0 || j == g.height - 1 || g.width < 3) {
+        if (j == 0 || j == g.height - 1 || g.width < 3) {
             for (int i = 0; i < g.width; ++i) checked(i, j);
-        } else {
+        } else if (!g.hasNoData) {
             checked(0, j);
             interiorNormalSums<kMethod>(g, j, 1, g.width - 1, ox, oy, oz);
+            checked(g.width - 1, j);
+        } else {
+            // The stretches whose 3x3 neighbourhoods have no data missing
+            // take the interior sums, the samples beside no data one by one.
+            const size_t w = size_t(g.width);
+            const float* ys = g.raw + size_t(j - 1) * w;
+            columnOk.resize(w);
+            for (size_t i = 0; i < w; ++i)
+                columnOk[i] =
+                    !std::isnan(ys[i]) && !std::isnan(ys[i + w]) && !std::isnan(ys[i + 2 * w]);
+            auto full = [&](int i) { return columnOk[i - 1] && columnOk[i] && columnOk[i + 1]; };
+            checked(0, j);
+            for (int i = 1; i < g.width - 1;) {
+                int end = i;
+                while (end < g.width - 1 && full(end)) ++end;
+                if (end > i) {
+                    interiorNormalSums<kMethod>(g, j, i, end, ox, oy, oz);
+                    i = end;
+                } else {
+                    checked(i++, j);
+                }
+            }
             checked(g.width - 1, j);
         }
         row(j, ox, oy, oz);
