@@ -29,7 +29,11 @@
 //     last R samples of a row are interior; then
 //   the general program: every sample on its own (border rule, no data,
 //     reinforcement), the CPU's per-sample code; drawn over the first and
-//     last R rows after the runs, or over the whole grid otherwise; and
+//     last R rows after the runs, or over the whole grid at distances
+//     beyond CurvatureGpu::kMaxRunDistance; with no data, a stencil
+//     (CurvatureGpu::runClearance) keeps the runs where their window is
+//     clear of it, CURVATURE_NO_DATA writes NaN where a run has no data at
+//     all, and the general program draws the rest of the interior rows; and
 //   CURVATURE_ONE_SAMPLE: the general code for sample uSample of the run
 //     only, into every output; drawn over one run of rows R ... height - 1 -
 //     R with the other outputs masked (glColorMaski), once for each of the
@@ -190,6 +194,11 @@ void main() {
     vec4 t = vec4(gradientAt(s), gradientAt(s + ivec2(1, 0)));
     imageStore(uGradientLayers, ivec3(c, j, q), t);
     if (uGradientCopy != 0) imageStore(uGradientBuffer, (q * uSize.y + j) * CURVATURE_RUNS_PER_ROW + c, t);
+}
+#elif defined(CURVATURE_NO_DATA)
+// A run whose samples all have no data.
+void main() {
+    for (int q = 0; q < kRun / 2; ++q) oGradient[q] = vec4(nanValue());
 }
 #elif defined(CURVATURE_ONE_SAMPLE)
 uniform int uSample;  // the sample of the run, 0 ... kRun - 1
@@ -468,6 +477,11 @@ void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
     if (ij.x >= CURVATURE_RUNS_PER_ROW * kRun || ij.y >= uSize.y) return;
     imageStore(uFieldLayers, ivec3(ij.x / kRun, ij.y, ij.x % kRun), sampleValue(ij));
+}
+#elif defined(CURVATURE_NO_DATA)
+// A run whose samples all have no data.
+void main() {
+    for (int k = 0; k < kRun; ++k) oValue[k] = vec4(nanValue());
 }
 #elif defined(CURVATURE_ONE_SAMPLE)
 uniform int uSample;  // the sample of the run, 0 ... kRun - 1

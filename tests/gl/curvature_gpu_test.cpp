@@ -264,6 +264,54 @@ TEST_F(CurvatureGpuTest, NoDataIsNanAndDoesNotSpread) {
     }
 }
 
+// Scattered no data on a grid of several runs a row: the fragment runs draw
+// where their window (reach 1 for the gradients, the distance for the field)
+// is clear of it, NaN where a run has no data at all, and the per-sample
+// program elsewhere (a stencil), for every option set; the stencil itself
+// against a brute-force search.
+TEST_F(CurvatureGpuTest, ScatteredNoDataMatchesCpu) {
+    terrain::Heightfield f = fractal(65, 13);
+    std::vector<uint8_t> mask(size_t(f.sampleCount()), 1);
+    uint32_t state = 99;
+    for (auto& m : mask) {
+        state = state * 1664525u + 1013904223u;
+        if ((state >> 8) % 200 == 0) m = 0;
+    }
+    for (int j = 30; j < 34; ++j)
+        for (int i = 16; i < 27; ++i) mask[size_t(j) * 65 + size_t(i)] = 0;
+    f.setMask(mask);
+    checkAllMethods(f, "scattered no-data");
+
+    const int w = f.width(), h = f.height(), pitch = 70, runs = (w + 7) / 8;
+    std::vector<float> heights(size_t(pitch) * size_t(h + 2), 0.0f);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i)
+            heights[size_t(j + 1) * pitch + size_t(i) + 1] = mask[size_t(j) * w + i] ? 1.0f : NAN;
+    const std::vector<uint8_t> clearance = render::CurvatureGpu::runClearance(heights, w, h, pitch);
+    ASSERT_EQ(clearance.size(), size_t(runs) * size_t(h));
+    const int far = render::CurvatureGpu::kMaxRunDistance + 1;
+    const int kNoData = render::CurvatureGpu::kNoDataRun;
+    int clear = 0, blocked = 0, empty = 0;
+    for (int j = 0; j < h; ++j)
+        for (int c = 0; c < runs; ++c) {
+            int expect = far, missing = 0;
+            for (int x = 8 * c; x < std::min(w, 8 * c + 8); ++x)
+                missing += mask[size_t(j) * w + x] ? 0 : 1;
+            if (missing == std::min(w, 8 * c + 8) - 8 * c) expect = kNoData;
+            for (int y = 0; y < h && expect != kNoData; ++y)
+                for (int x = 0; x < w; ++x) {
+                    if (mask[size_t(y) * w + x]) continue;
+                    const int dx = x < 8 * c ? 8 * c - x : x > 8 * c + 7 ? x - (8 * c + 7) : 0;
+                    expect = std::min(expect, std::max(dx, std::abs(y - j)));
+                }
+            ASSERT_EQ(int(clearance[size_t(j) * runs + c]), expect) << "run " << c << " row " << j;
+            (expect == far ? clear : expect == kNoData ? empty : blocked)++;
+        }
+    EXPECT_GT(clear, 0);
+    EXPECT_GT(blocked, 0);
+    EXPECT_GT(empty, 0);
+}
+
 TEST_F(CurvatureGpuTest, ComputeLeavesGlStateAlone) {
     terrain::Heightfield f = fractal(33, 5);
     for (render::CurvatureGpu::Path path : kPaths) {
@@ -273,6 +321,46 @@ TEST_F(CurvatureGpuTest, ComputeLeavesGlStateAlone) {
         (void)gpu.read();
         EXPECT_EQ(before.differences(gpu::GlState::capture()), "") << pathName(path);
     }
+    // With no data the fragment runs test a stencil: its state (not part of
+    // GlState) is the caller's again afterwards. Read with a stencil bound:
+    // the reference reads back clamped to the bound stencil's bits.
+    std::vector<uint8_t> mask(size_t(f.sampleCount()), 1);
+    mask[40] = 0;
+    f.setMask(mask);
+    render::CurvatureGpu gpu =
+        render::CurvatureGpu::create(f, render::CurvatureGpu::Path::Fragment);
+    gpu::Framebuffer target = gpu::Framebuffer::create();
+    gpu::Texture colour = gpu::Texture::create({.width = 4, .height = 4});
+    gpu::Texture stencil =
+        gpu::Texture::create({.format = GL_STENCIL_INDEX8, .width = 4, .height = 4});
+    glNamedFramebufferTexture(target.id(), GL_COLOR_ATTACHMENT0, colour.id(), 0);
+    glNamedFramebufferTexture(target.id(), GL_STENCIL_ATTACHMENT, stencil.id(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.id());
+    glStencilFuncSeparate(GL_FRONT, GL_NOTEQUAL, 3, 0x0f);
+    glStencilFuncSeparate(GL_BACK, GL_GREATER, 5, 0xf0);
+    glStencilMaskSeparate(GL_FRONT, 0x3c);
+    glStencilMaskSeparate(GL_BACK, 0xc3);
+    gpu::GlState before = gpu::GlState::capture();
+    gpu.compute({.method = CurvatureMethod::ThreeVertex, .distance = 2});
+    EXPECT_EQ(before.differences(gpu::GlState::capture()), "");
+    const GLenum names[] = {GL_STENCIL_FUNC,
+                            GL_STENCIL_REF,
+                            GL_STENCIL_VALUE_MASK,
+                            GL_STENCIL_WRITEMASK,
+                            GL_STENCIL_BACK_FUNC,
+                            GL_STENCIL_BACK_REF,
+                            GL_STENCIL_BACK_VALUE_MASK,
+                            GL_STENCIL_BACK_WRITEMASK};
+    const GLint expected[] = {GL_NOTEQUAL, 3, 0x0f, 0x3c, GL_GREATER, 5, 0xf0, 0xc3};
+    for (size_t k = 0; k < 8; ++k) {
+        GLint v = 0;
+        glGetIntegerv(names[k], &v);
+        EXPECT_EQ(v, expected[k]) << "stencil state " << k;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glStencilFunc(GL_ALWAYS, 0, 0xff);
+    glStencilMask(0xff);
+    EXPECT_FALSE(glIsEnabled(GL_STENCIL_TEST));
 }
 
 // The two paths compute the same field to the bit on a fractal (the same

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,30 @@ void layeredTarget(int width, int height, int layers, gpu::Texture& texture,
     glNamedFramebufferDrawBuffers(framebuffer->id(), layers, buffers.data());
     framebuffer->checkComplete("GPU curvature");
 }
+
+// Stencil function and write mask of both faces.
+struct StencilState {
+    GLint values[2][4] = {};  // front, back: function, reference, value mask, write mask
+
+    static StencilState capture() {
+        static constexpr GLenum kNames[2][4] = {
+            {GL_STENCIL_FUNC, GL_STENCIL_REF, GL_STENCIL_VALUE_MASK, GL_STENCIL_WRITEMASK},
+            {GL_STENCIL_BACK_FUNC, GL_STENCIL_BACK_REF, GL_STENCIL_BACK_VALUE_MASK,
+             GL_STENCIL_BACK_WRITEMASK}};
+        StencilState s;
+        for (int f = 0; f < 2; ++f)
+            for (int k = 0; k < 4; ++k) glGetIntegerv(kNames[f][k], &s.values[f][k]);
+        return s;
+    }
+    void restore() const {
+        for (int f = 0; f < 2; ++f) {
+            const GLenum face = f == 0 ? GL_FRONT : GL_BACK;
+            const GLint* v = values[f];
+            glStencilFuncSeparate(face, GLenum(v[0]), v[1], GLuint(v[2]));
+            glStencilMaskSeparate(face, GLuint(v[3]));
+        }
+    }
+};
 
 }  // namespace
 
@@ -106,8 +131,74 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field, std::option
                   fragment ? &c.fieldFramebuffer_ : nullptr);
     layeredTarget(c.runs(), c.height_, kRun / 2, c.gradientTexture_,
                   fragment ? &c.gradientFramebuffer_ : nullptr);
+    if (fragment && c.noData_) {
+        const std::vector<uint8_t> clearance = runClearance(heights, c.width_, c.height_, c.pitch_);
+        c.clearance_ = gpu::Texture::create({.format = GL_STENCIL_INDEX8,
+                                             .width = c.runs(),
+                                             .height = c.height_,
+                                             .filter = GL_NEAREST});
+        GLint alignment = 4;  // not restored by Texture::upload
+        glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
+        c.clearance_.upload(GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, clearance.data());
+        glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+        for (gpu::Framebuffer* f : {&c.fieldFramebuffer_, &c.gradientFramebuffer_}) {
+            glNamedFramebufferTexture(f->id(), GL_STENCIL_ATTACHMENT, c.clearance_.id(), 0);
+            f->checkComplete("GPU curvature");
+        }
+    }
     c.vertexArray_ = gpu::VertexArray::create();
     return c;
+}
+
+std::vector<uint8_t> CurvatureGpu::runClearance(const std::vector<float>& heights, int width,
+                                                int height, int pitch) {
+    constexpr int kFar = kMaxRunDistance + 1;
+    const int runs = (width + kRun - 1) / kRun;
+    // Per row: each run's horizontal distance to the row's nearest no-data
+    // sample (0 with one inside the run, kNoDataRun when all are), at most kFar.
+    std::vector<uint8_t> across(size_t(runs) * size_t(height));
+    std::vector<int> before(size_t(width) + 1), after(size_t(width) + 1), count(size_t(width) + 1);
+    for (int j = 0; j < height; ++j) {
+        const float* row = &heights[size_t(j + 1) * size_t(pitch) + 1];
+        // before[i]: the last no-data sample < i (or -kFar - 1); after[i]:
+        // the first >= i; count[i]: the no-data samples < i.
+        before[0] = -kFar - 1;
+        for (int i = 0; i < width; ++i) {
+            const bool none = std::isnan(row[i]);
+            before[size_t(i) + 1] = none ? i : before[size_t(i)];
+            count[size_t(i) + 1] = count[size_t(i)] + (none ? 1 : 0);
+        }
+        after[size_t(width)] = width + kFar + kRun;
+        for (int i = width - 1; i >= 0; --i)
+            after[size_t(i)] = std::isnan(row[i]) ? i : after[size_t(i) + 1];
+        for (int c = 0; c < runs; ++c) {
+            const int lo = c * kRun, hi = std::min(width, lo + kRun);  // the run's samples
+            const int inside = count[size_t(hi)] - count[size_t(lo)];
+            int d = 0;
+            if (inside == 0)
+                d = std::min({kFar, lo - before[size_t(lo)], after[size_t(hi)] - (lo + kRun - 1)});
+            else if (inside == hi - lo)
+                d = kNoDataRun;
+            across[size_t(j) * size_t(runs) + size_t(c)] = uint8_t(d);
+        }
+    }
+    // Rows within kFar: the window of reach R around (c, j) is clear iff
+    // every row j' within R has across > R, i.e. max(across, |j' - j|) > R.
+    std::vector<uint8_t> out(across.size());
+    for (int j = 0; j < height; ++j)
+        for (int c = 0; c < runs; ++c) {
+            const size_t k = size_t(j) * size_t(runs) + size_t(c);
+            int v = across[k];
+            if (v != kNoDataRun) {
+                v = kFar;
+                for (int y = std::max(0, j - kFar); y <= std::min(height - 1, j + kFar); ++y) {
+                    const int a = across[size_t(y) * size_t(runs) + size_t(c)];
+                    v = std::min(v, std::max(a == kNoDataRun ? 0 : a, std::abs(y - j)));
+                }
+            }
+            out[k] = uint8_t(v);
+        }
+    return out;
 }
 
 void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
@@ -128,7 +219,22 @@ void CurvatureGpu::draw(const Pass& pass, int layers, bool gradient) {
     // last R samples of the other rows alone, every other output masked.
     // (compute() checks that both sides have at least 2R + 1 samples.)
     const int r = pass.reach;
-    drawIn(*pass.runs, 0, r, cols, height_ - 2 * r);
+    if (clearance_) {
+        // With no data: the runs where the window is clear of it (the
+        // stencil in R + 1 ... kNoDataRun - 1), NaN where the run has no
+        // data at all (kNoDataRun), the general program elsewhere (0 ... R).
+        static_assert(kNoDataRun == 0x80 && kMaxRunDistance < 0x7f);
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_LESS, r, 0x7f);  // R < stencil, kNoDataRun read as 0
+        drawIn(*pass.runs, 0, r, cols, height_ - 2 * r);
+        glStencilFunc(GL_GEQUAL, r, 0xff);
+        drawIn(*pass.general, 0, r, cols, height_ - 2 * r);
+        glStencilFunc(GL_EQUAL, kNoDataRun, 0xff);
+        drawIn(*pass.noData, 0, r, cols, height_ - 2 * r);
+        glDisable(GL_STENCIL_TEST);
+    } else {
+        drawIn(*pass.runs, 0, r, cols, height_ - 2 * r);
+    }
     drawIn(*pass.general, 0, 0, cols, r);
     drawIn(*pass.general, 0, height_ - r, cols, r);
     for (int e = 0; e < 2 * r; ++e) {
@@ -249,8 +355,8 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     // Runs over the interior where the formulas need no border rule and no
     // no-data checks (the gradients', and the field's up to
     // kMaxRunDistance).
-    const bool gradientRuns = !noData_;
-    const bool fieldRuns = !noData_ && o.distance <= kMaxRunDistance;
+    const bool gradientRuns = true;
+    const bool fieldRuns = o.distance <= kMaxRunDistance;
     const std::string method = fieldDefines(o), normals = gradientDefines(o.normals);
     auto build = [](gpu::Program& p, const std::string& defines) -> gpu::Program& {
         if (!p)
@@ -260,12 +366,22 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     };
     const std::string runsDefine = "#define CURVATURE_RUNS 1\n";
     const std::string oneSampleDefine = "#define CURVATURE_ONE_SAMPLE 1\n";
+    const std::string noDataDefine = "#define CURVATURE_NO_DATA 1\n";
     gpu::GlStateScope scope;
     GLint scissor[4] = {};  // not part of GlState
     glGetIntegerv(GL_SCISSOR_BOX, scissor);
     for (GLenum cap : {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_STENCIL_TEST}) glDisable(cap);
     glEnable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    // The stencil state draw() sets with clearance_ (not part of GlState),
+    // read with a framebuffer that has a stencil bound (the reference reads
+    // back clamped to the bound stencil's range); tests only, no writes.
+    StencilState stencil;
+    if (clearance_) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fieldFramebuffer_.id());
+        stencil = StencilState::capture();
+        glStencilMask(0);
+    }
     glViewport(0, 0, runs(), height_);
     glBindVertexArray(vertexArray_.id());
     glBindTextureUnit(2, heightsTexture_.id());
@@ -273,7 +389,8 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     if (normalBased || tangentPlanes) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gradientFramebuffer_.id());
         const size_t n = size_t(o.normals);
-        Pass pass{.general = &build(gradientPrograms_[n], normals)};
+        Pass pass{.general = &build(gradientPrograms_[n], normals),
+                  .noData = &build(gradientNoDataProgram_, normals + noDataDefine)};
         if (gradientRuns) {
             pass.runs = &build(gradientRunPrograms_[n], normals + runsDefine);
             pass.oneSample = &build(gradientSamplePrograms_[n], normals + oneSampleDefine);
@@ -294,7 +411,8 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         }
     }
     const size_t m = size_t(o.method), l = o.levels.enabled ? 1 : 0;
-    Pass pass{.general = &build(fieldPrograms_[m][l], method)};
+    Pass pass{.general = &build(fieldPrograms_[m][l], method),
+              .noData = &build(fieldNoDataProgram_, fieldDefines({}) + noDataDefine)};
     if (fieldRuns) {
         pass.runs = &build(fieldRunPrograms_[m][l][size_t(o.distance - 1)],
                            method + runsDefine + define("CURVATURE_RUN_DISTANCE", o.distance));
@@ -307,6 +425,7 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fieldFramebuffer_.id());
     draw(pass, kRun, false);
     glScissor(scissor[0], scissor[1], scissor[2], scissor[3]);
+    if (clearance_) stencil.restore();
 }
 
 analysis::CurvatureField CurvatureGpu::read() const {

@@ -23,8 +23,10 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace sierra::render {
 
@@ -72,21 +74,35 @@ class CurvatureGpu {
     analysis::CurvatureField read() const;
 
     Path path() const { return path_; }
+
+    // For a field with no data (the Fragment path's stencil): per run c and
+    // row j (index j * runs + c), kNoDataRun when every sample of the run has
+    // no data, else min(kMaxRunDistance + 1, the smallest R whose window of
+    // reach R, samples c * kRun - R ... c * kRun + kRun - 1 + R of rows j - R
+    // ... j + R, holds a no-data sample). The runs of reach R draw where it
+    // is above R (and not kNoDataRun), NaN is written where it is
+    // kNoDataRun, the per-sample program draws the rest. `heights`: NaN = no
+    // data, sample (i, j) at (j + 1) * pitch + i + 1.
+    static constexpr uint8_t kNoDataRun = 0x80;
+    static std::vector<uint8_t> runClearance(const std::vector<float>& heights, int width,
+                                             int height, int pitch);
     glm::vec2 spacing() const { return {spacingX_, spacingZ_}; }  // world units between samples
     int width() const { return width_; }
     int height() const { return height_; }
 
   private:
-    // The programs of one pass (curvature.frag): general, and for a field
-    // without no-data the runs and the one-sample border program; the runs
-    // are wrong within `reach` samples of the border (1, or the field's
-    // reinforcement distance).
+    // The programs of one pass (curvature.frag): general, and the runs and
+    // the one-sample border program; the runs are wrong within `reach`
+    // samples of the border (1, or the field's reinforcement distance) and
+    // of no data (where clearance_ keeps them out).
     struct Pass {
         gpu::Program* general = nullptr;
         gpu::Program* runs = nullptr;
         gpu::Program* oneSample = nullptr;
+        gpu::Program* noData = nullptr;  // NaN in every output (with clearance_)
         int reach = 1;
     };
+
     // Draws a pass into the bound framebuffer of `layers` attachments;
     // `gradient`: two samples per attachment (.xy, .zw).
     void draw(const Pass& pass, int layers, bool gradient);
@@ -115,6 +131,7 @@ class CurvatureGpu {
     // kMaxRunDistance).
     std::array<std::array<gpu::Program, 2>, 4> fieldPrograms_, fieldSamplePrograms_;
     std::array<std::array<std::array<gpu::Program, kMaxRunDistance>, 2>, 4> fieldRunPrograms_;
+    gpu::Program gradientNoDataProgram_, fieldNoDataProgram_;  // NaN everywhere (CURVATURE_NO_DATA)
     // The Compute path's (curvature.comp), likewise.
     std::array<gpu::Program, 3> gradientComputePrograms_;
     std::array<std::array<gpu::Program, 2>, 4> fieldComputePrograms_;
@@ -127,7 +144,10 @@ class CurvatureGpu {
     gpu::Buffer gradientCopy_;
     gpu::Texture gradientCopyTexture_;
     gpu::Framebuffer fieldFramebuffer_, gradientFramebuffer_;  // their layers as colour attachments
-    gpu::VertexArray vertexArray_;                             // empty: the full-screen triangle
+    // With no data (Fragment path): runClearance() as the framebuffers'
+    // stencil (STENCIL_INDEX8, runs() x height).
+    gpu::Texture clearance_;
+    gpu::VertexArray vertexArray_;  // empty: the full-screen triangle
 };
 
 }  // namespace sierra::render
