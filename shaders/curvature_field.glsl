@@ -19,14 +19,15 @@
 // array textures (render::CurvatureGpu):
 //   field: RGBA32F, layer k = sample c * 8 + k, the 4 directions;
 //   gradient: RGBA32F, layer q = samples c * 8 + 2q (.xy) and 2q + 1 (.zw).
-// Three programs per pass:
+// Three programs per pass (four with no data):
 //   CURVATURE_RUNS: the interior formulas only, the run's window (rows
 //     j - 1 ... j + 1 of 10 heights or gradients; at a reinforcement
 //     distance D > 1 (CURVATURE_RUN_DISTANCE) rows j - D, j - 1 ... j + 1 and
 //     j + D of 8 + 2D) read once as vec4 texels and shared by its samples;
-//     drawn over rows R ... height - 1 - R of a field without no-data, R = 1
-//     for the gradients and R = D for the field, where all but the first and
-//     last R samples of a row are interior; then
+//     drawn over rows R ... height - 1 - R (with no data only where the
+//     window is clear of it, see below), R = 1 for the gradients and R = D
+//     for the field, where all but the first and last R samples of a row are
+//     interior; then
 //   the general program: every sample on its own (border rule, no data,
 //     reinforcement), the CPU's per-sample code; drawn over the first and
 //     last R rows after the runs, or over the whole grid at distances
