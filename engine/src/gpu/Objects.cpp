@@ -83,12 +83,25 @@ Texture Texture::create(const TextureDesc& desc) {
     return texture;
 }
 
+namespace {
+// Rows of tightly packed pixels for the calls inside; the caller's unpack
+// alignment is set again afterwards.
+template <typename Fn>
+void packedRows(const Fn& upload) {
+    GLint alignment = 4;
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    upload();
+    glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+}
+}  // namespace
+
 void Texture::uploadLayer(int layer, GLenum format, GLenum type, const void* pixels) {
     SIERRA_CHECK(target_ == GL_TEXTURE_2D_ARRAY && layer >= 0 && layer < layers_, "layer ", layer,
                  " of a texture with ", layers_, " layers");
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(id_, 0, 0, 0, layer, width_, height_, 1, format, type, pixels);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    packedRows([&] {
+        glTextureSubImage3D(id_, 0, 0, 0, layer, width_, height_, 1, format, type, pixels);
+    });
     checkGlErrors("texture layer upload");
 }
 
@@ -98,12 +111,12 @@ void Texture::generateMipmaps() {
 }
 
 void Texture::upload(GLenum format, GLenum type, const void* pixels) {
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (target_ == GL_TEXTURE_1D)
-        glTextureSubImage1D(id_, 0, 0, width_, format, type, pixels);
-    else
-        glTextureSubImage2D(id_, 0, 0, 0, width_, height_, format, type, pixels);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    packedRows([&] {
+        if (target_ == GL_TEXTURE_1D)
+            glTextureSubImage1D(id_, 0, 0, width_, format, type, pixels);
+        else
+            glTextureSubImage2D(id_, 0, 0, 0, width_, height_, format, type, pixels);
+    });
     checkGlErrors("texture upload");
 }
 

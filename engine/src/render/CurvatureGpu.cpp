@@ -137,10 +137,7 @@ CurvatureGpu CurvatureGpu::create(const terrain::Heightfield& field, std::option
                                              .width = c.runs(),
                                              .height = c.height_,
                                              .filter = GL_NEAREST});
-        GLint alignment = 4;  // not restored by Texture::upload
-        glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
         c.clearance_.upload(GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, clearance.data());
-        glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
         for (gpu::Framebuffer* f : {&c.fieldFramebuffer_, &c.gradientFramebuffer_}) {
             glNamedFramebufferTexture(f->id(), GL_STENCIL_ATTACHMENT, c.clearance_.id(), 0);
             f->checkComplete("GPU curvature");
@@ -353,9 +350,8 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         return;
     }
     // Runs over the interior where the formulas need no border rule and no
-    // no-data checks (the gradients', and the field's up to
-    // kMaxRunDistance).
-    const bool gradientRuns = true;
+    // no-data checks: always for the gradients, for the field up to
+    // kMaxRunDistance.
     const bool fieldRuns = o.distance <= kMaxRunDistance;
     const std::string method = fieldDefines(o), normals = gradientDefines(o.normals);
     auto build = [](gpu::Program& p, const std::string& defines) -> gpu::Program& {
@@ -390,11 +386,9 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gradientFramebuffer_.id());
         const size_t n = size_t(o.normals);
         Pass pass{.general = &build(gradientPrograms_[n], normals),
-                  .noData = &build(gradientNoDataProgram_, normals + noDataDefine)};
-        if (gradientRuns) {
-            pass.runs = &build(gradientRunPrograms_[n], normals + runsDefine);
-            pass.oneSample = &build(gradientSamplePrograms_[n], normals + oneSampleDefine);
-        }
+                  .runs = &build(gradientRunPrograms_[n], normals + runsDefine),
+                  .oneSample = &build(gradientSamplePrograms_[n], normals + oneSampleDefine)};
+        if (clearance_) pass.noData = &build(gradientNoDataProgram_, normals + noDataDefine);
         draw(pass, kRun / 2, true);
         if (normalBased) {
             // A copy the field pass reads as a buffer texture (see curvature.frag), made on first
@@ -411,8 +405,8 @@ void CurvatureGpu::compute(const analysis::CurvatureOptions& o, bool tangentPlan
         }
     }
     const size_t m = size_t(o.method), l = o.levels.enabled ? 1 : 0;
-    Pass pass{.general = &build(fieldPrograms_[m][l], method),
-              .noData = &build(fieldNoDataProgram_, fieldDefines({}) + noDataDefine)};
+    Pass pass{.general = &build(fieldPrograms_[m][l], method)};
+    if (clearance_) pass.noData = &build(fieldNoDataProgram_, fieldDefines({}) + noDataDefine);
     if (fieldRuns) {
         pass.runs = &build(fieldRunPrograms_[m][l][size_t(o.distance - 1)],
                            method + runsDefine + define("CURVATURE_RUN_DISTANCE", o.distance));

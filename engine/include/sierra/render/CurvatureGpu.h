@@ -99,7 +99,7 @@ class CurvatureGpu {
         gpu::Program* general = nullptr;
         gpu::Program* runs = nullptr;
         gpu::Program* oneSample = nullptr;
-        gpu::Program* noData = nullptr;  // NaN in every output (with clearance_)
+        gpu::Program* noData = nullptr;  // NaN in every output (made only with clearance_)
         int reach = 1;
     };
 
