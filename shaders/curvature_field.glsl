@@ -76,13 +76,30 @@ float heightAt(ivec2 ij) { return texelFetch(uHeights, (ij.y + 1) * CURVATURE_PI
 ivec2 runStart() { return ivec2(gl_FragCoord.xy) * ivec2(kRun, 1); }
 #endif
 
-// One window row of heights, samples c * 8 - 1 ... c * 8 + 8 of row j.
-void heightRow(int c, int j, out float w[kRun + 2]) {
+// The reinforcement distance D the field's runs are compiled for (1 = none,
+// and always 1 for the gradients; CurvatureGpu::kMaxRunDistance at most): a
+// run's window reaches D samples beyond it on either side, and rows j - D and
+// j + D.
+#ifndef CURVATURE_RUN_DISTANCE
+#define CURVATURE_RUN_DISTANCE 1
+#endif
+#if defined(CURVATURE_GRADIENT) && CURVATURE_RUN_DISTANCE != 1
+#error "the gradient runs read a window of reach 1"
+#endif
+const int kD = CURVATURE_RUN_DISTANCE;
+const int kW = kRun + 2 * kD;  // window samples per row: c * 8 - D ... c * 8 + 7 + D
+
+// One window row of heights, samples c * 8 - D ... c * 8 + 7 + D of row j,
+// read as whole texels (the bounds are constants: the loops unroll and the
+// tests fold). Texel t + q holds samples c * 8 - 1 + 4q ... c * 8 + 2 + 4q.
+void heightRow(int c, int j, out float w[kW]) {
     int t = (j + 1) * (CURVATURE_PITCH / 4) + c * (kRun / 4);
-    for (int q = 0; q < 3; ++q) {
+    for (int q = (1 - kD) >> 2; q <= (kRun + kD) >> 2; ++q) {
         vec4 v = texelFetch(uHeights4, t + q);
-        for (int k = 0; k < 4; ++k)
-            if (4 * q + k < kRun + 2) w[4 * q + k] = v[k];
+        for (int k = 0; k < 4; ++k) {
+            int e = 4 * q + k - 1 + kD;
+            if (e >= 0 && e < kW) w[e] = v[k];
+        }
     }
 }
 
@@ -106,7 +123,7 @@ vec3 triangleNormal(vec3 a, vec3 b) { return normalize(cross(b, a)); }
 
 void main() {
     ivec2 f = ivec2(gl_FragCoord.xy);
-    float s[kRun + 2], m[kRun + 2], n[kRun + 2];  // rows -1 (south), 0, +1 (north)
+    float s[kW], m[kW], n[kW];  // rows -1 (south), 0, +1 (north)
     heightRow(f.x, f.y - 1, s);
     heightRow(f.x, f.y, m);
     heightRow(f.x, f.y + 1, n);
@@ -268,18 +285,9 @@ float shaped(float value, float ypp) {
 
 #ifdef CURVATURE_RUNS
 
-// The reinforcement distance D the runs are compiled for (1 = none;
-// CurvatureGpu::kMaxRunDistance at most): the window reaches D samples
-// beyond the run on either side, and rows j - D and j + D.
-#ifndef CURVATURE_RUN_DISTANCE
-#define CURVATURE_RUN_DISTANCE 1
-#endif
-const int kD = CURVATURE_RUN_DISTANCE;
-const int kW = kRun + 2 * kD;  // window samples per row: c * 8 - D ... c * 8 + 7 + D
-
 // One window row of row j: the gradients (normal methods) or the heights (in
 // .x; the others) of samples c * 8 - D ... c * 8 + 7 + D, read as whole
-// texels (the bounds are constants: the loops unroll and the tests fold).
+// texels.
 void windowRow(int c, int j, out vec2 w[kW]) {
     if (uMethod == 0 || uMethod == 1) {
         // Texel p (relative to the run, negative before it) holds samples
@@ -291,15 +299,9 @@ void windowRow(int c, int j, out vec2 w[kW]) {
             if (e + 1 < kW) w[e + 1] = v.zw;
         }
     } else {
-        // Texel t + q holds samples c * 8 - 1 + 4q ... c * 8 + 2 + 4q.
-        int t = (j + 1) * (CURVATURE_PITCH / 4) + c * (kRun / 4);
-        for (int q = (1 - kD) >> 2; q <= (kRun + kD) >> 2; ++q) {
-            vec4 v = texelFetch(uHeights4, t + q);
-            for (int k = 0; k < 4; ++k) {
-                int e = 4 * q + k - 1 + kD;
-                if (e >= 0 && e < kW) w[e] = vec2(v[k], 0.0);
-            }
-        }
+        float h[kW];
+        heightRow(c, j, h);
+        for (int k = 0; k < kW; ++k) w[k] = vec2(h[k], 0.0);
     }
 }
 
