@@ -3,14 +3,18 @@
 // segment becomes an antialiased screen-space quad (wide GL lines are not core
 // profile). Needs frame.glsl and terrain_common.glsl.
 
-// The true world height at a ground position in grid units (bilinear between
-// samples; exact at a vertex).
-float trueHeight(vec2 grid) {
+// The drawn surface's world height at a ground position in grid units: the
+// true height (bilinear between samples; exact at a vertex), raised to sea
+// level where there is water (TerrainGpu::surface), so nothing is drawn on
+// the ground under the water, which the flat water hides from above but not
+// from beside the terrain's edge.
+float surfaceHeight(vec2 grid) {
     vec2 texel = 1.0 / vec2(uGrid.x);
-    return texture(uHeights, (grid + 0.5) * texel).r;
+    float h = texture(uHeights, (grid + 0.5) * texel).r;
+    return uHeightInfo.y > 0.5 && h < uHeightInfo.x ? uHeightInfo.x : h;  // NaN (no data) stays
 }
 
-// The point at grid position `grid` on the true surface, moved towards the
+// The point at grid position `grid` on the drawn surface, moved towards the
 // camera along its view ray (so it stays on the same pixel) by as much as the
 // SBT mesh can be off the true surface there, plus 0.2% of its distance for
 // depth precision: the depth test then never hides it under the mesh, and it
@@ -20,7 +24,7 @@ float trueHeight(vec2 grid) {
 // distance from the LOD eye); with the nearest vertex's own saturated error
 // as a floor (a vertex blending in by geomorph).
 vec3 overlayPoint(vec2 grid) {
-    vec3 world = vec3(grid.x * uSpacingValid.x, trueHeight(grid), grid.y * uSpacingValid.y);
+    vec3 world = vec3(grid.x * uSpacingValid.x, surfaceHeight(grid), grid.y * uSpacingValid.y);
     ivec2 ij = clamp(ivec2(round(grid)), ivec2(0), ivec2(uGrid.x - 1));
     float error = texelFetch(uData, ij, 0).b;
     float screenBound = uFrameSize.z > 0.0 ? uFrameSize.w * distance(world, uLodEye.xyz) / uFrameSize.z : 0.0;

@@ -111,7 +111,7 @@ void runFrames(const FramesOptions& o) {
         std::fprintf(stderr, "%s\n", zones.c_str());
     if (std::string mesh = render::applySceneMesh(terrain, sc, field); !mesh.empty())
         std::fprintf(stderr, "%s\n", mesh.c_str());
-    render::addOverlayPasses(terrain, sc, field);
+    render::addOverlayPasses(terrain, sc);
     const std::vector<std::string> passNames = terrain.addedPassNames();
     if (o.overlayCosts && passNames.empty())
         throw UsageError(

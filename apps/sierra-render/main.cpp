@@ -79,7 +79,7 @@ int run(const scene::Scene& s) {
     if (std::string mesh = render::applySceneMesh(terrain, s, field); !mesh.empty())
         log::info(mesh);
     log::info("terrain on the GPU: ", terrain.summary());
-    render::addOverlayPasses(terrain, s, field);
+    render::addOverlayPasses(terrain, s);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});
     std::vector<render::Camera> cameras = render::sceneCameras(s, terrain.bounds());

@@ -14,23 +14,28 @@ file(WRITE ${WORK_DIR}/small.pgm "P2\n3 2\n255\n0 10 20\n30 40 250\n")
 run_app(pgm EXPECT_OK COMMAND ${RENDER} --heightmap small.pgm --size 160x90 --out pgm.png --no-debug)
 expect_file(${WORK_DIR}/pgm.png)
 
-# An overlay that would draw nothing says so: curvature has world units, so a
-# preset's scale made for unit spacing finds no line on a grid spaced 1000
-# apart; the warning names the scale that would, and with it there is no
-# warning; nor at unit spacing on a 257 grid.
-run_app(faint EXPECT_OK MESSAGE "no curvature line reaches the threshold 0.5" COMMAND ${RENDER}
-        --generate 65 --spacing 1000 --preset fig3a --size 160x90 --out faint.png --no-debug)
-string(REGEX MATCH "--curvature-scale ([0-9.e+]+) brings the top 5% of samples to 0.5" suggestion
-       "${LAST_OUTPUT}")
-if(NOT suggestion)
-  message(FATAL_ERROR "faint: no suggested scale in\n${LAST_OUTPUT}")
-endif()
-foreach(run "fixed;--generate;65;--spacing;1000;--curvature-scale;${CMAKE_MATCH_1}"
-            "unit;--generate;257")
-  list(POP_FRONT run name)
-  run_app(faint_${name} EXPECT_OK COMMAND ${RENDER} ${run} --preset fig3a --size 160x90
-          --out faint_${name}.png --no-debug)
-  if(LAST_OUTPUT MATCHES "curvature field's largest value")
-    message(FATAL_ERROR "faint_${name}: warned:\n${LAST_OUTPUT}")
+# An overlay that would draw nothing says so, with the scale that would show
+# it. Curvature has world units, so a preset's scale made for unit spacing
+# finds no sample over the threshold on a grid spaced 1000 apart; on the
+# generator's smooth 257 grid at unit spacing a few samples pass but no path
+# through them reaches fig3a's minimum length. With the suggested scale each
+# draws lines and says nothing.
+foreach(case "faint;no curvature line reaches the threshold 0.5;--generate;65;--spacing;1000"
+             "short;but no path through them has the minimum length of 6 vertices;--generate;257")
+  list(POP_FRONT case name message)
+  run_app(${name} EXPECT_OK MESSAGE "${message}" COMMAND ${RENDER} ${case} --preset fig3a
+          --size 160x90 --out ${name}.png --no-debug)
+  if(NOT LAST_OUTPUT MATCHES "overlays: 0 lines")
+    message(FATAL_ERROR "${name}: lines drawn beside the warning:\n${LAST_OUTPUT}")
+  endif()
+  string(REGEX MATCH "--curvature-scale ([0-9.e+]+) brings the top 5% of samples to 0.5"
+         suggestion "${LAST_OUTPUT}")
+  if(NOT suggestion)
+    message(FATAL_ERROR "${name}: no suggested scale in\n${LAST_OUTPUT}")
+  endif()
+  run_app(${name}_fixed EXPECT_OK COMMAND ${RENDER} ${case} --preset fig3a --curvature-scale
+          ${CMAKE_MATCH_1} --size 160x90 --out ${name}_fixed.png --no-debug)
+  if(LAST_OUTPUT MATCHES "warning: overlays" OR NOT LAST_OUTPUT MATCHES "overlays: [1-9][0-9]* lines")
+    message(FATAL_ERROR "${name}_fixed: warned or drew no line:\n${LAST_OUTPUT}")
   endif()
 endforeach()

@@ -20,9 +20,12 @@
 #include <sierra/scene/Scene.h>
 #include <sierra/terrain/DiamondSquare.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <vector>
 
 using namespace sierra;
 
@@ -191,6 +194,114 @@ TEST_F(Overlays, LinesNeitherSinkNorFloatAtAnyTau) {
     }
 }
 
+TEST_F(Overlays, NothingIsDrawnBesideTheTerrainWhereThereIsWater) {
+    // Half the terrain under water, seen low from every side: the water is
+    // drawn flat at sea level, so the ground under it shows nowhere, and no
+    // hatch or line may stand for it. Before the overlays took the drawn
+    // surface, the hatches and lines of the sea floor hung below the water's
+    // edge, outside the terrain (3,000 to 9,000 pixels here).
+    terrain::Heightfield field = fractal(129);
+    auto [lo, hi] = field.range();
+    const float sea = lo + 0.5f * (hi - lo);
+    scene::Scene s;
+    s.style.overlay.layers = {.shaded = true, .lines = true, .hatch = true};
+    s.style.overlay.curvature.scale = 4.0f;
+    s.style.overlay.lines.minLength = 3;
+    for (float azimuth : {45.0f, 135.0f, 225.0f, 315.0f}) {
+        auto renderer = render::TerrainRenderer::create({.field = &field, .seaLevel = sea});
+        auto target =
+            render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+        const render::Camera camera =
+            render::framedCamera(renderer.bounds(), {.target = renderer.bounds().centre(),
+                                                     .azimuthDeg = azimuth,
+                                                     .elevationDeg = 8.0f,
+                                                     .aspect = float(kWidth) / kHeight});
+        auto frame = [&] {
+            target.begin(render::TerrainRenderer::clearColour({}));
+            renderer.draw(camera, kWidth, kHeight, {});
+            return target.read();
+        };
+        const gpu::Image plain = frame();
+        const render::OverlayInfo info = render::addOverlayPasses(renderer, s);
+        const gpu::Image overlaid = frame();
+        // Below the terrain (rows run down the frame): beneath each column's
+        // lowest pixel of the plain frame that is not the sky's colour, with
+        // kMargin pixels to spare: a stroke centred on a vertex of the
+        // terrain's outer edge reaches past it by half its length (up to 4
+        // pixels here, distance thinning lengthens far strokes), as a line
+        // along a crest on the skyline stands out above it by half its width.
+        // The sea floor's strokes hung 10 to 40 pixels below.
+        constexpr int kMargin = 8;
+        auto at = [&](const gpu::Image& im, int x, int y) {
+            return &im.rgba[(size_t(y) * kWidth + size_t(x)) * 4];
+        };
+        const uint8_t* sky = at(plain, 0, 0);
+        auto isSky = [&](const gpu::Image& im, int x, int y) {
+            const uint8_t* p = at(im, x, y);
+            return std::abs(p[0] - sky[0]) + std::abs(p[1] - sky[1]) + std::abs(p[2] - sky[2]) <= 6;
+        };
+        int64_t terrainPixels = 0, below = 0, changed = 0;
+        std::vector<int> lowest(kWidth, -1);
+        for (int x = 0; x < kWidth; ++x)
+            for (int y = 0; y < kHeight; ++y) {
+                if (!isSky(plain, x, y)) lowest[size_t(x)] = y, ++terrainPixels;
+                changed += std::memcmp(at(plain, x, y), at(overlaid, x, y), 3) != 0;
+            }
+        for (int x = 0; x < kWidth; ++x) {
+            int bottom = -1;  // the lowest terrain pixel within kMargin columns
+            for (int u = std::max(0, x - kMargin); u <= std::min(kWidth - 1, x + kMargin); ++u)
+                bottom = std::max(bottom, lowest[size_t(u)]);
+            for (int y = bottom < 0 ? 0 : bottom + kMargin + 1; y < kHeight; ++y)
+                below += !isSky(overlaid, x, y);
+        }
+        std::printf(
+            "azimuth %g: %zu lines, %lld terrain pixels, %lld changed by the overlays, "
+            "%lld below the terrain\n",
+            double(azimuth), info.lines, (long long)terrainPixels, (long long)changed,
+            (long long)below);
+        ASSERT_GT(terrainPixels, kWidth * kHeight / 20);
+        EXPECT_GT(changed, 500) << "azimuth " << azimuth << ": the overlays drew nothing to check";
+        EXPECT_EQ(below, 0) << "azimuth " << azimuth << ": overlay pixels below the terrain";
+    }
+}
+
+TEST_F(Overlays, LinesOverWaterLieOnTheWater) {
+    // A basin 20 units deep under the water, and a line across it: drawn on
+    // the drawn surface (the water, flat at sea level) it shows; on the sea
+    // floor the water would hide it.
+    const int n = 65;
+    terrain::Heightfield field(n, n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const float r = std::hypot(float(i - 32), float(j - 32));
+            field.at(i, j) = std::min(10.0f, r - 20.0f);  // sea floor -20 at the centre
+        }
+    analysis::LineSet lines;
+    for (int i = 20; i <= 44; ++i) lines.vertices.push_back({float(i), 32.0f, 1.0f});
+    lines.offsets.push_back(uint32_t(lines.vertices.size()));
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+    auto dark = [&](float seaLevel) {
+        auto renderer = render::TerrainRenderer::create({.field = &field, .seaLevel = seaLevel});
+        renderer.setSurface(render::makePaperSurface());
+        renderer.addPass(render::LinePass::create(lines, {.width = 3.0f}));
+        render::Camera camera;  // straight down on the basin
+        camera.target = {32.0f, 0.0f, 32.0f};
+        camera.position = {32.0f, 100.0f, 32.0f};
+        camera.projection = render::Projection::Orthographic;
+        camera.orthoHeight = 40.0f;
+        camera.nearPlane = 1.0f;
+        camera.farPlane = 200.0f;
+        target.begin(render::TerrainRenderer::clearColour({}));
+        renderer.draw(camera, kWidth, kHeight, {});
+        return darkPixels(target.read());
+    };
+    const int64_t onWater = dark(0.0f), dry = dark(-30.0f);
+    std::printf("line pixels: %lld over water, %lld over the dry basin\n", (long long)onWater,
+                (long long)dry);
+    EXPECT_GT(dry, 100);
+    EXPECT_GT(double(onWater), 0.7 * double(dry)) << "the water hides the line";
+}
+
 // Golden images of overlays on one terrain, compared with the tolerance of
 // golden_test.cpp.
 class OverlayGolden : public test::GlTest {
@@ -204,7 +315,7 @@ class OverlayGolden : public test::GlTest {
         s.style.overlay = style;
         auto renderer = render::TerrainRenderer::create({.field = &field});
         if (!style.layers.shaded) renderer.setSurface(render::makePaperSurface());
-        render::OverlayInfo info = render::addOverlayPasses(renderer, s, field);
+        render::OverlayInfo info = render::addOverlayPasses(renderer, s);
         std::printf("%s: %zu lines, %zu segments\n", name.c_str(), info.lines, info.segments);
         auto target = render::FrameTarget::create({.width = kW, .height = kH, .samples = 4});
         render::Camera camera = render::defaultCamera(renderer.bounds(), float(kW) / kH);

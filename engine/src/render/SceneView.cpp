@@ -223,10 +223,12 @@ namespace {
 
 // Curvature has world units (1 / length), so a style whose scale suits a grid
 // of unit spacing draws next to nothing on metric data spaced tens of metres
-// apart: say so, with the scale that would show it, rather than render a
-// blank overlay silently.
+// apart, or on smooth terrain: say so, with the scale that would show it,
+// rather than render a blank overlay silently. `lines`: the polylines traced
+// (lines on), so that a field some of whose samples pass the threshold but
+// whose paths all fall short of the minimum length is reported too.
 void warnIfFaint(const analysis::CurvatureField& values, const analysis::StyleParams& style,
-                 const terrain::Heightfield& field) {
+                 const terrain::Heightfield& field, std::optional<size_t> lines) {
     // Per sample the largest of the 4 values (what lines and hatches use).
     std::vector<float> largest;
     largest.reserve(size_t(values.width) * size_t(values.height));
@@ -237,20 +239,31 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
     // Hatch opacity is the value itself: below this a stroke is barely seen.
     constexpr float kFaintHatch = 0.1f;
     const float needed = style.layers.lines ? style.lines.threshold : kFaintHatch;
-    if (*std::max_element(largest.begin(), largest.end()) >= needed) return;
+    const float most = *std::max_element(largest.begin(), largest.end());
+    const bool faint = most < needed;
+    if (!faint && !(lines && *lines == 0)) return;
+    const auto passing =
+        std::count_if(largest.begin(), largest.end(), [&](float v) { return v >= needed; });
     // The suggestion brings the top 5% of samples to the threshold (lines) or
     // to full opacity (hatches).
     const float target = style.layers.lines ? needed : 1.0f;
     auto top = largest.begin() + std::ptrdiff_t(0.95 * double(largest.size() - 1));
     std::nth_element(largest.begin(), top, largest.end());
     const float scale = style.curvature.scale;
-    const std::string suggestion = *top > 0.0f && !style.curvature.levels.enabled
+    const std::string suggestion = *top > 0.0f && *top < target && !style.curvature.levels.enabled
                                        ? msg(" (--curvature-scale ", scale * target / *top,
                                              " brings the top 5% of samples to ", target, ")")
                                        : std::string();
-    log::warn("overlays: the curvature field's largest value is ",
-              *std::max_element(largest.begin(), largest.end()), " at a curvature scale of ", scale,
-              ", so ",
+    if (!faint) {
+        log::warn("overlays: no curvature line: ", passing, " of ", largest.size(),
+                  " samples reach the threshold ", needed, " at a curvature scale of ", scale,
+                  ", but no path through them has the minimum length of ", style.lines.minLength,
+                  " vertices; raise the scale", suggestion,
+                  " or lower the minimum length (--min-length)");
+        return;
+    }
+    log::warn("overlays: the curvature field's largest value is ", most,
+              " at a curvature scale of ", scale, ", so ",
               style.layers.lines ? msg("no curvature line reaches the threshold ", needed)
                                  : msg("the hatches are all but transparent"),
               ". Curvature is in world units (1 / length) and this grid is spaced ",
@@ -259,21 +272,17 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
 
 }  // namespace
 
-OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s,
-                             const terrain::Heightfield& field) {
+OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s) {
     const analysis::StyleParams& style = s.style.overlay;
     OverlayInfo info;
     if (!style.layers.lines && !style.layers.hatch && !style.layers.contours) return info;
-    SIERRA_CHECK(field.width() == renderer.side() && field.height() == renderer.side(),
-                 "overlays: the heightfield (", field.width(), "x", field.height(),
-                 ") is not the renderer's terrain (", renderer.side(), " samples a side)");
+    const terrain::Heightfield& field = renderer.terrain().surface();
     if (style.layers.lines || style.layers.hatch) {
         auto curvature = std::make_shared<CurvatureGpu>(CurvatureGpu::create(field));
         curvature->compute(style.curvature, style.layers.hatch);
         // Read back once per terrain and style: the lines are traced from it,
         // and an overlay that would draw nothing is reported.
         const analysis::CurvatureField values = curvature->read();
-        warnIfFaint(values, style, field);
         if (style.layers.hatch) {
             renderer.addPass(HatchPass::create(curvature, {.length = style.hatch.length,
                                                            .width = style.hatch.width,
@@ -287,6 +296,8 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s,
             info.segments = pass->segmentCount();
             renderer.addPass(std::move(pass));
         }
+        warnIfFaint(values, style, field,
+                    style.layers.lines ? std::optional<size_t>(info.lines) : std::nullopt);
     }
     if (style.layers.contours) renderer.addPass(ContourPass::create());
     log::info("overlays: ", style.layers.hatch ? "hatches, " : "",

@@ -247,6 +247,9 @@ float TerrainGpu::seaLevel() const {
 float TerrainGpu::worldSeaLevel() const {
     return state_->worldSeaLevel;
 }
+const terrain::Heightfield& TerrainGpu::surface() const {
+    return state_->surface;
+}
 int TerrainGpu::side() const {
     return state_->side;
 }

@@ -60,10 +60,11 @@ struct OverlayInfo {
 };
 
 // Adds the scene's overlay passes (style.overlay: hatches, then lines, then
-// contour edges, over the terrain) to `renderer`, whose terrain is `field`:
-// the curvature field computed on the GPU once, the lines traced once from
-// it. Nothing when the style has no overlay layer.
-OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& scene,
-                             const terrain::Heightfield& field);
+// contour edges, over the terrain) to `renderer`: the curvature field of its
+// drawn surface (TerrainGpu::surface: water flat at sea level, so no stroke
+// or line stands for ground under water, and the coast is a crease) computed
+// on the GPU once, the lines traced once from it. Nothing when the style has
+// no overlay layer.
+OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& scene);
 
 }  // namespace sierra::render

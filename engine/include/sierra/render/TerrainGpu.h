@@ -60,8 +60,12 @@ class TerrainGpu {
     SceneBounds bounds() const;    // the real samples' box (padding excluded), world units
     glm::vec2 worldRange() const;  // lowest and highest world height of the real samples
     bool hasWater() const;
-    float seaLevel() const;              // stored height units; NaN without water
-    float worldSeaLevel() const;         // world units; NaN without water
+    float seaLevel() const;       // stored height units; NaN without water
+    float worldSeaLevel() const;  // world units; NaN without water
+    // The drawn surface: the heightfield with water flattened to sea level
+    // (the field itself without water); what the SBT refines and the
+    // overlays' curvature describes.
+    const terrain::Heightfield& surface() const;
     int side() const;                    // samples per side
     glm::vec2 spacing() const;           // world units between samples along x and z
     float verticalScale() const;         // stored height -> world height
