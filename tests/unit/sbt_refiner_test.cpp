@@ -587,6 +587,43 @@ TEST(SbtView, FastPathEmitsTheBaselineStrip) {
     EXPECT_GT(triangles, 100000) << "the cameras see real meshes";
 }
 
+// prepareView builds the view keys once (3 keys of 16 bits per triangle of
+// levels 0 ... 2n - 1: 2^(2n+1) - 2 of them, about 12 bytes per sample),
+// and refineView then neither rebuilds them nor emits another strip than a
+// refiner that builds them itself; refineFixed adds its split keys (one per
+// triangle).
+TEST(SbtView, PrepareViewBuildsTheKeysOnce) {
+    const int side = 129;  // n = 7
+    Heightfield f = sierra::terrain::generateDiamondSquare({.size = side, .seed = 5});
+    f.setVerticalScale(20.0f);
+    auto ve = sbt::computeVertexErrors(f);
+    const size_t triangles = (size_t(1) << 15) - 2;
+    sbt::Refiner prepared(f, ve, {.threads = 1}), lazy(f, ve, {.threads = 1});
+    EXPECT_EQ(prepared.keyBytes(), 0u);
+    prepared.prepareView();
+    EXPECT_EQ(prepared.keyBytes(), 3 * 2 * triangles);
+    prepared.prepareView();
+    EXPECT_EQ(prepared.keyBytes(), 3 * 2 * triangles);
+    std::mt19937_64 rng(9);
+    for (int k = 0; k < 4; ++k) {
+        Camera cam = randomCamera(rng, float(side - 1), 30.0f, 16.0f / 9.0f, 0.8f);
+        sbt::ViewParams vp;
+        vp.eye = cam.eye;
+        vp.lambda = sbt::projectionLambda(1080.0f, 0.8f);
+        vp.tau = 1.0f;
+        vp.planes = sbt::frustumPlanes(cam.viewProj.data());
+        sbt::StripMesh a, b;
+        prepared.refineView(vp, a);
+        lazy.refineView(vp, b);
+        ASSERT_EQ(a.indices, b.indices) << "camera " << k;
+    }
+    EXPECT_EQ(prepared.keyBytes(), 3 * 2 * triangles);
+    EXPECT_EQ(lazy.keyBytes(), 3 * 2 * triangles);
+    sbt::StripMesh fixed;
+    prepared.refineFixed(0.5f, fixed);
+    EXPECT_EQ(prepared.keyBytes(), 4 * 2 * triangles);
+}
+
 }  // namespace
 
 // The largest grid is the largest 2^n+1 side whose vertices 32-bit strip

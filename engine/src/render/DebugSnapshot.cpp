@@ -5,6 +5,7 @@
 #include <sierra/gpu/StreamRing.h>
 #include <sierra/render/MeshInspector.h>
 #include <sierra/render/TerrainGpu.h>
+#include <sierra/scene/Terrain.h>
 
 #include <algorithm>
 #include <cmath>
@@ -106,7 +107,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     }
     frame.values = f.frameMs;
     times.series = {refine, upload, draw, frame};
-    times.rows = {{"error pass",
+    times.rows = {{"SBT build",
                    deterministic ? std::string("-- ms") : msg(fixed(gpu.errorPassMs(), 1), " ms")},
                   {"read-back", "in the frame time"}};
     panel.sections.push_back(std::move(times));
@@ -144,6 +145,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         {"CPU heightfield", bytes(samples * (4.0 + (field.hasMask() ? 1.0 : 0.0)))},
         {"CPU drawn surface", bytes(samples * 4.0)},
         {"CPU errors, radii", bytes(samples * 8.0)},
+        {"CPU SBT keys", bytes(double(gpu.refinerKeyBytes()))},
         {"CPU strip", bytes(double(last.indices) * 4.0)},
         {"GPU data RGBA32F", bytes(samples * 16.0)},
         {"GPU heights R32F", bytes(samples * 4.0)},
@@ -156,27 +158,31 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
 
     DebugSection style{.title = "Style", .column = 1};
     style.params = {
-        {.kind = StyleParam::Kind::Flag, .name = "wireframe", .flag = s.style.wireframe},
-        {.kind = StyleParam::Kind::Number,
-         .name = "tree line",
-         .value = s.style.treeLine,
-         .min = 0.0f,
-         .max = 9000.0f,
-         .text = "m"},
-        {.kind = StyleParam::Kind::Number,
-         .name = "snow line",
-         .value = s.style.snowLine,
-         .min = 0.0f,
-         .max = 9000.0f,
-         .text = "m"},
-        {.kind = StyleParam::Kind::Text, .name = "colour table", .text = s.style.cpt},
-        {.kind = StyleParam::Kind::Number,
-         .name = "tau",
-         .value = f.draw.tau,
-         .min = 0.0f,
-         .max = 16.0f,
-         .text = "px"},
-    };
+        {.kind = StyleParam::Kind::Flag, .name = "wireframe", .flag = s.style.wireframe}};
+    // The tree and snow lines are metres of the elevation ramp: heights without
+    // units take the hypsometric ramp, and a colour table replaces both.
+    if (!s.style.cpt.empty() || !scene::metricHeights(s.terrain)) {
+        style.params.push_back({.kind = StyleParam::Kind::Text,
+                                .name = "tree, snow line",
+                                .text = s.style.cpt.empty() ? "n/a (no units)" : "n/a (table)"});
+    } else {
+        for (auto [name, value] :
+             {std::pair{"tree line", s.style.treeLine}, std::pair{"snow line", s.style.snowLine}})
+            style.params.push_back({.kind = StyleParam::Kind::Number,
+                                    .name = name,
+                                    .value = value,
+                                    .min = 0.0f,
+                                    .max = 9000.0f,
+                                    .text = "m"});
+    }
+    style.params.push_back(
+        {.kind = StyleParam::Kind::Text, .name = "colour table", .text = s.style.cpt});
+    style.params.push_back({.kind = StyleParam::Kind::Number,
+                            .name = "tau",
+                            .value = f.draw.tau,
+                            .min = 0.0f,
+                            .max = 16.0f,
+                            .text = "px"});
     if (s.style.colourBy == "error") {
         // The heat map of shaders/debug_colour_geom.glsl.
         const double tau = f.draw.tau;

@@ -22,6 +22,8 @@ SbtBridge::SbtBridge(const terrain::Heightfield& field, int threads)
     state_->morphBase = sbt::buildMorphBase(field, threads);
     state_->refiner =
         std::make_unique<sbt::Refiner>(field, state_->errors, sbt::RefinerDesc{.threads = threads});
+    // With the terrain's preprocessing, not in the first frame.
+    state_->refiner->prepareView();
 }
 
 SbtBridge::~SbtBridge() = default;
@@ -36,6 +38,9 @@ std::span<const float> SbtBridge::radii() const {
 }
 std::span<const float> SbtBridge::morphBase() const {
     return state_->morphBase;
+}
+size_t SbtBridge::keyBytes() const {
+    return state_->refiner->keyBytes();
 }
 void SbtBridge::releaseMorphBase() {
     std::vector<float>().swap(state_->morphBase);

@@ -259,6 +259,9 @@ glm::vec2 TerrainGpu::spacing() const {
 float TerrainGpu::verticalScale() const {
     return state_->verticalScale;
 }
+size_t TerrainGpu::refinerKeyBytes() const {
+    return state_->sbt->keyBytes();
+}
 double TerrainGpu::errorPassMs() const {
     return state_->errorPassMs;
 }

@@ -981,12 +981,19 @@ void Refiner::buildViewKeys() {
     });
 }
 
+void Refiner::prepareView() {
+    if (magnitude_ >= 0.0) return;
+    measureMagnitude();
+    buildViewKeys();
+}
+
+size_t Refiner::keyBytes() const {
+    return (splitKeys_.size() + viewKeys_.size()) * sizeof(uint16_t);
+}
+
 void Refiner::refineView(const ViewParams& view, StripMesh& out) {
     checkView(view);
-    if (magnitude_ < 0.0) {
-        measureMagnitude();
-        buildViewKeys();
-    }
+    prepareView();
     run<true, true>(&view, 0.0f, out);
 }
 

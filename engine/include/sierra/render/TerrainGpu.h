@@ -69,7 +69,8 @@ class TerrainGpu {
     int side() const;                    // samples per side
     glm::vec2 spacing() const;           // world units between samples along x and z
     float verticalScale() const;         // stored height -> world height
-    double errorPassMs() const;          // time spent building errors and radii
+    double errorPassMs() const;          // time spent building errors, radii and the refiner's keys
+    size_t refinerKeyBytes() const;      // CPU bytes of the refiner's keys (sbt::Refiner::keyBytes)
     const std::string& summary() const;  // one line: grid, spacing, height range, sea level
 
   private:
