@@ -3,6 +3,7 @@
 // error message during the test fails it.
 
 #include <sierra/gpu/EglContext.h>
+#include <sierra/render/Camera.h>
 
 #include <gtest/gtest.h>
 
@@ -14,6 +15,19 @@
 #include <link.h>
 
 namespace sierra::test {
+
+// Straight down on `target` from `above` world units over it, orthographic,
+// `orthoHeight` world units from the frame's bottom to its top (north up).
+inline render::Camera topDownCamera(glm::vec3 target, float orthoHeight, float above = 100.0f) {
+    render::Camera c;
+    c.target = target;
+    c.position = target + glm::vec3(0.0f, above, 0.0f);
+    c.projection = render::Projection::Orthographic;
+    c.orthoHeight = orthoHeight;
+    c.nearPlane = 1.0f;
+    c.farPlane = 2.0f * above;
+    return c;
+}
 
 // Mesa (22.3, llvmpipe) unloads its DRI driver when the last EGL display is
 // terminated, and the driver leaves two 56-byte blocks allocated at that point.

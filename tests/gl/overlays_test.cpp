@@ -118,13 +118,8 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
     auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
     curvature->compute({.method = analysis::CurvatureMethod::ThreeVertex, .scale = 40.0f});
     auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
-    render::Camera camera;
-    camera.target = {32.0f, 40.0f, 32.0f};
-    camera.position = {32.0f, 140.0f, 32.0f};
-    camera.projection = render::Projection::Orthographic;
-    camera.orthoHeight = 20.0f;  // the middle of the cylinder only, 9 pixels a cell
-    camera.nearPlane = 1.0f;
-    camera.farPlane = 500.0f;
+    // the middle of the cylinder only, 9 pixels a cell
+    const render::Camera camera = test::topDownCamera({32.0f, 40.0f, 32.0f}, 20.0f);
     glm::mat4 viewProj = camera.viewProjection(float(kWidth) / kHeight);
     auto screen = [&](glm::vec3 p) {
         glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
@@ -284,13 +279,7 @@ TEST_F(Overlays, LinesOverWaterLieOnTheWater) {
         auto renderer = render::TerrainRenderer::create({.field = &field, .seaLevel = seaLevel});
         renderer.setSurface(render::makePaperSurface());
         renderer.addPass(render::LinePass::create(lines, {.width = 3.0f}));
-        render::Camera camera;  // straight down on the basin
-        camera.target = {32.0f, 0.0f, 32.0f};
-        camera.position = {32.0f, 100.0f, 32.0f};
-        camera.projection = render::Projection::Orthographic;
-        camera.orthoHeight = 40.0f;
-        camera.nearPlane = 1.0f;
-        camera.farPlane = 200.0f;
+        const render::Camera camera = test::topDownCamera({32.0f, 0.0f, 32.0f}, 40.0f);
         target.begin(render::TerrainRenderer::clearColour({}));
         renderer.draw(camera, kWidth, kHeight, {});
         return darkPixels(target.read());

@@ -318,16 +318,7 @@ class ZoneSampling : public ZoneFrames {
     }
 
     // Straight down onto the terrain's centre, orthographic, the whole map in view.
-    render::Camera topCamera() const {
-        render::Camera c;
-        c.target = {32.0f, 0.0f, 32.0f};
-        c.position = {32.0f, 100.0f, 32.0f};
-        c.projection = render::Projection::Orthographic;
-        c.orthoHeight = 70.0f;
-        c.nearPlane = 1.0f;
-        c.farPlane = 200.0f;
-        return c;
-    }
+    render::Camera topCamera() const { return test::topDownCamera({32.0f, 0.0f, 32.0f}, 70.0f); }
 
     std::string dir_;
     zones::Palette palette_;
