@@ -198,12 +198,12 @@ class Refiner {
     // tau = 1), which read the exact arrays, and a subtree's keys sit together
     // level by level instead of scattered over three row-major arrays.
     // Memory: 6 * (2^(2n+1) - 2) bytes, about 12 bytes per grid sample. Built
-    // by the first refineView(); empty (exact path only) when a height is not
+    // by prepareView() or the first refineView(); empty (exact path only) when a height is not
     // finite or an error or radius is NaN or negative.
     std::vector<uint16_t> viewKeys_;
     float keyYBase_ = 0, keyYStep_ = 0, keyYError_ = 0;  // world units
     // Largest |world coordinate| or radius of the grid (world units), measured
-    // by the first refineView(); -1 until then.
+    // by prepareView() or the first refineView(); -1 until then.
     double magnitude_ = -1.0;
     // Triangles of the last refinement in each mode (-1: none yet), the work
     // estimate that keeps small refinements serial (see kParallelTriangles).
