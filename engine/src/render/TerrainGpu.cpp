@@ -75,6 +75,7 @@ struct TerrainGpu::State {
     SceneBounds bounds;
     std::string summary;
     double errorPassMs = 0.0;
+    bool viewPrepared = false;  // prepareSbtView() has run
 
     terrain::Heightfield surface;  // the drawn surface: water flattened to sea level
     std::unique_ptr<SbtBridge> sbt;
@@ -258,6 +259,13 @@ glm::vec2 TerrainGpu::spacing() const {
 }
 float TerrainGpu::verticalScale() const {
     return state_->verticalScale;
+}
+void TerrainGpu::prepareSbtView() {
+    if (state_->viewPrepared) return;
+    Stopwatch sw;
+    state_->sbt->prepareView();
+    state_->errorPassMs += sw.ms();
+    state_->viewPrepared = true;
 }
 size_t TerrainGpu::refinerKeyBytes() const {
     return state_->sbt->keyBytes();
