@@ -39,3 +39,24 @@ foreach(case "faint;no curvature line reaches the threshold 0.5;--generate;65;--
     message(FATAL_ERROR "${name}_fixed: warned or drew no line:\n${LAST_OUTPUT}")
   endif()
 endforeach()
+
+# Hatches whose strokes are nearly all transparent say so too (95% of the
+# samples under 0.1, their opacity): fig4a's reinforced field on the
+# generator's 257 grid, and fig4b on a grid spaced 1000 apart. With the
+# suggested scale there is no warning.
+foreach(case "reinforced;--generate;257;--preset;fig4a"
+             "spaced;--generate;65;--spacing;1000;--preset;fig4b")
+  list(POP_FRONT case name)
+  run_app(hatch_${name} EXPECT_OK MESSAGE "the hatches are all but transparent" COMMAND ${RENDER}
+          ${case} --size 160x90 --out hatch_${name}.png --no-debug)
+  string(REGEX MATCH "--curvature-scale ([0-9.e+]+) brings the top 5% of samples to 1"
+         suggestion "${LAST_OUTPUT}")
+  if(NOT suggestion)
+    message(FATAL_ERROR "hatch_${name}: no suggested scale in\n${LAST_OUTPUT}")
+  endif()
+  run_app(hatch_${name}_fixed EXPECT_OK COMMAND ${RENDER} ${case} --curvature-scale
+          ${CMAKE_MATCH_1} --size 160x90 --out hatch_${name}_fixed.png --no-debug)
+  if(LAST_OUTPUT MATCHES "warning: overlays")
+    message(FATAL_ERROR "hatch_${name}_fixed: warned:\n${LAST_OUTPUT}")
+  endif()
+endforeach()

@@ -238,36 +238,47 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
     if (largest.empty()) return;
     // Hatch opacity is the value itself: below this a stroke is barely seen.
     constexpr float kFaintHatch = 0.1f;
-    const float needed = style.layers.lines ? style.lines.threshold : kFaintHatch;
     const float most = *std::max_element(largest.begin(), largest.end());
-    const bool faint = most < needed;
-    if (!faint && !(lines && *lines == 0)) return;
-    const auto passing =
-        std::count_if(largest.begin(), largest.end(), [&](float v) { return v >= needed; });
-    // The suggestion brings the top 5% of samples to the threshold (lines) or
-    // to full opacity (hatches).
-    const float target = style.layers.lines ? needed : 1.0f;
+    // The top 5% of samples: the suggestion brings them to the threshold
+    // (lines) or to full opacity (hatches).
     auto top = largest.begin() + std::ptrdiff_t(0.95 * double(largest.size() - 1));
     std::nth_element(largest.begin(), top, largest.end());
+    const float topValue = *top;
     const float scale = style.curvature.scale;
-    const std::string suggestion = *top > 0.0f && *top < target && !style.curvature.levels.enabled
-                                       ? msg(" (--curvature-scale ", scale * target / *top,
-                                             " brings the top 5% of samples to ", target, ")")
-                                       : std::string();
-    if (!faint) {
-        log::warn("overlays: no curvature line: ", passing, " of ", largest.size(),
-                  " samples reach the threshold ", needed, " at a curvature scale of ", scale,
-                  ", but no path through them has the minimum length of ", style.lines.minLength,
-                  " vertices; raise the scale", suggestion,
-                  " or lower the minimum length (--min-length)");
+    const float target = style.layers.lines ? style.lines.threshold : 1.0f;
+    const std::string suggestion =
+        topValue > 0.0f && topValue < target && !style.curvature.levels.enabled
+            ? msg(" (--curvature-scale ", scale * target / topValue,
+                  " brings the top 5% of samples to ", target, ")")
+            : std::string();
+    const std::string units =
+        msg(". Curvature is in world units (1 / length) and this grid is spaced ", field.spacingX(),
+            " x ", field.spacingZ(), " apart; raise the scale", suggestion);
+    if (!style.layers.lines) {
+        // Hatches: faint when 95% of the strokes are under kFaintHatch opacity.
+        if (topValue >= kFaintHatch) return;
+        log::warn(
+            "overlays: the hatches are all but transparent: 95% of the samples' curvature is "
+            "under ",
+            kFaintHatch, " (their opacity) at a curvature scale of ", scale, ", the largest ", most,
+            units);
         return;
     }
-    log::warn("overlays: the curvature field's largest value is ", most,
-              " at a curvature scale of ", scale, ", so ",
-              style.layers.lines ? msg("no curvature line reaches the threshold ", needed)
-                                 : msg("the hatches are all but transparent"),
-              ". Curvature is in world units (1 / length) and this grid is spaced ",
-              field.spacingX(), " x ", field.spacingZ(), " apart; raise the scale", suggestion);
+    const float needed = style.lines.threshold;
+    if (most < needed) {
+        log::warn("overlays: the curvature field's largest value is ", most,
+                  " at a curvature scale of ", scale,
+                  ", so no curvature line reaches the threshold ", needed, units);
+        return;
+    }
+    if (!lines || *lines > 0) return;
+    const auto passing =
+        std::count_if(largest.begin(), largest.end(), [&](float v) { return v >= needed; });
+    log::warn("overlays: no curvature line: ", passing, " of ", largest.size(),
+              " samples reach the threshold ", needed, " at a curvature scale of ", scale,
+              ", but no path through them has the minimum length of ", style.lines.minLength,
+              " vertices; raise the scale", suggestion,
+              " or lower the minimum length (--min-length)");
 }
 
 }  // namespace
