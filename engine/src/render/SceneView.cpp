@@ -239,6 +239,9 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
     // Hatch opacity is the value itself: below this a stroke is barely seen.
     constexpr float kFaintHatch = 0.1f;
     const float most = *std::max_element(largest.begin(), largest.end());
+    // Lines that reach the threshold and trace something: nothing to say
+    // (the usual case, decided before any of the work below).
+    if (style.layers.lines && most >= style.lines.threshold && (!lines || *lines > 0)) return;
     // The top 5% of samples: the suggestion brings them to the threshold
     // (lines) or to full opacity (hatches).
     auto top = largest.begin() + std::ptrdiff_t(0.95 * double(largest.size() - 1));
@@ -271,7 +274,6 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
                   ", so no curvature line reaches the threshold ", needed, units);
         return;
     }
-    if (!lines || *lines > 0) return;
     const auto passing =
         std::count_if(largest.begin(), largest.end(), [&](float v) { return v >= needed; });
     log::warn("overlays: no curvature line: ", passing, " of ", largest.size(),
