@@ -108,7 +108,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     frame.values = f.frameMs;
     times.series = {refine, upload, draw, frame};
     times.rows = {{"SBT build",
-                   deterministic ? std::string("-- ms") : msg(fixed(gpu.errorPassMs(), 1), " ms")},
+                   deterministic ? std::string("-- ms") : msg(fixed(gpu.sbtBuildMs(), 1), " ms")},
                   {"read-back", "in the frame time"}};
     panel.sections.push_back(std::move(times));
 

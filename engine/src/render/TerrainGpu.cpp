@@ -74,7 +74,7 @@ struct TerrainGpu::State {
     glm::vec2 worldRange{0.0f};
     SceneBounds bounds;
     std::string summary;
-    double errorPassMs = 0.0;
+    double sbtBuildMs = 0.0;
     bool viewPrepared = false;  // prepareSbtView() has run
 
     terrain::Heightfield surface;  // the drawn surface: water flattened to sea level
@@ -150,7 +150,7 @@ TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
 
     Stopwatch sw;
     s->sbt = std::make_unique<SbtBridge>(s->surface, desc.threads);
-    s->errorPassMs = sw.ms();
+    s->sbtBuildMs = sw.ms();
 
     {
         std::vector<float> texels(size_t(side) * side * 4);
@@ -264,14 +264,14 @@ void TerrainGpu::prepareSbtView() {
     if (state_->viewPrepared) return;
     Stopwatch sw;
     state_->sbt->prepareView();
-    state_->errorPassMs += sw.ms();
+    state_->sbtBuildMs += sw.ms();
     state_->viewPrepared = true;
 }
 size_t TerrainGpu::refinerKeyBytes() const {
     return state_->sbt->keyBytes();
 }
-double TerrainGpu::errorPassMs() const {
-    return state_->errorPassMs;
+double TerrainGpu::sbtBuildMs() const {
+    return state_->sbtBuildMs;
 }
 const std::string& TerrainGpu::summary() const {
     return state_->summary;

@@ -186,8 +186,8 @@ float TerrainRenderer::seaLevel() const {
 int TerrainRenderer::side() const {
     return state_->terrain.side();
 }
-double TerrainRenderer::errorPassMs() const {
-    return state_->terrain.errorPassMs();
+double TerrainRenderer::sbtBuildMs() const {
+    return state_->terrain.sbtBuildMs();
 }
 const std::string& TerrainRenderer::summary() const {
     return state_->terrain.summary();

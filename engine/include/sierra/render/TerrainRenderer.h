@@ -101,7 +101,7 @@ class TerrainRenderer {
     SceneBounds bounds() const;
     float seaLevel() const;              // stored height units; NaN without water
     int side() const;                    // samples per side
-    double errorPassMs() const;          // time spent building errors and radii
+    double sbtBuildMs() const;           // see TerrainGpu::sbtBuildMs
     const std::string& summary() const;  // one line: grid, spacing, height range
 
   private:
