@@ -19,7 +19,8 @@ expect_file(${WORK_DIR}/pgm.png)
 # finds no sample over the threshold on a grid spaced 1000 apart; on the
 # generator's smooth 257 grid at unit spacing a few samples pass but no path
 # through them reaches fig3a's minimum length. With the suggested scale each
-# draws lines and says nothing.
+# draws lines and says nothing, and so does --curvature-scale auto, which
+# picks that scale itself.
 foreach(case "faint;no curvature line reaches the threshold 0.5;--generate;65;--spacing;1000"
              "short;but no path through them has the minimum length of 6 vertices;--generate;257")
   list(POP_FRONT case name message)
@@ -28,35 +29,60 @@ foreach(case "faint;no curvature line reaches the threshold 0.5;--generate;65;--
   if(NOT LAST_OUTPUT MATCHES "overlays: 0 lines")
     message(FATAL_ERROR "${name}: lines drawn beside the warning:\n${LAST_OUTPUT}")
   endif()
-  string(REGEX MATCH "--curvature-scale ([0-9.e+]+) brings the top 5% of samples to 0.5"
+  string(REGEX MATCH
+         "--curvature-scale ([0-9.e+]+), which 'auto' picks, brings the top 5% of samples to 0.5"
          suggestion "${LAST_OUTPUT}")
   if(NOT suggestion)
     message(FATAL_ERROR "${name}: no suggested scale in\n${LAST_OUTPUT}")
   endif()
+  set(suggested ${CMAKE_MATCH_1})
   run_app(${name}_fixed EXPECT_OK COMMAND ${RENDER} ${case} --preset fig3a --curvature-scale
-          ${CMAKE_MATCH_1} --size 160x90 --out ${name}_fixed.png --no-debug)
+          ${suggested} --size 160x90 --out ${name}_fixed.png --no-debug)
   if(LAST_OUTPUT MATCHES "warning: overlays" OR NOT LAST_OUTPUT MATCHES "overlays: [1-9][0-9]* lines")
     message(FATAL_ERROR "${name}_fixed: warned or drew no line:\n${LAST_OUTPUT}")
+  endif()
+  run_app(${name}_auto EXPECT_OK COMMAND ${RENDER} ${case} --preset fig3a --curvature-scale auto
+          --size 160x90 --out ${name}_auto.png --no-debug)
+  string(FIND "${LAST_OUTPUT}"
+         "curvature scale auto: ${suggested} (the top 5% of samples at the line threshold 0.5)" same)
+  if(LAST_OUTPUT MATCHES "warning: overlays" OR NOT LAST_OUTPUT MATCHES "overlays: [1-9][0-9]* lines"
+     OR same EQUAL -1)
+    message(FATAL_ERROR "${name}_auto: warned, drew no line or chose another scale than ${suggested}:\n${LAST_OUTPUT}")
   endif()
 endforeach()
 
 # Hatches whose strokes are nearly all transparent say so too (95% of the
 # samples under 0.1, their opacity): fig4a's reinforced field on the
 # generator's 257 grid, and fig4b on a grid spaced 1000 apart. With the
-# suggested scale there is no warning.
+# suggested scale, or auto, there is no warning.
 foreach(case "reinforced;--generate;257;--preset;fig4a"
              "spaced;--generate;65;--spacing;1000;--preset;fig4b")
   list(POP_FRONT case name)
   run_app(hatch_${name} EXPECT_OK MESSAGE "the hatches are all but transparent" COMMAND ${RENDER}
           ${case} --size 160x90 --out hatch_${name}.png --no-debug)
-  string(REGEX MATCH "--curvature-scale ([0-9.e+]+) brings the top 5% of samples to 1"
+  string(REGEX MATCH
+         "--curvature-scale ([0-9.e+]+), which 'auto' picks, brings the top 5% of samples to 1"
          suggestion "${LAST_OUTPUT}")
   if(NOT suggestion)
     message(FATAL_ERROR "hatch_${name}: no suggested scale in\n${LAST_OUTPUT}")
   endif()
+  set(suggested ${CMAKE_MATCH_1})
   run_app(hatch_${name}_fixed EXPECT_OK COMMAND ${RENDER} ${case} --curvature-scale
-          ${CMAKE_MATCH_1} --size 160x90 --out hatch_${name}_fixed.png --no-debug)
+          ${suggested} --size 160x90 --out hatch_${name}_fixed.png --no-debug)
   if(LAST_OUTPUT MATCHES "warning: overlays")
     message(FATAL_ERROR "hatch_${name}_fixed: warned:\n${LAST_OUTPUT}")
   endif()
+  run_app(hatch_${name}_auto EXPECT_OK COMMAND ${RENDER} ${case} --curvature-scale auto
+          --size 160x90 --out hatch_${name}_auto.png --no-debug)
+  string(FIND "${LAST_OUTPUT}"
+         "curvature scale auto: ${suggested} (the top 5% of samples at full hatch opacity)" same)
+  if(LAST_OUTPUT MATCHES "warning: overlays" OR same EQUAL -1)
+    message(FATAL_ERROR "hatch_${name}_auto: warned or chose another scale than ${suggested}:\n${LAST_OUTPUT}")
+  endif()
 endforeach()
+
+# auto with level control is refused (levels remap the values it would measure).
+run_app(auto_levels EXPECT_FAIL MESSAGE "--curvature-scale) is auto, which picks the scale from the values"
+        COMMAND ${RENDER} --generate 65 --preset fig3a --curvature-scale auto --levels 0.1,0.9,1
+        --size 160x90 --out auto_levels.png --no-debug)
+expect_no_file(${WORK_DIR}/auto_levels.png)

@@ -187,3 +187,65 @@ TEST(AnalysisStyle, BadParametersGiveClearErrors) {
     EXPECT_THROW(loadStyleFile((dir / "missing.json").string()), Error);
     std::filesystem::remove_all(dir);
 }
+
+TEST(AnalysisStyle, AutoScaleReadsAndWritesBack) {
+    const StyleParams s =
+        styleFromJson(json::parse(R"({"curvature": {"scale": "auto"}, "lines": {}})"));
+    EXPECT_TRUE(s.autoScale);
+    EXPECT_EQ(styleToJson(s)["curvature"]["scale"], "auto");
+    EXPECT_EQ(styleFromJson(styleToJson(s)), s);
+    EXPECT_FALSE(styleFromJson(json::parse(R"({"curvature": {"scale": 3}})")).autoScale);
+    auto has = [](const std::string& text, const std::string& words) {
+        return text.find(words) != std::string::npos;
+    };
+    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"scale": "twice"}})")),
+                    R"(style.curvature.scale must be a number >= 0 or "auto", got "twice")"));
+    EXPECT_TRUE(
+        has(errorOf(json::parse(R"({"curvature": {"scale": "auto", "levels": {"white": 0.5}}})")),
+            R"(style.curvature.scale is "auto", which picks the scale from the values)"));
+}
+
+// A row of 101 samples whose largest magnitudes are 0, 0.02, ..., 2 (in
+// direction 1, signed), one no-data sample beside them.
+CurvatureField rampField() {
+    CurvatureField f;
+    f.width = 102;
+    f.height = 1;
+    f.values.assign(size_t(f.width) * kDirectionCount, 0.0f);
+    for (int i = 0; i <= 100; ++i) {
+        f.values[size_t(i) * 4 + 0] = 0.01f * float(i);
+        f.values[size_t(i) * 4 + 1] = -0.02f * float(i);
+        f.values[size_t(i) * 4 + 2] = NAN;
+    }
+    for (int d = 0; d < 4; ++d) f.values[101 * 4 + size_t(d)] = NAN;
+    return f;
+}
+
+TEST(AnalysisStyle, AutoScaleBringsTheTopFivePercentToTheLineThresholdOrFullOpacity) {
+    const CurvatureField f = rampField();
+    std::vector<float> largest = largestMagnitudes(f);
+    ASSERT_EQ(largest.size(), 101u);                 // the no-data sample left out
+    EXPECT_FLOAT_EQ(topFivePercent(largest), 1.9f);  // rank 95 of 0..100
+    std::vector<float> none;
+    EXPECT_EQ(topFivePercent(none), 0.0f);
+
+    StyleParams lines = styleFromJson(json::parse(R"({"lines": {"threshold": 0.4}})"));
+    lines.curvature.scale = 2.0f;
+    EXPECT_FLOAT_EQ(autoCurvatureScale(f, lines), 2.0f * 0.4f / 1.9f);
+    StyleParams hatches = styleFromJson(json::parse(R"({"hatch": {}})"));
+    hatches.curvature.scale = 2.0f;
+    EXPECT_FLOAT_EQ(autoCurvatureScale(f, hatches), 2.0f * 1.0f / 1.9f);
+
+    // The field at the returned scale (values proportional to it) has its
+    // top 5% at the threshold.
+    CurvatureField scaled = f;
+    for (float& v : scaled.values) v *= autoCurvatureScale(f, lines) / lines.curvature.scale;
+    std::vector<float> scaledLargest = largestMagnitudes(scaled);
+    EXPECT_NEAR(topFivePercent(scaledLargest), 0.4f, 1e-6f);
+
+    // A flat field keeps the scale it has.
+    CurvatureField flat = f;
+    for (float& v : flat.values)
+        if (!std::isnan(v)) v = 0.0f;
+    EXPECT_EQ(autoCurvatureScale(flat, lines), 2.0f);
+}

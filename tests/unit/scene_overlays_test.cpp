@@ -66,6 +66,17 @@ TEST(SceneOverlays, OptionsAfterAPresetOverrideIt) {
     EXPECT_EQ(s.style.overlay.curvature.method, loadPreset("fig4a").curvature.method);
 }
 
+TEST(SceneOverlays, CurvatureScaleAutoAndBack) {
+    Scene s = parse({"--preset", "fig3a", "--curvature-scale", "auto"});
+    EXPECT_TRUE(s.style.overlay.autoScale);
+    EXPECT_FLOAT_EQ(s.style.overlay.curvature.scale, loadPreset("fig3a").curvature.scale);
+    Scene fixed = parse({"--curvature-scale", "auto", "--curvature-scale", "3"});
+    EXPECT_FALSE(fixed.style.overlay.autoScale);
+    EXPECT_FLOAT_EQ(fixed.style.overlay.curvature.scale, 3.0f);
+    EXPECT_THAT(parseError({"--curvature-scale", "auto", "--levels", "0.1,0.9,1"}),
+                HasSubstr("is auto, which picks the scale from the values"));
+}
+
 TEST(SceneOverlays, EveryOptionLandsInItsField) {
     Scene s = parse({"--style",
                      "lines,hatch,contours",

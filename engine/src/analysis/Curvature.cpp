@@ -78,6 +78,22 @@ int CurvatureField::maxDirection(int i, int j) const {
     return best;
 }
 
+std::vector<float> largestMagnitudes(const CurvatureField& field) {
+    std::vector<float> largest;
+    largest.reserve(size_t(field.width) * size_t(field.height));
+    for (int j = 0; j < field.height; ++j)
+        for (int i = 0; i < field.width; ++i)
+            if (const float v = field.maxMagnitude(i, j); std::isfinite(v)) largest.push_back(v);
+    return largest;
+}
+
+float topFivePercent(std::vector<float>& values) {
+    if (values.empty()) return 0.0f;
+    const auto top = values.begin() + std::ptrdiff_t(0.95 * double(values.size() - 1));
+    std::nth_element(values.begin(), top, values.end());
+    return *top;
+}
+
 namespace {
 
 // Per-direction constants: step, its world length, the horizontal unit

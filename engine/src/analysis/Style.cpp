@@ -125,6 +125,15 @@ LineOptions lineOptions(const StyleParams& style) {
             .blended = style.lines.blended};
 }
 
+float autoCurvatureScale(const CurvatureField& field, const StyleParams& style) {
+    std::vector<float> largest = largestMagnitudes(field);
+    const float top = topFivePercent(largest);
+    const float scale = style.curvature.scale;
+    const float target = style.layers.lines ? style.lines.threshold : 1.0f;
+    if (!(top > 0.0f) || !std::isfinite(top) || scale == 0.0f || !(target > 0.0f)) return scale;
+    return float(double(scale) * double(target) / double(top));
+}
+
 StyleParams styleFromJson(const json& style, const std::string& source) {
     StyleParams out;
     Reader r(style, source, "style");
@@ -143,8 +152,15 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
         if (o.method == CurvatureMethod::TwoNormal && o.distance != 1)
             c.fail(c.key("distance"),
                    msg("must be 1 for two-normal (it has no reinforcement), got ", o.distance));
-        o.scale = float(c.number("scale", o.scale));
-        if (o.scale < 0.0f) c.fail(c.key("scale"), msg("must be >= 0, got ", o.scale));
+        if (c.has("scale") && c.raw("scale").is_string()) {
+            if (c.raw("scale") != "auto")
+                c.fail(c.key("scale"),
+                       msg("must be a number >= 0 or \"auto\", got ", c.raw("scale").dump()));
+            out.autoScale = true;
+        } else {
+            o.scale = float(c.number("scale", o.scale));
+            if (o.scale < 0.0f) c.fail(c.key("scale"), msg("must be >= 0, got ", o.scale));
+        }
         o.normals = c.choice("normals", o.normals, parseNormalMethod);
         o.signedValues = c.boolean("signed", o.signedValues);
         if (c.has("levels")) {
@@ -161,6 +177,10 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
                                            ", got ", o.levels.white));
             if (!(o.levels.gamma > 0.0f))
                 l.fail(l.key("gamma"), msg("must be > 0, got ", o.levels.gamma));
+            if (out.autoScale)
+                c.fail(c.key("scale"),
+                       "is \"auto\", which picks the scale from the values, but \"levels\" is "
+                       "set: with level control give the scale as a number");
         }
         try {
             validate(o);
@@ -241,7 +261,7 @@ json styleToJson(const StyleParams& s) {
     if (s.layers.hatch) styles.push_back("hatch");
     json curvature = {{"method", curvatureMethodName(s.curvature.method)},
                       {"distance", s.curvature.distance},
-                      {"scale", s.curvature.scale},
+                      {"scale", s.autoScale ? json("auto") : json(s.curvature.scale)},
                       {"normals", normalMethodName(s.curvature.normals)},
                       {"signed", s.curvature.signedValues}};
     if (s.curvature.levels.enabled)

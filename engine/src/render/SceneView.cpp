@@ -229,12 +229,7 @@ namespace {
 // whose paths all fall short of the minimum length is reported too.
 void warnIfFaint(const analysis::CurvatureField& values, const analysis::StyleParams& style,
                  const terrain::Heightfield& field, std::optional<size_t> lines) {
-    // Per sample the largest of the 4 values (what lines and hatches use).
-    std::vector<float> largest;
-    largest.reserve(size_t(values.width) * size_t(values.height));
-    for (int j = 0; j < values.height; ++j)
-        for (int i = 0; i < values.width; ++i)
-            if (const float v = values.maxMagnitude(i, j); std::isfinite(v)) largest.push_back(v);
+    std::vector<float> largest = analysis::largestMagnitudes(values);
     if (largest.empty()) return;
     // Hatch opacity is the value itself: below this a stroke is barely seen.
     constexpr float kFaintHatch = 0.1f;
@@ -244,15 +239,13 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
     if (style.layers.lines && most >= style.lines.threshold && (!lines || *lines > 0)) return;
     // The top 5% of samples: the suggestion brings them to the threshold
     // (lines) or to full opacity (hatches).
-    auto top = largest.begin() + std::ptrdiff_t(0.95 * double(largest.size() - 1));
-    std::nth_element(largest.begin(), top, largest.end());
-    const float topValue = *top;
+    const float topValue = analysis::topFivePercent(largest);
     const float scale = style.curvature.scale;
     const float target = style.layers.lines ? style.lines.threshold : 1.0f;
     const std::string suggestion =
         topValue > 0.0f && topValue < target && !style.curvature.levels.enabled
-            ? msg(" (--curvature-scale ", scale * target / topValue,
-                  " brings the top 5% of samples to ", target, ")")
+            ? msg(" (--curvature-scale ", analysis::autoCurvatureScale(values, style),
+                  ", which 'auto' picks, brings the top 5% of samples to ", target, ")")
             : std::string();
     const std::string units =
         msg(". Curvature is in world units (1 / length) and this grid is spaced ", field.spacingX(),
@@ -286,8 +279,8 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
 }  // namespace
 
 OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s) {
-    const analysis::StyleParams& style = s.style.overlay;
-    OverlayInfo info;
+    analysis::StyleParams style = s.style.overlay;  // with an automatic scale resolved
+    OverlayInfo info{.scale = style.curvature.scale};
     if (!style.layers.lines && !style.layers.hatch && !style.layers.contours) return info;
     const terrain::Heightfield& field = renderer.terrain().surface();
     if (style.layers.lines || style.layers.hatch) {
@@ -295,7 +288,22 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s) {
         curvature->compute(style.curvature, style.layers.hatch);
         // Read back once per terrain and style: the lines are traced from it,
         // and an overlay that would draw nothing is reported.
-        const analysis::CurvatureField values = curvature->read();
+        analysis::CurvatureField values = curvature->read();
+        if (style.autoScale) {
+            // The field again at the scale its values ask for (exact, not the
+            // values read back multiplied: the GPU field draws the hatches).
+            const float scale = analysis::autoCurvatureScale(values, style);
+            if (scale != style.curvature.scale) {
+                style.curvature.scale = scale;
+                curvature->compute(style.curvature, style.layers.hatch);
+                values = curvature->read();
+            }
+            info.scale = scale;
+            log::info("overlays: curvature scale auto: ", scale, " (the top 5% of samples at ",
+                      style.layers.lines ? msg("the line threshold ", style.lines.threshold)
+                                         : std::string("full hatch opacity"),
+                      ")");
+        }
         if (style.layers.hatch) {
             renderer.addPass(HatchPass::create(curvature, {.length = style.hatch.length,
                                                            .width = style.hatch.width,

@@ -444,9 +444,15 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             "D", msg(d.style.overlay.curvature.distance), 1, [](Scene& s, Words w) {
                 s.style.overlay.curvature.distance = parseInt(w[0], "--curvature-distance");
             });
-        add("--curvature-scale", "Factor on every curvature value (>= 0)", o, "S",
-            show(d.style.overlay.curvature.scale), 1, [](Scene& s, Words w) {
-                s.style.overlay.curvature.scale = parseFloat(w[0], "--curvature-scale");
+        add("--curvature-scale",
+            "Factor on every curvature value (>= 0), or 'auto': the top 5% of the samples reach "
+            "the line threshold (hatches alone: full opacity)",
+            o, "S|auto", show(d.style.overlay.curvature.scale), 1, [](Scene& s, Words w) {
+                analysis::StyleParams& style = s.style.overlay;
+                style.autoScale = w[0] == "auto";
+                if (!style.autoScale)
+                    style.curvature.scale =
+                        parseFloat(w[0], "--curvature-scale", "a number or 'auto'");
             });
         add("--normals", "Vertex normals of the curvature: edge, triangle or quad", o, "KIND",
             analysis::normalMethodName(d.style.overlay.curvature.normals), 1,

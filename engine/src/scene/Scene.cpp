@@ -148,6 +148,10 @@ void validateStyle(const StyleDesc& s) {
     // Overlay parameters: the analysis module's own checks and messages.
     analysis::validate(s.overlay.curvature);
     analysis::validate(analysis::lineOptions(s.overlay));
+    if (s.overlay.autoScale && s.overlay.curvature.levels.enabled)
+        fail("style.curvature.scale", "--curvature-scale",
+             "is auto, which picks the scale from the values; with level control (--levels) give "
+             "the scale as a number");
     if (!(s.overlay.lines.width > 0.0f) || !std::isfinite(s.overlay.lines.width))
         fail("style.lines.width", "--line-width",
              msg("must be a finite number of pixels > 0, got ", s.overlay.lines.width));

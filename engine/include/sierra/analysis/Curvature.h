@@ -117,6 +117,15 @@ struct CurvatureField {
     int maxDirection(int i, int j) const;
 };
 
+// Per sample the largest magnitude over the 4 directions (maxMagnitude), in
+// row order, no-data (and any non-finite) samples left out: what lines and
+// hatches are drawn from.
+std::vector<float> largestMagnitudes(const CurvatureField& field);
+
+// The value the top 5% of `values` reach: the one at rank 0.95 (n - 1) in
+// ascending order (partially reorders `values`); 0 when it is empty.
+float topFivePercent(std::vector<float>& values);
+
 // Computes the field; threads as in options. Throws sierra::Error for bad
 // options or a grid smaller than the stencil (2 * distance + 1 samples a side,
 // at least 3).

@@ -11,7 +11,7 @@
 //     "styles": ["shaded", "lines", "hatch", "contours"],   // any combination
 //     "curvature": {"method": "two-normal" | "three-normal" | "three-vertex" | "edge-angle",
 //                   "distance": 1,          // reinforcement distance, integer >= 1 (1 = none)
-//                   "scale": 1.0,           // >= 0
+//                   "scale": 1.0,           // >= 0, or "auto" (StyleParams::autoScale)
 //                   "normals": "quad",      // "edge" | "triangle" | "quad"
 //                   "signed": false,
 //                   "levels": {"black": 0, "white": 1, "gamma": 1}},   // present = on
@@ -75,6 +75,11 @@ struct StyleParams {
     std::string description;
     StyleLayers layers;
     CurvatureOptions curvature;  // method, normals, distance, scale, levels, signed
+    // "scale": "auto": the curvature scale is chosen per terrain rather than
+    // taken from curvature.scale, so that the top 5% of the samples (by their
+    // largest value) reach the line threshold, or with hatches alone full
+    // opacity (render::autoCurvatureScale). Not with levels.
+    bool autoScale = false;
     LineStyle lines;
     HatchStyle hatch;
     bool operator==(const StyleParams&) const = default;
@@ -82,6 +87,15 @@ struct StyleParams {
 
 // The LineOptions that trace this style's lines.
 LineOptions lineOptions(const StyleParams& style);
+
+// The curvature scale of "scale": "auto" (StyleParams::autoScale) for a field
+// computed at style.curvature.scale: the one that brings the field's top 5%
+// (topFivePercent of largestMagnitudes) to the line threshold with lines on,
+// else to 1, hatches' full opacity. Values are proportional to the scale
+// (no levels with auto), so the field computed again at the returned scale
+// has its top 5% there. style.curvature.scale itself when that value is 0
+// (a flat terrain, or no data) or the scale is 0.
+float autoCurvatureScale(const CurvatureField& field, const StyleParams& style);
 
 // Reads a "style" object. `source` names it in errors (a file name, or
 // "style"). Throws sierra::Error with one message naming the source, the key

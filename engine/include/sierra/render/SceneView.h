@@ -57,14 +57,16 @@ std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& scene,
 struct OverlayInfo {
     size_t lines = 0;     // polylines traced
     size_t segments = 0;  // their segments
+    float scale = 1.0f;   // the curvature scale drawn (the automatic one with "auto")
 };
 
 // Adds the scene's overlay passes (style.overlay: hatches, then lines, then
 // contour edges, over the terrain) to `renderer`: the curvature field of its
 // drawn surface (TerrainGpu::surface: water flat at sea level, so no stroke
 // or line stands for ground under water, and the coast is a crease) computed
-// on the GPU once, the lines traced once from it. Nothing when the style has
-// no overlay layer.
+// on the GPU once (twice with an automatic scale, StyleParams::autoScale: the
+// second at the scale the first asks for), the lines traced once from it.
+// Nothing when the style has no overlay layer.
 OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& scene);
 
 }  // namespace sierra::render
