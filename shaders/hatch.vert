@@ -16,7 +16,8 @@
 // and opacity fades in proportion to the cell's screen size over the sparser
 // grid, so a far mountainside keeps the density of a near one and does not
 // turn black. Culling: a vertex outside the frustum (with a margin of one
-// stroke) or without curvature emits no quad.
+// stroke) or without curvature emits no quad. A stroke is cut at the
+// terrain's outer edge.
 #include "frame.glsl"
 #include "terrain_common.glsl"
 #include "overlay_common.glsl"
@@ -35,6 +36,17 @@ out HatchStroke {
 } vOut;
 
 bool finite(float v) { return (floatBitsToUint(v) & 0x7f800000u) != 0x7f800000u; }
+
+// Narrows the offsets [lo, hi] along a direction whose component on one
+// axis is d, from a start at c on that axis, to where c + s d stays in [0, e].
+// Called per axis with scalar components: with uSpacingValid.zw indexed in a
+// loop instead, Mesa 22.3's llvmpipe cut every stroke away.
+void clipToRange(float c, float d, float e, inout float lo, inout float hi) {
+    if (abs(d) < 1e-6) return;
+    float s0 = -c / d, s1 = (e - c) / d;
+    lo = max(lo, min(s0, s1));
+    hi = min(hi, max(s0, s1));
+}
 
 void main() {
     vOut.a = vOut.b = vec3(0.0);
@@ -61,7 +73,15 @@ void main() {
     if (!kept || !inside || opacity * fade < 1.0 / 255.0 || !finite(centre.y)) return;
     vec3 t = stroke.xyz;
     float halfLength = 0.5 * uLength * float(stride) * 0.5 * (uSpacingValid.x + uSpacingValid.y);
-    vOut.a = centre - t * halfLength;
-    vOut.b = centre + t * halfLength;
+    // The stroke's part over the terrain (the real samples, not the padding):
+    // centred on a vertex of the outer edge, half of it would hang in the sky.
+    // lo, hi: the ends' offsets along t from the centre.
+    float lo = -halfLength, hi = halfLength;
+    vec2 ground = vec2(ij) * uSpacingValid.xy;
+    clipToRange(ground.x, t.x, uSpacingValid.z, lo, hi);
+    clipToRange(ground.y, t.z, uSpacingValid.w, lo, hi);
+    if (hi <= lo) return;
+    vOut.a = centre + t * lo;
+    vOut.b = centre + t * hi;
     vOut.alpha = opacity * fade;
 }

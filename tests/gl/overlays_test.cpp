@@ -144,6 +144,57 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
     (void)renderer;
 }
 
+TEST_F(Overlays, HatchesEndAtTheTerrainsEdge) {
+    // Long strokes seen from straight above, the terrain framed with sky
+    // around it: a stroke centred on a vertex of the outer edge is cut there
+    // rather than reaching half its length into the sky (before: up to 6
+    // units, 13 pixels here, where distance thinning makes the strokes 4
+    // times longer).
+    terrain::Heightfield field = fractal(65);
+    auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
+    curvature->compute({.scale = 4.0f}, true);
+    auto renderer = render::TerrainRenderer::create({.field = &field});
+    renderer.setSurface(render::makePaperSurface());
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+    const render::Camera camera = test::topDownCamera({32.0f, 0.0f, 32.0f}, 80.0f, 200.0f);
+    auto frame = [&] {
+        target.begin(render::TerrainRenderer::clearColour({}));
+        renderer.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full});
+        return target.read();
+    };
+    const gpu::Image plain = frame();
+    renderer.addPass(render::HatchPass::create(curvature, {.length = 3.0f, .width = 1.5f}));
+    const gpu::Image hatched = frame();
+    auto at = [&](const gpu::Image& im, int x, int y) {
+        return &im.rgba[(size_t(y) * kWidth + size_t(x)) * 4];
+    };
+    const uint8_t* sky = at(plain, 0, 0);
+    auto isSky = [&](const gpu::Image& im, int x, int y) {
+        const uint8_t* p = at(im, x, y);
+        return std::abs(p[0] - sky[0]) + std::abs(p[1] - sky[1]) + std::abs(p[2] - sky[2]) <= 6;
+    };
+    // Hatch pixels in the sky more than kRamp pixels from the terrain: the
+    // quad's antialiasing ramp and half its width may pass a cut end.
+    constexpr int kRamp = 2;
+    int64_t terrainPixels = 0, strokePixels = 0, outside = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            terrainPixels += !isSky(plain, x, y);
+            strokePixels += std::memcmp(at(plain, x, y), at(hatched, x, y), 3) != 0;
+            if (isSky(hatched, x, y) || !isSky(plain, x, y)) continue;
+            bool near = false;
+            for (int v = std::max(0, y - kRamp); v <= std::min(kHeight - 1, y + kRamp); ++v)
+                for (int u = std::max(0, x - kRamp); u <= std::min(kWidth - 1, x + kRamp); ++u)
+                    near = near || !isSky(plain, u, v);
+            outside += !near;
+        }
+    std::printf("%lld terrain pixels, %lld changed by the hatches, %lld in the sky\n",
+                (long long)terrainPixels, (long long)strokePixels, (long long)outside);
+    ASSERT_GT(terrainPixels, kWidth * kHeight / 4);
+    EXPECT_GT(strokePixels, 2000) << "the hatches drew nothing to check";
+    EXPECT_EQ(outside, 0) << "hatch pixels in the sky beside the terrain";
+}
+
 // Dark pixels of a frame (lines drawn in black over paper).
 int64_t darkPixels(const gpu::Image& image) {
     int64_t n = 0;
@@ -221,11 +272,11 @@ TEST_F(Overlays, NothingIsDrawnBesideTheTerrainWhereThereIsWater) {
         const gpu::Image overlaid = frame();
         // Below the terrain (rows run down the frame): beneath each column's
         // lowest pixel of the plain frame that is not the sky's colour, with
-        // kMargin pixels to spare: a stroke centred on a vertex of the
-        // terrain's outer edge reaches past it by half its length (up to 4
-        // pixels here, distance thinning lengthens far strokes), as a line
-        // along a crest on the skyline stands out above it by half its width.
-        // The sea floor's strokes hung 10 to 40 pixels below.
+        // kMargin pixels to spare: a line along a crest on the skyline stands
+        // out above it by half its width, and a stroke cut at the terrain's
+        // outer edge (HatchesEndAtTheTerrainsEdge) still lies on the tangent
+        // plane, off the edge's profile. The sea floor's strokes hung 10 to
+        // 40 pixels below.
         constexpr int kMargin = 8;
         auto at = [&](const gpu::Image& im, int x, int y) {
             return &im.rgba[(size_t(y) * kWidth + size_t(x)) * 4];
