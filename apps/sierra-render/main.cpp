@@ -79,7 +79,7 @@ int run(const scene::Scene& s) {
     if (std::string mesh = render::applySceneMesh(terrain, s, field); !mesh.empty())
         log::info(mesh);
     log::info("terrain on the GPU: ", terrain.summary());
-    render::addOverlayPasses(terrain, s);
+    const render::OverlayInfo overlays = render::addOverlayPasses(terrain, s);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});
     std::vector<render::Camera> cameras = render::sceneCameras(s, terrain.bounds());
@@ -124,7 +124,8 @@ int run(const scene::Scene& s) {
                                     .height = height,
                                     .draw = draw,
                                     .frames = history,
-                                    .frameMs = frameMs};
+                                    .frameMs = frameMs,
+                                    .overlays = overlays};
         render::DebugPanel panel = render::buildDebugPanel(facts, s.output.snapshotDeterministic);
         gpu::Image shot;
         if (uiOnly) {

@@ -19,6 +19,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <set>
 
 using namespace sierra;
@@ -52,7 +53,8 @@ class DebugSnapshot : public test::GlTest {
         return gpu::readFramebuffer(kWidth, kHeight);
     }
 
-    render::DebugPanel panel(int frameWidth, const render::DrawStats& stats, bool deterministic) {
+    render::DebugPanel panel(int frameWidth, const render::DrawStats& stats, bool deterministic,
+                             render::OverlayInfo overlays = {}) {
         render::SnapshotFacts facts{.scene = &scene_,
                                     .field = &field_,
                                     .glRenderer = "test renderer",
@@ -64,7 +66,8 @@ class DebugSnapshot : public test::GlTest {
                                     .height = kHeight,
                                     .draw = draw_,
                                     .frames = {stats, stats},
-                                    .frameMs = {12.0f, 14.0f}};
+                                    .frameMs = {12.0f, 14.0f},
+                                    .overlays = overlays};
         return render::buildDebugPanel(facts, deterministic);
     }
 
@@ -141,6 +144,46 @@ int terrainOnFrameBorder(const gpu::Image& image, int frameWidth) {
     for (int y = 0; y < kHeight; ++y) n += terrain(0, y) + terrain(frameWidth - 1, y);
     for (int x = 0; x < frameWidth; ++x) n += terrain(x, 0) + terrain(x, kHeight - 1);
     return n;
+}
+
+// The Style section's text rows, name -> text.
+std::map<std::string, std::string> styleTexts(const render::DebugPanel& panel) {
+    std::map<std::string, std::string> texts;
+    for (const render::DebugSection& section : panel.sections)
+        if (section.title == "Style")
+            for (const render::StyleParam& p : section.params)
+                if (p.kind == render::StyleParam::Kind::Text) texts[p.name] = p.text;
+    return texts;
+}
+
+TEST_F(DebugSnapshot, StyleShowsTheOverlaysAndTheCurvatureScaleDrawn) {
+    render::DrawStats stats;
+    frame(640, &stats);
+    auto plain = styleTexts(panel(640, stats, false));
+    EXPECT_EQ(plain["overlays"], "none");
+    EXPECT_EQ(plain.count("curvature"), 0u);
+    EXPECT_EQ(plain.count("lines traced"), 0u);
+
+    analysis::StyleParams& overlay = scene_.style.overlay;
+    overlay.layers = {.shaded = true, .lines = true, .contours = true};
+    overlay.curvature.distance = 2;
+    overlay.autoScale = true;
+    auto lines =
+        styleTexts(panel(640, stats, false, {.lines = 12, .segments = 40, .scale = 46.3407f}));
+    EXPECT_EQ(lines["overlays"], "lines, contours");
+    EXPECT_EQ(lines["curvature"], "three-normal");
+    EXPECT_EQ(lines["distance, scale"], "2, 46.34 (auto)");
+    EXPECT_EQ(lines["lines traced"], "12");
+
+    overlay.layers = {.shaded = true, .hatch = true};
+    overlay.curvature.method = analysis::CurvatureMethod::EdgeAngle;
+    overlay.curvature.distance = 1;
+    overlay.autoScale = false;
+    auto hatches = styleTexts(panel(640, stats, false, {.scale = 4.0f}));
+    EXPECT_EQ(hatches["overlays"], "hatch");
+    EXPECT_EQ(hatches["curvature"], "edge-angle");
+    EXPECT_EQ(hatches["distance, scale"], "1, 4");
+    EXPECT_EQ(hatches.count("lines traced"), 0u);
 }
 
 TEST_F(DebugSnapshot, SnapshotCamerasKeepTheWholeTerrainInTheNarrowFrame) {

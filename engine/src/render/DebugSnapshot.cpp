@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace sierra::render {
 namespace {
@@ -210,6 +212,32 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     }
     style.params.push_back(
         {.kind = StyleParam::Kind::Text, .name = "colour by", .text = s.style.colourBy});
+    // The overlay layers, and for lines and hatches the curvature drawn: with
+    // "scale": "auto" the scale addOverlayPasses chose.
+    const analysis::StyleParams& overlay = s.style.overlay;
+    std::string layers;
+    for (auto [on, name] :
+         {std::pair{overlay.layers.lines, "lines"}, std::pair{overlay.layers.hatch, "hatch"},
+          std::pair{overlay.layers.contours, "contours"}})
+        if (on) layers += (layers.empty() ? "" : ", ") + std::string(name);
+    style.params.push_back({.kind = StyleParam::Kind::Text,
+                            .name = "overlays",
+                            .text = layers.empty() ? "none" : layers});
+    if (overlay.layers.lines || overlay.layers.hatch) {
+        const analysis::CurvatureOptions& c = overlay.curvature;
+        style.params.push_back({.kind = StyleParam::Kind::Text,
+                                .name = "curvature",
+                                .text = analysis::curvatureMethodName(c.method)});
+        std::ostringstream scale;
+        scale << std::setprecision(4) << f.overlays.scale << (overlay.autoScale ? " (auto)" : "");
+        style.params.push_back({.kind = StyleParam::Kind::Text,
+                                .name = "distance, scale",
+                                .text = msg(c.distance, ", ", scale.str())});
+    }
+    if (overlay.layers.lines)
+        style.params.push_back({.kind = StyleParam::Kind::Text,
+                                .name = "lines traced",
+                                .text = msg(f.overlays.lines)});
     panel.sections.push_back(std::move(style));
     return panel;
 }

@@ -1,11 +1,13 @@
 #pragma once
 // The debug UI's panels for one frame of a scene: Source, Renderer, Camera,
-// Frame time, Mesh, Memory and Style, built from what the app knows and what
+// Frame time, Mesh, Memory and Style (with the overlay layers, their curvature
+// and the scale drawn), built from what the app knows and what
 // the renderer holds (the mesh is measured again on the CPU, see
 // MeshInspector.h).
 
 #include <sierra/render/Camera.h>
 #include <sierra/render/DebugOverlay.h>
+#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Scene.h>
 #include <sierra/terrain/Heightfield.h>
@@ -26,6 +28,7 @@ struct SnapshotFacts {
     DrawOptions draw;
     std::vector<DrawStats> frames;  // every frame so far, oldest first
     std::vector<float> frameMs;     // wall-clock ms per frame, same order
+    OverlayInfo overlays;           // what addOverlayPasses added (the scene's overlay style)
 };
 
 // Width of the debug column (two halves of sections) for a snapshot `width`
