@@ -81,6 +81,13 @@ foreach(case "reinforced;--generate;257;--preset;fig4a"
   endif()
 endforeach()
 
+# auto from a scale of 0 (an all-zero field) starts from scale 1 instead.
+run_app(auto_from_zero EXPECT_OK COMMAND ${RENDER} --generate 257 --preset fig3a --curvature-scale 0
+        --curvature-scale auto --size 160x90 --out auto_from_zero.png --no-debug)
+if(LAST_OUTPUT MATCHES "warning: overlays" OR NOT LAST_OUTPUT MATCHES "overlays: [1-9][0-9]* lines")
+  message(FATAL_ERROR "auto_from_zero: warned or drew no line:\n${LAST_OUTPUT}")
+endif()
+
 # auto with level control is refused (levels remap the values it would measure).
 run_app(auto_levels EXPECT_FAIL MESSAGE "--curvature-scale) is auto, which picks the scale from the values"
         COMMAND ${RENDER} --generate 65 --preset fig3a --curvature-scale auto --levels 0.1,0.9,1

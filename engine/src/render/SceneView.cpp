@@ -280,6 +280,10 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
 
 OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s) {
     analysis::StyleParams style = s.style.overlay;  // with an automatic scale resolved
+    // An automatic scale starts from the field at the scale the scene or its
+    // preset holds (the same field a faint overlay's warning measures), or at
+    // 1 where that is 0.
+    if (style.autoScale && style.curvature.scale == 0.0f) style.curvature.scale = 1.0f;
     OverlayInfo info{.scale = style.curvature.scale};
     if (!style.layers.lines && !style.layers.hatch && !style.layers.contours) return info;
     const terrain::Heightfield& field = renderer.terrain().surface();
