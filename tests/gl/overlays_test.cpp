@@ -144,6 +144,19 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
     (void)renderer;
 }
 
+const uint8_t* pixel(const gpu::Image& image, int x, int y) {
+    return &image.rgba[(size_t(y) * size_t(image.width) + size_t(x)) * 4];
+}
+
+// Whether a frame's pixel has the sky's colour (within 6, summed over RGB).
+struct SkyTest {
+    const uint8_t* sky;
+    bool operator()(const gpu::Image& image, int x, int y) const {
+        const uint8_t* p = pixel(image, x, y);
+        return std::abs(p[0] - sky[0]) + std::abs(p[1] - sky[1]) + std::abs(p[2] - sky[2]) <= 6;
+    }
+};
+
 TEST_F(Overlays, HatchesEndAtTheTerrainsEdge) {
     // Long strokes seen from straight above, the terrain framed with sky
     // around it: a stroke centred on a vertex of the outer edge is cut there
@@ -165,14 +178,7 @@ TEST_F(Overlays, HatchesEndAtTheTerrainsEdge) {
     const gpu::Image plain = frame();
     renderer.addPass(render::HatchPass::create(curvature, {.length = 3.0f, .width = 1.5f}));
     const gpu::Image hatched = frame();
-    auto at = [&](const gpu::Image& im, int x, int y) {
-        return &im.rgba[(size_t(y) * kWidth + size_t(x)) * 4];
-    };
-    const uint8_t* sky = at(plain, 0, 0);
-    auto isSky = [&](const gpu::Image& im, int x, int y) {
-        const uint8_t* p = at(im, x, y);
-        return std::abs(p[0] - sky[0]) + std::abs(p[1] - sky[1]) + std::abs(p[2] - sky[2]) <= 6;
-    };
+    const SkyTest isSky{pixel(plain, 0, 0)};
     // Hatch pixels in the sky more than kRamp pixels from the terrain: the
     // quad's antialiasing ramp and half its width may pass a cut end.
     constexpr int kRamp = 2;
@@ -180,7 +186,7 @@ TEST_F(Overlays, HatchesEndAtTheTerrainsEdge) {
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             terrainPixels += !isSky(plain, x, y);
-            strokePixels += std::memcmp(at(plain, x, y), at(hatched, x, y), 3) != 0;
+            strokePixels += std::memcmp(pixel(plain, x, y), pixel(hatched, x, y), 3) != 0;
             if (isSky(hatched, x, y) || !isSky(plain, x, y)) continue;
             bool near = false;
             for (int v = std::max(0, y - kRamp); v <= std::min(kHeight - 1, y + kRamp); ++v)
@@ -278,20 +284,13 @@ TEST_F(Overlays, NothingIsDrawnBesideTheTerrainWhereThereIsWater) {
         // plane, off the edge's profile. The sea floor's strokes hung 10 to
         // 40 pixels below.
         constexpr int kMargin = 8;
-        auto at = [&](const gpu::Image& im, int x, int y) {
-            return &im.rgba[(size_t(y) * kWidth + size_t(x)) * 4];
-        };
-        const uint8_t* sky = at(plain, 0, 0);
-        auto isSky = [&](const gpu::Image& im, int x, int y) {
-            const uint8_t* p = at(im, x, y);
-            return std::abs(p[0] - sky[0]) + std::abs(p[1] - sky[1]) + std::abs(p[2] - sky[2]) <= 6;
-        };
+        const SkyTest isSky{pixel(plain, 0, 0)};
         int64_t terrainPixels = 0, below = 0, changed = 0;
         std::vector<int> lowest(kWidth, -1);
         for (int x = 0; x < kWidth; ++x)
             for (int y = 0; y < kHeight; ++y) {
                 if (!isSky(plain, x, y)) lowest[size_t(x)] = y, ++terrainPixels;
-                changed += std::memcmp(at(plain, x, y), at(overlaid, x, y), 3) != 0;
+                changed += std::memcmp(pixel(plain, x, y), pixel(overlaid, x, y), 3) != 0;
             }
         for (int x = 0; x < kWidth; ++x) {
             int bottom = -1;  // the lowest terrain pixel within kMargin columns
