@@ -59,11 +59,7 @@ void main() {
     if (opacity < 1.0 / 255.0) return;
     vec3 centre = overlayPoint(vec2(ij));
     vec4 clip = uViewProj * vec4(centre, 1.0);
-    // Screen size of one grid cell at the vertex, from a world step across the view.
-    vec3 across = normalize(cross(uViewDir.xyz, abs(uViewDir.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
-    vec4 clip2 = uViewProj * vec4(centre + across * uSpacingValid.x, 1.0);
-    float cellPx = clip.w > 1e-6 && clip2.w > 1e-6
-                       ? length((clip2.xy / clip2.w - clip.xy / clip.w) * 0.5 * uFrameSize.xy) : 0.0;
+    float cellPx = cellPixels(centre, clip);
     int stride = 1;
     if (cellPx < kMinCellPixels) stride = 1 << clamp(int(ceil(log2(kMinCellPixels / max(cellPx, 1e-6)))), 0, 12);
     float fade = min(1.0, cellPx * float(stride) / (2.0 * kMinCellPixels));

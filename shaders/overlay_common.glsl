@@ -57,6 +57,16 @@ vec4 segmentCorner(vec3 a, vec3 b, int corner, float halfPx, out float across) {
     return c;
 }
 
+// The screen size in pixels of one grid cell at a world point whose clip
+// position is `clip`: a step of one spacing across the view direction,
+// projected; 0 behind the camera. The overlays thin out where it is small.
+float cellPixels(vec3 world, vec4 clip) {
+    vec3 across = normalize(cross(uViewDir.xyz, abs(uViewDir.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    vec4 clip2 = uViewProj * vec4(world + across * uSpacingValid.x, 1.0);
+    return clip.w > 1e-6 && clip2.w > 1e-6
+               ? length((clip2.xy / clip2.w - clip.xy / clip.w) * 0.5 * uFrameSize.xy) : 0.0;
+}
+
 // Coverage of a fragment `across` pixels from the centre of a line halfPx wide.
 float lineCoverage(float across, float halfPx) {
     return clamp(halfPx + 0.5 - abs(across), 0.0, 1.0);

@@ -21,6 +21,7 @@
 #include <sierra/terrain/DiamondSquare.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -151,6 +152,16 @@ const uint8_t* pixel(const gpu::Image& image, int x, int y) {
 // Whether a frame's pixel has the sky's colour (within 6, summed over RGB).
 struct SkyTest {
     const uint8_t* sky;
+    // The clear colour of frames drawn with the default lighting.
+    static const uint8_t* clearColour() {
+        static const std::array<uint8_t, 3> bytes = [] {
+            const glm::vec4 c = render::TerrainRenderer::clearColour({});
+            return std::array<uint8_t, 3>{uint8_t(std::lround(c.r * 255.0f)),
+                                          uint8_t(std::lround(c.g * 255.0f)),
+                                          uint8_t(std::lround(c.b * 255.0f))};
+        }();
+        return bytes.data();
+    }
     bool operator()(const gpu::Image& image, int x, int y) const {
         const uint8_t* p = pixel(image, x, y);
         return std::abs(p[0] - sky[0]) + std::abs(p[1] - sky[1]) + std::abs(p[2] - sky[2]) <= 6;
@@ -244,6 +255,59 @@ TEST_F(Overlays, LinesNeitherSinkNorFloatAtAnyTau) {
         EXPECT_LT(double(sbt), 1.05 * double(full))
             << "tau " << tau << ": lines float over the mesh";
     }
+}
+
+TEST_F(Overlays, LinesThinOutWhereACellIsUnderAPixel) {
+    // The same lines seen from straight above, a grid cell 2 pixels wide and
+    // then 0.25: drawn whole at that size every polyline is a blob of the
+    // quad's least size, and they blacken the terrain (99.4% of its pixels
+    // darkened, against 42% close up); thinned to (0.25)^2, the share of
+    // darkened pixels stays near the close view's.
+    terrain::Heightfield field = fractal(257);
+    auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
+    // Scaled so that the top fifth of the vertices pass the threshold 0.5
+    // (the lines' alpha is the curvature: at least 0.5).
+    curvature->compute({.method = analysis::CurvatureMethod::ThreeVertex});
+    std::vector<float> largest = analysis::largestMagnitudes(curvature->read());
+    auto fifth = largest.begin() + std::ptrdiff_t(largest.size() * 2 / 5);
+    std::nth_element(largest.begin(), fifth, largest.end());
+    curvature->compute({.method = analysis::CurvatureMethod::ThreeVertex, .scale = 0.5f / *fifth});
+    analysis::LineSet lines =
+        analysis::traceLines(curvature->read(), {.threshold = 0.5f, .minVertices = 5});
+    ASSERT_GT(lines.polylineCount(), 200u);
+    auto plain = render::TerrainRenderer::create({.field = &field});
+    plain.setSurface(render::makePaperSurface());
+    auto lined = render::TerrainRenderer::create({.field = &field});
+    lined.setSurface(render::makePaperSurface());
+    lined.addPass(render::LinePass::create(lines));
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+    // The share of the terrain's pixels that the lines darken.
+    auto darkShare = [&](float orthoHeight) {
+        const render::Camera camera =
+            test::topDownCamera({128.0f, 0.0f, 128.0f}, orthoHeight, 400.0f);
+        auto frame = [&](render::TerrainRenderer& r) {
+            target.begin(render::TerrainRenderer::clearColour({}));
+            r.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full});
+            return target.read();
+        };
+        const gpu::Image without = frame(plain), with = frame(lined);
+        const SkyTest isSky{SkyTest::clearColour()};
+        int64_t terrain = 0, darkened = 0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                if (isSky(without, x, y)) continue;
+                ++terrain;
+                const uint8_t *p = pixel(without, x, y), *q = pixel(with, x, y);
+                darkened += (p[0] + p[1] + p[2]) - (q[0] + q[1] + q[2]) > 30;
+            }
+        return double(darkened) / double(std::max<int64_t>(terrain, 1));
+    };
+    const double close = darkShare(float(kHeight) / 2.0f), far = darkShare(float(kHeight) * 4.0f);
+    std::printf("%zu lines, dark share: %.3f with 2 pixels a cell, %.3f with 0.25\n",
+                lines.polylineCount(), close, far);
+    EXPECT_GT(close, 0.02) << "too few line pixels to compare";
+    EXPECT_GT(far, 0.25 * close) << "the far lines are gone";
+    EXPECT_LT(far, 1.5 * close) << "the far lines blacken the terrain";
 }
 
 TEST_F(Overlays, NothingIsDrawnBesideTheTerrainWhereThereIsWater) {

@@ -20,14 +20,19 @@ std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines,
     auto pass = std::make_unique<LinePass>();
     pass->desc_ = desc;
     pass->program_ = gpu::Program::create({.vertex = "line.vert", .fragment = "line.frag"});
-    // Two vec4 per segment: (x, z, alpha, 0) of each end (line.vert's Segment).
+    // Two vec4 per segment: (x, z, alpha) of each end, and the polyline's rank
+    // for distance thinning (line.vert's Segment): polyline k's is the
+    // fractional part of k / golden ratio, so any prefix of ranks [0, f)
+    // holds about a fraction f of the polylines, spread over all of them.
     std::vector<float> data;
     for (size_t k = 0; k < lines.polylineCount(); ++k) {
         auto p = lines.polyline(k);
+        const double golden = 0.6180339887498949;
+        const float rank = float(std::fmod(double(k) * golden, 1.0));
         for (size_t v = 1; v < p.size(); ++v) {
             const analysis::LineVertex& a = p[v - 1];
             const analysis::LineVertex& b = p[v];
-            data.insert(data.end(), {a.x, a.z, a.alpha, 0.0f, b.x, b.z, b.alpha, 0.0f});
+            data.insert(data.end(), {a.x, a.z, a.alpha, rank, b.x, b.z, b.alpha, 0.0f});
         }
     }
     pass->segments_ = data.size() / 8;

@@ -5,7 +5,10 @@
 // uWidth pixels wide, alpha = the curvature at each end, black unless a
 // colour is set. Each point is lifted towards the camera along its view ray
 // by the SBT's saturated error at the nearest vertex (overlay_common.glsl),
-// so the lines neither sink into nor float over the mesh at any tau.
+// so the lines neither sink into nor float over the mesh at any tau. Where a
+// grid cell covers c < kFullCellPixels on the screen the polylines thin out
+// (line.vert): a fraction (c / kFullCellPixels)^2 of them is drawn, so a far
+// slope keeps the density of lines per screen area of a near one.
 
 #include <sierra/analysis/Lines.h>
 #include <sierra/gpu/Objects.h>
@@ -32,6 +35,9 @@ class LinePass final : public Pass {
     const char* name() const override { return "lines"; }
     void draw(const FrameContext& frame) override;
     size_t segmentCount() const { return segments_; }
+
+    // Below this screen size of a grid cell (pixels) the lines thin out.
+    static constexpr float kFullCellPixels = 1.0f;
 
   private:
     gpu::Program program_;
