@@ -15,9 +15,12 @@
 namespace sierra::render {
 namespace {
 
-std::string vec(const glm::vec3& v, int decimals = 1) {
-    return msg("(", fixed(v.x, decimals), ", ", fixed(v.y, decimals), ", ", fixed(v.z, decimals),
-               ")");
+// A world position in the panel's narrow value column: one decimal below 100,
+// none from there (a coordinate of 1703.1 reads as 1703), so three of them
+// fit one line.
+std::string vec(const glm::vec3& v) {
+    auto c = [](float x) { return fixed(x, std::fabs(x) < 100.0f ? 1 : 0); };
+    return msg("(", c(v.x), ", ", c(v.y), ", ", c(v.z), ")");
 }
 
 std::string bytes(double b) {
@@ -64,14 +67,15 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
                      : s.terrain.heightmap},
         {"real size", msg(realW, " x ", realH, " samples")},
         {"padded size", msg(field.width(), " x ", field.height(), " samples")},
-        {"spacing",
-         msg(fixed(field.spacingX(), 2), " x ", fixed(field.spacingZ(), 2), " world units")},
-        {"vertical scale", msg(fixed(field.verticalScale(), 4), " world / stored")},
-        {"height range", msg(fixed(range.x, 1), " .. ", fixed(range.y, 1), " world units")},
-        {"sea level",
-         gpu.hasWater() ? msg(fixed(gpu.worldSeaLevel(), 1), " world units") : "no water"},
+        {"spacing", msg(fixed(field.spacingX(), 2), " x ", fixed(field.spacingZ(), 2))},
+        {"vertical scale", fixed(field.verticalScale(), 4)},
+        {"height range", msg(fixed(range.x, 1), " .. ", fixed(range.y, 1))},
+        {"sea level", gpu.hasWater() ? fixed(gpu.worldSeaLevel(), 1) : "no water"},
         {"no-data samples", msg(noData)},
     };
+    // The units once, rather than in every value (each then took two lines,
+    // and the panel's last rows fell off the frame).
+    source.note = "in world units (vertical scale: per stored unit)";
     panel.sections.push_back(std::move(source));
 
     DebugSection renderer{.title = "Renderer"};
@@ -151,8 +155,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         {"CPU strip", bytes(double(last.indices) * 4.0)},
         {"GPU data RGBA32F", bytes(samples * 16.0)},
         {"GPU heights R32F", bytes(samples * 4.0)},
-        {"GPU index ring",
-         msg(gpu::StreamRing::kRegions, " x >= ", bytes(4.0 * 1024 * 1024), " regions")},
+        {"GPU index ring", msg(gpu::StreamRing::kRegions, " x >= ", bytes(4.0 * 1024 * 1024))},
         {"GPU colour ramp", bytes(1024.0 * 4.0)},
     };
     memory.note = "from the layouts; the ring grows to the largest frame";
