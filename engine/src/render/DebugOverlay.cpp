@@ -119,7 +119,7 @@ void histogram(const Histogram& h, float width) {
         top = std::max(top, h.counts[k]);
         if (h.counts[k] > 0) last = int(k), first = first < 0 ? int(k) : first;
     }
-    ImGui::Text("%s (%s %d..%d, left to right)", h.name.c_str(), h.binLabel.c_str(), h.firstBin,
+    ImGui::Text("%s (%s %d..%d)", h.name.c_str(), h.binLabel.c_str(), h.firstBin,
                 h.firstBin + int(h.counts.size()) - 1);
     const std::string overlay =
         first < 0 ? std::string("empty")
