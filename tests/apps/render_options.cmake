@@ -14,6 +14,28 @@ file(WRITE ${WORK_DIR}/small.pgm "P2\n3 2\n255\n0 10 20\n30 40 250\n")
 run_app(pgm EXPECT_OK COMMAND ${RENDER} --heightmap small.pgm --size 160x90 --out pgm.png --no-debug)
 expect_file(${WORK_DIR}/pgm.png)
 
+# The scale a faint overlay's warning suggests (the one that brings the top 5%
+# of the samples to `target`) into `suggested`; fails without one.
+function(suggested_scale name target)
+  string(REGEX MATCH
+         "--curvature-scale ([0-9.e+]+), which 'auto' picks, brings the top 5% of samples to ${target}"
+         suggestion "${LAST_OUTPUT}")
+  if(NOT suggestion)
+    message(FATAL_ERROR "${name}: no suggested scale in\n${LAST_OUTPUT}")
+  endif()
+  set(suggested ${CMAKE_MATCH_1} PARENT_SCOPE)
+endfunction()
+
+# --curvature-scale auto chose `scale` (bringing the top 5% to `what`) and
+# warned of nothing.
+function(expect_auto_scale name scale what)
+  string(FIND "${LAST_OUTPUT}" "curvature scale auto: ${scale} (the top 5% of samples at ${what})"
+         at)
+  if(at EQUAL -1 OR LAST_OUTPUT MATCHES "warning: overlays")
+    message(FATAL_ERROR "${name}: warned or chose another scale than ${scale}:\n${LAST_OUTPUT}")
+  endif()
+endfunction()
+
 # An overlay that would draw nothing says so, with the scale that would show
 # it. Curvature has world units, so a preset's scale made for unit spacing
 # finds no sample over the threshold on a grid spaced 1000 apart; on the
@@ -29,13 +51,7 @@ foreach(case "faint;no curvature line reaches the threshold 0.5;--generate;65;--
   if(NOT LAST_OUTPUT MATCHES "overlays: 0 lines")
     message(FATAL_ERROR "${name}: lines drawn beside the warning:\n${LAST_OUTPUT}")
   endif()
-  string(REGEX MATCH
-         "--curvature-scale ([0-9.e+]+), which 'auto' picks, brings the top 5% of samples to 0.5"
-         suggestion "${LAST_OUTPUT}")
-  if(NOT suggestion)
-    message(FATAL_ERROR "${name}: no suggested scale in\n${LAST_OUTPUT}")
-  endif()
-  set(suggested ${CMAKE_MATCH_1})
+  suggested_scale(${name} 0.5)
   run_app(${name}_fixed EXPECT_OK COMMAND ${RENDER} ${case} --preset fig3a --curvature-scale
           ${suggested} --size 160x90 --out ${name}_fixed.png --no-debug)
   if(LAST_OUTPUT MATCHES "warning: overlays" OR NOT LAST_OUTPUT MATCHES "overlays: [1-9][0-9]* lines")
@@ -43,11 +59,9 @@ foreach(case "faint;no curvature line reaches the threshold 0.5;--generate;65;--
   endif()
   run_app(${name}_auto EXPECT_OK COMMAND ${RENDER} ${case} --preset fig3a --curvature-scale auto
           --size 160x90 --out ${name}_auto.png --no-debug)
-  string(FIND "${LAST_OUTPUT}"
-         "curvature scale auto: ${suggested} (the top 5% of samples at the line threshold 0.5)" same)
-  if(LAST_OUTPUT MATCHES "warning: overlays" OR NOT LAST_OUTPUT MATCHES "overlays: [1-9][0-9]* lines"
-     OR same EQUAL -1)
-    message(FATAL_ERROR "${name}_auto: warned, drew no line or chose another scale than ${suggested}:\n${LAST_OUTPUT}")
+  expect_auto_scale(${name}_auto ${suggested} "the line threshold 0.5")
+  if(NOT LAST_OUTPUT MATCHES "overlays: [1-9][0-9]* lines")
+    message(FATAL_ERROR "${name}_auto: drew no line:\n${LAST_OUTPUT}")
   endif()
 endforeach()
 
@@ -60,13 +74,7 @@ foreach(case "reinforced;--generate;257;--preset;fig4a"
   list(POP_FRONT case name)
   run_app(hatch_${name} EXPECT_OK MESSAGE "the hatches are all but transparent" COMMAND ${RENDER}
           ${case} --size 160x90 --out hatch_${name}.png --no-debug)
-  string(REGEX MATCH
-         "--curvature-scale ([0-9.e+]+), which 'auto' picks, brings the top 5% of samples to 1"
-         suggestion "${LAST_OUTPUT}")
-  if(NOT suggestion)
-    message(FATAL_ERROR "hatch_${name}: no suggested scale in\n${LAST_OUTPUT}")
-  endif()
-  set(suggested ${CMAKE_MATCH_1})
+  suggested_scale(hatch_${name} 1)
   run_app(hatch_${name}_fixed EXPECT_OK COMMAND ${RENDER} ${case} --curvature-scale
           ${suggested} --size 160x90 --out hatch_${name}_fixed.png --no-debug)
   if(LAST_OUTPUT MATCHES "warning: overlays")
@@ -74,11 +82,7 @@ foreach(case "reinforced;--generate;257;--preset;fig4a"
   endif()
   run_app(hatch_${name}_auto EXPECT_OK COMMAND ${RENDER} ${case} --curvature-scale auto
           --size 160x90 --out hatch_${name}_auto.png --no-debug)
-  string(FIND "${LAST_OUTPUT}"
-         "curvature scale auto: ${suggested} (the top 5% of samples at full hatch opacity)" same)
-  if(LAST_OUTPUT MATCHES "warning: overlays" OR same EQUAL -1)
-    message(FATAL_ERROR "hatch_${name}_auto: warned or chose another scale than ${suggested}:\n${LAST_OUTPUT}")
-  endif()
+  expect_auto_scale(hatch_${name}_auto ${suggested} "full hatch opacity")
 endforeach()
 
 # auto from a scale of 0 (an all-zero field) starts from scale 1 instead.
