@@ -152,7 +152,7 @@ StyleParams styleFromJson(const json& style, const std::string& source) {
         if (o.method == CurvatureMethod::TwoNormal && o.distance != 1)
             c.fail(c.key("distance"),
                    msg("must be 1 for two-normal (it has no reinforcement), got ", o.distance));
-        if (c.has("scale") && c.raw("scale").is_string()) {
+        if (c.has("scale") && !c.raw("scale").is_number()) {
             if (c.raw("scale") != "auto")
                 c.fail(c.key("scale"),
                        msg("must be a number >= 0 or \"auto\", got ", c.raw("scale").dump()));
