@@ -1,12 +1,15 @@
 // sierra-gen curvature --heightmap FILE [terrain options]
 //                      --method two-normal|three-normal|three-vertex|edge-angle [--distance D]
-//                      [--normals edge|triangle|quad] [--scale S] [--signed] [--device cpu|gpu]
+//                      [--normals edge|triangle|quad] [--scale S|auto] [--signed] [--device
+//                      cpu|gpu]
 //                      --out FILE.npy [--png FILE.png]
 //
 // The curvature field of the terrain as loaded (padding removed) along the 4
 // grid directions of analysis/Curvature.h. --out: float32 .npy of shape (rows,
 // cols, 4), row j = z, column i = x, the last axis in the order +x, +z, x+z,
 // x-z; values scaled by --scale, no level control, NaN at no-data samples.
+// --scale auto: the scale that brings the top 5% of the samples' largest
+// magnitudes to 1 (white in the PNG), the field computed again at it.
 // --png: the Figure 2 image of the seed document, one pixel per sample: the
 // largest of the 4 magnitudes as grey intensity (0 black, 1 and above white);
 // no-data samples black. --device gpu computes the same field with the
@@ -29,7 +32,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iomanip>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -41,7 +47,7 @@ struct CurvatureCommandOptions {
     std::string method;
     int distance = 1;  // reinforcement distance in grid steps, 1 = none
     std::string normals = "quad";
-    float scale = 1.0f;
+    std::string scale = "1";  // a number >= 0, or "auto"
     bool signedValues = false;
     std::string device = "cpu";
     std::string out;
@@ -68,7 +74,12 @@ analysis::CurvatureOptions curvatureOptions(const CurvatureCommandOptions& o) {
             throw Error(msg("curvature: --normals: ", e.what()));
         }
         options.distance = o.distance;
-        options.scale = o.scale;
+        if (o.scale != "auto") {
+            char* end = nullptr;
+            options.scale = std::strtof(o.scale.c_str(), &end);
+            if (o.scale.empty() || *end != '\0')
+                throw Error(msg("curvature: --scale '", o.scale, "': expected a number or 'auto'"));
+        }
         options.signedValues = o.signedValues;
         analysis::validate(options);  // its messages start "curvature: " and name the value
     });
@@ -108,15 +119,35 @@ void runCurvature(const CurvatureCommandOptions& o) {
         scene::loadTerrain(o.scene.terrain, &source, scene::Padding::None);
     log::info("terrain: ", source, "; curvature of ", field.width(), "x", field.height(),
               " samples");
-    analysis::CurvatureField curvature;
-    if (o.device == "gpu") {
+    auto compute = [&](const analysis::CurvatureOptions& with) {
+        analysis::CurvatureField c;
+        if (o.device == "gpu") {
 #ifdef SIERRA_GEN_GPU
-        curvature = computeCurvatureOnGpu(field, options);
+            c = computeCurvatureOnGpu(field, with);
 #endif
-    } else {
-        Stopwatch clock;
-        curvature = analysis::computeCurvature(field, options);
-        log::info("curvature on the cpu: ", clock.ms(), " ms, ", defaultThreadCount(), " threads");
+        } else {
+            Stopwatch clock;
+            c = analysis::computeCurvature(field, with);
+            log::info("curvature on the cpu: ", clock.ms(), " ms, ", defaultThreadCount(),
+                      " threads");
+        }
+        return c;
+    };
+    analysis::CurvatureField curvature = compute(options);
+    if (o.scale == "auto") {
+        std::vector<float> largest = analysis::largestMagnitudes(curvature);
+        const float top = analysis::topFivePercent(largest);
+        if (top > 0.0f && std::isfinite(top)) {
+            analysis::CurvatureOptions scaled = options;
+            scaled.scale = 1.0f / top;
+            curvature = compute(scaled);
+            // 9 digits: --scale with the number logged gives the same field, bit for bit.
+            std::ostringstream text;
+            text << std::setprecision(9) << scaled.scale;
+            log::info("curvature scale auto: ", text.str(), " (the top 5% of samples at 1)");
+        } else {
+            log::warn("curvature: --scale auto: the field is 0 (or no data) everywhere; scale 1");
+        }
     }
 
     const int shape[] = {curvature.height, curvature.width, analysis::kDirectionCount};
@@ -155,7 +186,9 @@ void addCurvatureCommand(CLI::App& app) {
     cmd->add_option("--normals", o.normals,
                     "Vertex normals of the normal methods: edge, triangle or quad")
         ->capture_default_str();
-    cmd->add_option("--scale", o.scale, "Factor on every value (>= 0)")->capture_default_str();
+    cmd->add_option("--scale", o.scale,
+                    "Factor on every value (>= 0), or 'auto': the top 5% of the samples at 1")
+        ->capture_default_str();
     cmd->add_flag("--signed", o.signedValues, "Keep the sign of y'' (negative = convex, a ridge)");
     cmd->add_option("--device", o.device,
                     "cpu (the multithreaded reference) or gpu (the compute shader)")
