@@ -139,7 +139,7 @@ void runCurvature(const CurvatureCommandOptions& o) {
         const float top = analysis::topFivePercent(largest);
         if (top > 0.0f && std::isfinite(top)) {
             analysis::CurvatureOptions scaled = options;
-            scaled.scale = 1.0f / top;
+            scaled.scale = analysis::scaleToReach(top, options.scale, 1.0f);
             curvature = compute(scaled);
             // 9 digits: --scale with the number logged gives the same field, bit for bit.
             std::ostringstream text;

@@ -94,6 +94,11 @@ float topFivePercent(std::vector<float>& values) {
     return *top;
 }
 
+float scaleToReach(float top, float scale, float target) {
+    if (!(top > 0.0f) || !std::isfinite(top) || !(target > 0.0f) || scale == 0.0f) return scale;
+    return float(double(scale) * double(target) / double(top));
+}
+
 namespace {
 
 // Per-direction constants: step, its world length, the horizontal unit

@@ -125,13 +125,13 @@ LineOptions lineOptions(const StyleParams& style) {
             .blended = style.lines.blended};
 }
 
+float autoCurvatureTarget(const StyleParams& style) {
+    return style.layers.lines ? style.lines.threshold : 1.0f;
+}
+
 float autoCurvatureScale(const CurvatureField& field, const StyleParams& style) {
     std::vector<float> largest = largestMagnitudes(field);
-    const float top = topFivePercent(largest);
-    const float scale = style.curvature.scale;
-    const float target = style.layers.lines ? style.lines.threshold : 1.0f;
-    if (!(top > 0.0f) || !std::isfinite(top) || scale == 0.0f || !(target > 0.0f)) return scale;
-    return float(double(scale) * double(target) / double(top));
+    return scaleToReach(topFivePercent(largest), style.curvature.scale, autoCurvatureTarget(style));
 }
 
 StyleParams styleFromJson(const json& style, const std::string& source) {

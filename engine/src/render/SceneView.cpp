@@ -241,10 +241,10 @@ void warnIfFaint(const analysis::CurvatureField& values, const analysis::StylePa
     // (lines) or to full opacity (hatches).
     const float topValue = analysis::topFivePercent(largest);
     const float scale = style.curvature.scale;
-    const float target = style.layers.lines ? style.lines.threshold : 1.0f;
+    const float target = analysis::autoCurvatureTarget(style);
     const std::string suggestion =
         topValue > 0.0f && topValue < target && !style.curvature.levels.enabled
-            ? msg(" (--curvature-scale ", analysis::autoCurvatureScale(values, style),
+            ? msg(" (--curvature-scale ", analysis::scaleToReach(topValue, scale, target),
                   ", which 'auto' picks, brings the top 5% of samples to ", target, ")")
             : std::string();
     const std::string units =

@@ -126,6 +126,12 @@ std::vector<float> largestMagnitudes(const CurvatureField& field);
 // ascending order (partially reorders `values`); 0 when it is empty.
 float topFivePercent(std::vector<float>& values);
 
+// The scale that brings `top`, a value of a field computed at `scale`, to
+// `target` (values are proportional to the scale): scale * target / top;
+// `scale` itself when top or target is not a positive finite number or the
+// scale is 0.
+float scaleToReach(float top, float scale, float target);
+
 // Computes the field; threads as in options. Throws sierra::Error for bad
 // options or a grid smaller than the stencil (2 * distance + 1 samples a side,
 // at least 3).

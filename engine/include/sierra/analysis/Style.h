@@ -88,13 +88,16 @@ struct StyleParams {
 // The LineOptions that trace this style's lines.
 LineOptions lineOptions(const StyleParams& style);
 
+// What "scale": "auto" brings a field's top 5% to: the line threshold with
+// lines on, else 1, hatches' full opacity.
+float autoCurvatureTarget(const StyleParams& style);
+
 // The curvature scale of "scale": "auto" (StyleParams::autoScale) for a field
-// computed at style.curvature.scale: the one that brings the field's top 5%
-// (topFivePercent of largestMagnitudes) to the line threshold with lines on,
-// else to 1, hatches' full opacity. Values are proportional to the scale
-// (no levels with auto), so the field computed again at the returned scale
-// has its top 5% there. style.curvature.scale itself when that value is 0
-// (a flat terrain, or no data) or the scale is 0.
+// computed at style.curvature.scale: scaleToReach of the field's top 5%
+// (topFivePercent of largestMagnitudes) and autoCurvatureTarget. Values are
+// proportional to the scale (no levels with auto), so the field computed
+// again at the returned scale has its top 5% there. style.curvature.scale
+// itself when that value is 0 (a flat terrain, or no data) or the scale is 0.
 float autoCurvatureScale(const CurvatureField& field, const StyleParams& style);
 
 // Reads a "style" object. `source` names it in errors (a file name, or
