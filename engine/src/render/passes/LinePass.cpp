@@ -24,11 +24,11 @@ std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines,
     // for distance thinning (line.vert's Segment): polyline k's is the
     // fractional part of k / golden ratio, so any prefix of ranks [0, f)
     // holds about a fraction f of the polylines, spread over all of them.
+    constexpr double kGolden = 0.6180339887498949;  // 1 / golden ratio
     std::vector<float> data;
     for (size_t k = 0; k < lines.polylineCount(); ++k) {
         auto p = lines.polyline(k);
-        const double golden = 0.6180339887498949;
-        const float rank = float(std::fmod(double(k) * golden, 1.0));
+        const float rank = float(std::fmod(double(k) * kGolden, 1.0));
         for (size_t v = 1; v < p.size(); ++v) {
             const analysis::LineVertex& a = p[v - 1];
             const analysis::LineVertex& b = p[v];
