@@ -228,10 +228,11 @@ TEST(SbtViewOrder, SuccessiveViewsMatchTheReference) {
 
 // Terrains the view keys describe trivially, not at all, or near float
 // precision: a flat one (every height key 0), one with NaN samples (no keys:
-// the exact path), and a small relief 10^5 units up (the key step close to the
-// float spacing of the heights).
+// the exact path), a small relief 10^5 units up (the key step close to the
+// float spacing of the heights), and a rough one with a flat quadrant (errors
+// of 0 below the error keys' base: key 0, read as "below the base").
 TEST(SbtViewOrder, FlatNanAndHighTerrainsMatchTheReference) {
-    for (int kind = 0; kind < 3; ++kind) {
+    for (int kind = 0; kind < 4; ++kind) {
         SCOPED_TRACE("kind " + std::to_string(kind));
         Heightfield f =
             kind == 0
@@ -245,6 +246,9 @@ TEST(SbtViewOrder, FlatNanAndHighTerrainsMatchTheReference) {
         }
         if (kind == 2)
             for (float& h : f.samples()) h += 1.0e5f / f.verticalScale();
+        if (kind == 3)
+            for (int j = 0; j <= 64; ++j)
+                for (int i = 0; i <= 64; ++i) f.at(i, j) = lo;
         const auto ve = sbt::computeVertexErrors(f);
         sbt::Refiner refiner(f, ve, {.threads = 1});
         const float base = kind == 2 ? 1.0e5f : 0.0f;

@@ -60,6 +60,27 @@ inline uint32_t floatKey(float x) {
     return std::bit_cast<uint32_t>(x) >> 16;
 }
 
+// View keys of lengths (errors and radii, >= 0): the float's bit pattern
+// above a base, shifted right by kLengthKeyShift: 6 exponent and 10 mantissa
+// bits, eight times finer than the top 16 bits of the float (on a rough
+// 2049^2 fractal at tau = 1 the vertices the keys leave undecided fell from
+// 6 738 to 1 109 of 1.1 M). The base lies 64 binades below the largest value
+// keyed (lengthKeyBase), so every value up to it has a key; a value below the
+// base's float gets key 0. The map is monotone: a value with key k lies in
+// [float of (k << shift) + base, float of ((k + 1) << shift) + base), except
+// with key 0, where it lies in [0, float of base): the walker's low bound
+// subtracts the base's float (Walker::keyLowError).
+constexpr int kLengthKeyShift = 13;
+inline uint32_t lengthKeyBase(float largest) {
+    const uint32_t top = std::bit_cast<uint32_t>(largest);
+    constexpr uint32_t span = uint32_t(0xFFFF) << kLengthKeyShift;
+    return top > span ? top - span : 0;
+}
+inline uint16_t lengthKey(float x, uint32_t base) {
+    const uint32_t b = std::bit_cast<uint32_t>(x);
+    return b < base ? 0 : uint16_t((b - base) >> kLengthKeyShift);
+}
+
 // The key epsilon is compared with, as a signed int so that "everything
 // splits" (eps < 0) and "nothing splits" (eps NaN) need no special case in the
 // hot loop: -1 is below every key, 0x10000 above every key.
@@ -97,7 +118,12 @@ struct Walker {
     float planeSlack[6];  // absolute slack on plane distances (world units)
     // view keys (Refiner::viewKeys_), null when there are none: 3 per tree node
     const uint16_t* viewKeys;
-    float keyYBase, keyYStep, keyYError;  // world y = keyYBase + key * keyYStep, +- keyYError
+    float keyYBase, keyYStep, keyYError;   // world y = keyYBase + key * keyYStep, +- keyYError
+    uint32_t keyErrorBase, keyRadiusBase;  // lengthKey bases of the errors and of the radii
+    // keyYError + the reach of a vertex whose error and radius are the bases'
+    // floats, rounded up: what the low bound of a reach subtracts (a key 0
+    // stands for any length below the base's float)
+    float keyLowError;
     const float* dxx;  // (i * spacingX - eye x)^2 for every column i, rounded to float
     const float* dzz;  // (j * spacingZ - eye z)^2 for every row j
     float keyDy0;      // keyYBase - eye y
@@ -413,8 +439,9 @@ struct Walker {
         const uint16_t* const vk = viewKeys;
         const float* const xx = dxx;
         const float* const zz = dzz;
-        const float kE = fkE, yStep = keyYStep, dy0 = keyDy0, yErr = keyYError, grow2 = keyGrow,
-                    slack = keySlack;
+        const float kE = fkE, yStep = keyYStep, dy0 = keyDy0, yErr = keyYError, loErr = keyLowError,
+                    grow2 = keyGrow, slack = keySlack;
+        const uint32_t errBase = keyErrorBase, radBase = keyRadiusBase;
         const uint32_t sd = side;
         // The walk names tree node k by kb = 12 (k + 1), where its children's
         // key pair starts (in bytes): the children's are 2 kb + 12 (left) and
@@ -451,11 +478,13 @@ struct Walker {
         // computes the same float operations in the same order as one child's
         // scalar test; the vertices in neither sure band go to activeExact.
 #if SIERRA_SBT_SSE2
-        const __m128 vkE = _mm_set1_ps(kE), vErr = _mm_set1_ps(yErr), vSlack = _mm_set1_ps(slack),
-                     vStep = _mm_set1_ps(yStep), vDy0 = _mm_set1_ps(dy0),
-                     vGrow = _mm_set1_ps(grow2);
+        const __m128 vkE = _mm_set1_ps(kE), vErr = _mm_set1_ps(yErr), vLoErr = _mm_set1_ps(loErr),
+                     vSlack = _mm_set1_ps(slack), vStep = _mm_set1_ps(yStep),
+                     vDy0 = _mm_set1_ps(dy0), vGrow = _mm_set1_ps(grow2);
         __m128 vBand = _mm_set1_ps(0x1.0p-15f);
-        const __m128i one = _mm_set1_epi32(0x10000);
+        const __m128i one = _mm_set1_epi32(1 << kLengthKeyShift);
+        const __m128i vBase =
+            _mm_setr_epi32(int32_t(errBase), int32_t(errBase), int32_t(radBase), int32_t(radBase));
         // Opaque to the compiler: a constant it knows is rebuilt in the loop
         // (a load and a shuffle per pair) instead of kept in a register.
         asm("" : "+x"(vBand));
@@ -473,10 +502,14 @@ struct Walker {
                 rr = _mm_cvtsi32_si128(int32_t(r));
             }
             const __m128i zero = _mm_setzero_si128();
-            const __m128i top = _mm_unpacklo_epi16(zero, her);  // u32: y0 y1 e0 e1, each << 16
-            const __m128i ek = _mm_shuffle_epi32(top, _MM_SHUFFLE(3, 2, 3, 2));
-            const __m128i rk = _mm_unpacklo_epi16(zero, rr);
-            const __m128 yk = _mm_cvtepi32_ps(_mm_srli_epi32(top, 16));
+            const __m128i low = _mm_unpacklo_epi16(her, zero);  // u32: y0 y1 e0 e1
+            // u32: e0 e1 r0 r1, then the floats' bit patterns (lengthKey)
+            const __m128i er =
+                _mm_unpacklo_epi64(_mm_srli_si128(low, 8), _mm_unpacklo_epi16(rr, zero));
+            const __m128i lengths = _mm_add_epi32(_mm_slli_epi32(er, kLengthKeyShift), vBase);
+            const __m128i ek = lengths;  // lanes 0 and 1
+            const __m128i rk = _mm_shuffle_epi32(lengths, _MM_SHUFFLE(3, 2, 3, 2));
+            const __m128 yk = _mm_cvtepi32_ps(low);
             const __m128 dy = _mm_add_ps(_mm_mul_ps(yk, vStep), vDy0);
             // lanes 2 and 3 are never read (the masks keep bits 0 and 1)
             const __m128 xz = _mm_add_ps(
@@ -485,13 +518,14 @@ struct Walker {
                                 _mm_load_ss(zz + uint32_t(vr >> 32))));
             const __m128 d2 = _mm_add_ps(xz, _mm_mul_ps(dy, dy));
             const __m128 lo = _mm_sub_ps(
-                _mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(ek)), _mm_castsi128_ps(rk)), vErr);
+                _mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(ek)), _mm_castsi128_ps(rk)), vLoErr);
             const __m128 sureMask =
                 _mm_cmpgt_ps(_mm_mul_ps(lo, lo), _mm_add_ps(_mm_mul_ps(d2, vGrow), vSlack));
-            const __m128 hi =
-                _mm_add_ps(_mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(_mm_add_epi32(ek, one))),
-                                      _mm_castsi128_ps(_mm_add_epi32(rk, one))),
-                           vErr);
+            const __m128i next = _mm_add_epi32(lengths, one);  // the next keys' floats
+            const __m128 hi = _mm_add_ps(
+                _mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(next)),
+                           _mm_castsi128_ps(_mm_shuffle_epi32(next, _MM_SHUFFLE(3, 2, 3, 2)))),
+                vErr);
             const __m128 hi2 = _mm_mul_ps(hi, hi);
             const __m128 bound =
                 _mm_sub_ps(d2, _mm_add_ps(_mm_mul_ps(vBand, _mm_add_ps(hi2, d2)), vSlack));
@@ -509,14 +543,15 @@ struct Walker {
                 const V v = c ? vr : vl;
                 const float dy = float(int32_t(key[c])) * yStep + dy0;
                 const float d2 = xx[uint32_t(v)] + zz[uint32_t(v >> 32)] + dy * dy;
-                const uint32_t ek = uint32_t(key[2 + c]) << 16, rk = uint32_t(key[4 + c]) << 16;
-                const float lo = kE * std::bit_cast<float>(ek) + std::bit_cast<float>(rk) - yErr;
+                const uint32_t ek = (uint32_t(key[2 + c]) << kLengthKeyShift) + errBase,
+                               rk = (uint32_t(key[4 + c]) << kLengthKeyShift) + radBase;
+                const float lo = kE * std::bit_cast<float>(ek) + std::bit_cast<float>(rk) - loErr;
                 if (lo * lo > d2 * grow2 + slack) {
                     sure |= 1u << c;
                     continue;
                 }
-                const float hi = kE * std::bit_cast<float>(ek + 0x10000u) +
-                                 std::bit_cast<float>(rk + 0x10000u) + yErr;
+                const float hi = kE * std::bit_cast<float>(ek + (1u << kLengthKeyShift)) +
+                                 std::bit_cast<float>(rk + (1u << kLengthKeyShift)) + yErr;
                 const float hi2 = hi * hi;
                 if (!(hi2 < d2 - (0x1.0p-15f * (hi2 + d2) + slack))) undecided |= 1u << c;
             }
@@ -943,12 +978,15 @@ void Refiner::buildViewKeys() {
     const float* h = field_->samples().data();
     const float* err = errors_->error.data();
     const float* rad = errors_->radius.data();
-    float lo = h[0], hi = h[0];
+    float lo = h[0], hi = h[0], largestError = 0.0f, largestRadius = 0.0f;
     for (size_t k = 0; k < count; ++k) {
         if (!std::isfinite(h[k]) || !(err[k] >= 0.0f) || !(rad[k] >= 0.0f) ||
-            std::signbit(err[k]) || std::signbit(rad[k]) || !std::isfinite(rad[k]))
+            std::signbit(err[k]) || std::signbit(rad[k]) || !std::isfinite(rad[k]) ||
+            !std::isfinite(err[k]))
             return;  // keys would not bound the exact values: exact path only
         lo = std::min(lo, h[k]), hi = std::max(hi, h[k]);
+        largestError = std::max(largestError, err[k]);
+        largestRadius = std::max(largestRadius, rad[k]);
     }
     const double vs = field_->verticalScale();
     const float base = float(double(lo) * vs);
@@ -968,6 +1006,8 @@ void Refiner::buildViewKeys() {
         worst = std::max(worst, std::fabs(double(decoded) - exact));
     }
     keyYBase_ = base, keyYStep_ = step;
+    keyErrorBase_ = lengthKeyBase(largestError);
+    keyRadiusBase_ = lengthKeyBase(largestRadius);
     keyYError_ =
         std::nextafter(float(worst * (1.0 + 0x1.0p-20)), std::numeric_limits<float>::infinity());
     const uint64_t nodes = (uint64_t(2) << (2 * n_)) - 2;
@@ -976,8 +1016,8 @@ void Refiner::buildViewKeys() {
     forEachNode([&](uint64_t node, uint32_t m) {
         uint16_t* pair = keys + 6 * (node >> 1) + (node & 1);
         pair[0] = quantised[m];
-        pair[2] = uint16_t(floatKey(err[m]));
-        pair[4] = uint16_t(floatKey(rad[m]));
+        pair[2] = lengthKey(err[m], keyErrorBase_);
+        pair[4] = lengthKey(rad[m], keyRadiusBase_);
     });
 }
 
@@ -1058,6 +1098,12 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
                 proto.keyNodes = viewKeys_.size() / 3;
                 proto.keyYBase = keyYBase_, proto.keyYStep = keyYStep_,
                 proto.keyYError = keyYError_;
+                proto.keyErrorBase = keyErrorBase_, proto.keyRadiusBase = keyRadiusBase_;
+                const double below = double(keyYError_) +
+                                     proto.kE * double(std::bit_cast<float>(keyErrorBase_)) +
+                                     double(std::bit_cast<float>(keyRadiusBase_));
+                proto.keyLowError = std::nextafter(float(below * (1.0 + 0x1.0p-20)),
+                                                   std::numeric_limits<float>::infinity());
                 proto.keyDy0 = float(double(keyYBase_) - proto.ey);
                 // The column and row terms are rounded once from double; dy is
                 // within 2^-21 M of the decoded height's distance (three

@@ -192,16 +192,20 @@ class Refiner {
     // heights, errors, radii, each left then right, 12 bytes) so that both
     // children of a triangle are tested at once: the world height quantised over the grid's
     // height range (keyYBase_ + key * keyYStep_, within keyYError_ of the
-    // exact one), and the top 16 bits of its error and of its radius (each
-    // between the float of its key and that of the next key). They decide all
-    // but the vertices near the threshold (0.6% on a rough 2049^2 fractal at
-    // tau = 1), which read the exact arrays, and a subtree's keys sit together
-    // level by level instead of scattered over three row-major arrays.
+    // exact one), and its error and its radius as length keys (lengthKey in
+    // Refiner.cpp: 6 exponent and 10 mantissa bits of the float above a base
+    // 64 binades below the largest value, keyErrorBase_ and keyRadiusBase_;
+    // the value lies between the floats of its key and of the next key). They
+    // decide all but the vertices near the threshold (0.1% on a rough 2049^2
+    // fractal at tau = 1), which read the exact arrays, and a subtree's keys
+    // sit together level by level instead of scattered over three row-major
+    // arrays.
     // Memory: 6 * (2^(2n+1) - 2) bytes, about 12 bytes per grid sample. Built
     // by prepareView() or the first refineView(); empty (exact path only) when a height is not
     // finite or an error or radius is NaN or negative.
     std::vector<uint16_t> viewKeys_;
     float keyYBase_ = 0, keyYStep_ = 0, keyYError_ = 0;  // world units
+    uint32_t keyErrorBase_ = 0, keyRadiusBase_ = 0;      // float bit patterns
     // Largest |world coordinate| or radius of the grid (world units), measured
     // by prepareView() or the first refineView(); -1 until then.
     double magnitude_ = -1.0;
