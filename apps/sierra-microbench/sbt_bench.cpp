@@ -1,6 +1,7 @@
 // Micro-benchmarks of the SBT CPU stages: the error pass, fixed-error
 // refinement + strip emission, view-dependent refinement. items_per_second is
 // output triangles per second (grid samples per second for the error pass).
+#include <sierra/core/Parallel.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
 #include <sierra/terrain/DiamondSquare.h>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <string>
 
 namespace {
 
@@ -54,24 +56,39 @@ BENCHMARK(BM_ErrorPass)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// Times `refine` (which writes one mesh) after a first call that grows the
-// buffers, and reports triangles per second.
+// Times `refine` (which writes one mesh with `refiner`, in view mode or not)
+// after a first call that grows the buffers, and reports triangles per second.
+// What the adaptive default (threads 0) has learned is carried from one run of
+// the benchmark to the next (its repetitions build a refiner each), as a
+// renderer's refiner keeps it from frame to frame.
+// `name` and the benchmark's `argCount` arguments name the benchmark.
 template <typename Refine>
-void measureRefinement(benchmark::State& state, int threads, Refine refine) {
+void measureRefinement(benchmark::State& state, int threads, sbt::Refiner& refiner, bool view,
+                       const char* name, int argCount, Refine refine) {
+    static std::map<std::string, sbt::ThreadChoice> learned;
     sbt::StripMesh mesh;
     refine(mesh);
+    std::string key = name;
+    for (int k = 0; k < argCount; ++k) key.append("/").append(std::to_string(state.range(k)));
+    sbt::ThreadChoice& kept = learned[key];
+    refiner.threadChoice(view) = kept;
     for (auto _ : state) {
         refine(mesh);
         benchmark::DoNotOptimize(mesh.indices.data());
     }
+    kept = refiner.threadChoice(view);
     state.SetItemsProcessed(state.iterations() * mesh.triangleCount);
     state.counters["triangles"] = double(mesh.triangleCount);
     state.counters["idx_per_tri"] = mesh.indicesPerTriangle();
     state.counters["threads"] = threads;
+    if (threads == 0)
+        state.SetLabel("default: adaptive, up to " + std::to_string(sierra::defaultThreadCount()) +
+                       " threads");
 }
 
 // Arg 1: epsilon as a fraction of the terrain's relief in ten-thousandths
-// (5 = 0.05%, 100 = 1%; -1 = full grid). Arg 2: threads.
+// (5 = 0.05%, 100 = 1%; -1 = full grid). Arg 2: threads (0 = the adaptive
+// default, sbt::ThreadChoice).
 void BM_RefineFixed(benchmark::State& state) {
     const int size = int(state.range(0));
     const int threads = int(state.range(2));
@@ -80,11 +97,11 @@ void BM_RefineFixed(benchmark::State& state) {
     const float relief = (hi - lo) * t.field.verticalScale();
     const float eps = state.range(1) < 0 ? -1.0f : relief * float(state.range(1)) / 10000.0f;
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads,
+    measureRefinement(state, threads, refiner, false, "fixed", 3,
                       [&](sbt::StripMesh& mesh) { refiner.refineFixed(eps, mesh); });
 }
 BENCHMARK(BM_RefineFixed)
-    ->ArgsProduct({{1025, 2049}, {-1, 0, 5, 10, 20, 50, 100}, {1, 2}})
+    ->ArgsProduct({{1025, 2049}, {-1, 0, 5, 10, 20, 50, 100}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
@@ -119,10 +136,11 @@ void BM_RefineView(benchmark::State& state) {
     vp.planes[5] = sbt::Plane{-vp.planes[4].a, -vp.planes[4].b, -vp.planes[4].c,
                               -vp.planes[4].d + 4.0f * extent};
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads, [&](sbt::StripMesh& mesh) { refiner.refineView(vp, mesh); });
+    measureRefinement(state, threads, refiner, true, "view", 3,
+                      [&](sbt::StripMesh& mesh) { refiner.refineView(vp, mesh); });
 }
 BENCHMARK(BM_RefineView)
-    ->ArgsProduct({{2049}, {1, 2}, {0, 1}})
+    ->ArgsProduct({{2049}, {0, 1, 2}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
@@ -168,11 +186,11 @@ void BM_RefineOrbit(benchmark::State& state) {
     const int threads = int(state.range(1));
     const sbt::ViewParams view = orbitView(t, 1.0f, state.range(2) != 0);
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads,
+    measureRefinement(state, threads, refiner, true, "orbit", 3,
                       [&](sbt::StripMesh& mesh) { refiner.refineView(view, mesh); });
 }
 BENCHMARK(BM_RefineOrbit)
-    ->ArgsProduct({{8}, {1, 2}, {0, 1}})
+    ->ArgsProduct({{8}, {0, 1, 2}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
@@ -182,7 +200,7 @@ void BM_RefineOrbitReference(benchmark::State& state) {
     const int threads = int(state.range(1));
     const sbt::ViewParams view = orbitView(t, 1.0f, state.range(2) != 0);
     sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads,
+    measureRefinement(state, threads, refiner, true, "orbit reference", 3,
                       [&](sbt::StripMesh& mesh) { refiner.refineViewReference(view, mesh); });
 }
 BENCHMARK(BM_RefineOrbitReference)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -958,6 +959,40 @@ void checkView(const ViewParams& view) {
 
 // The largest magnitude of a world coordinate or radius of the grid: the scale
 // of the fast view path's float slack.
+// Probe the slower way every kProbeClose refinements while the two are within
+// 20%, every kProbeFar refinements otherwise: a probe costs a refinement at
+// the slower speed, and a wide gap rarely closes at once.
+constexpr int kProbeClose = 8, kProbeFar = 32;
+
+double ThreadChoice::estimate(int way) const {
+    const int n = std::min(samples[way] - 1, kKept);
+    double sum = 0.0;
+    for (int k = 0; k < n; ++k) sum += recent[way][k];
+    return sum / double(n);
+}
+
+bool ThreadChoice::serial() {
+    if (samples[1] < 2) return false;
+    if (samples[0] < 2) return true;
+    const double one = estimate(0), several = estimate(1);
+    const bool serialFaster = one < several;
+    const double gap = std::max(one, several) / std::max(1e-30, std::min(one, several));
+    if (++sinceProbe >= (gap < 1.2 ? kProbeClose : kProbeFar)) {
+        sinceProbe = 0;
+        return !serialFaster;
+    }
+    return serialFaster;
+}
+
+void ThreadChoice::record(bool parallel, double seconds, int64_t triangles) {
+    const int way = parallel ? 1 : 0;
+    // The first refinement each way is not counted: it grows buffers, starts
+    // threads and faults pages in.
+    const int counted = samples[way]++;
+    if (counted == 0) return;
+    recent[way][(counted - 1) % kKept] = seconds / double(std::max<int64_t>(triangles, 1));
+}
+
 void Refiner::measureMagnitude() {
     const size_t count = size_t(side_) * side_;
     const float* h = field_->samples().data();
@@ -1186,6 +1221,10 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     int threads = threads_ > 0 ? threads_ : defaultThreadCount();
     int64_t& lastTriangles = kView ? lastViewTriangles_ : lastFixedTriangles_;
     if (lastTriangles >= 0 && lastTriangles < kParallelTriangles) threads = 1;
+    ThreadChoice& choice = kView ? viewThreads_ : fixedThreads_;
+    const bool adaptive = threads_ <= 0 && threads > 1;
+    if (adaptive && choice.serial()) threads = 1;
+    const auto started = std::chrono::steady_clock::now();
     // Chunks a preempted helper holds are run again by the caller
     // (parallelRescuedChunks): the join never waits for a helper. The body
     // reads only the frame, which outlives the call.
@@ -1298,6 +1337,11 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     out.stripCount = strips;
     out.culledSubtrees = culled;
     lastTriangles = leaves;
+    if (adaptive)
+        choice.record(
+            pooled,  // false: the pool ran it serially (a helper was busy)
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+            leaves);
     // Each subtree's triangles, for the next refinement's chunk order (levels
     // up to 12: at most 8192 subtrees).
     if (chunkLevel_ <= 12) {

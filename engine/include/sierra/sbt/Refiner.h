@@ -91,8 +91,28 @@ ViewParams lookAtView(const std::array<float, 3>& eye, const std::array<float, 3
 // same either way).
 inline constexpr int64_t kParallelTriangles = int64_t(1) << 17;
 
+// The default thread count (threads 0) adapts to the machine's load: a
+// refinement that may use sierra::defaultThreadCount() threads runs on one
+// while the recent ones in its mode ran faster that way (wall time per
+// triangle, measured; the other way is tried again every few refinements).
+// With the other core busy, two threads can lose to one (the helper shares a
+// core with the caller); the default never keeps the slower way for long.
+// An explicit count is used as given (tests and benchmarks compare them).
+struct ThreadChoice {
+    // Seconds per triangle of the last kKept counted refinements on one
+    // thread ([0]) and on several ([1]), and their mean (estimate).
+    static constexpr int kKept = 4;
+    double recent[2][kKept] = {};
+    int samples[2] = {0, 0};  // refinements each way so far (the first is not counted)
+    int sinceProbe = 0;
+    double estimate(int way) const;
+    // True: run the next refinement on one thread.
+    bool serial();
+    void record(bool parallel, double seconds, int64_t triangles);
+};
+
 struct RefinerDesc {
-    int threads = 0;      // 0 = sierra::defaultThreadCount()
+    int threads = 0;      // 0 = sierra::defaultThreadCount(), adaptive (ThreadChoice)
     int chunkLevel = -1;  // level of the parallel subtrees; -1 = clamp(2n - 10, 0, 6)
 };
 
@@ -140,7 +160,11 @@ class Refiner {
     int n() const { return n_; }
     int side() const { return side_; }
     int chunkLevel() const { return chunkLevel_; }
-    void setThreads(int threads) { threads_ = threads; }
+    void setThreads(int threads) { threads_ = threads; }  // 0: the adaptive default
+    // What the adaptive default has learned in view (true) or fixed mode; a
+    // benchmark that builds a refiner per run carries it over, as a
+    // renderer's refiner keeps it from frame to frame.
+    ThreadChoice& threadChoice(bool view) { return view ? viewThreads_ : fixedThreads_; }
 
     struct Op;     // implementation detail (top-level recursion record)
     struct Chunk;  // implementation detail (one subtree's strip)
@@ -213,6 +237,8 @@ class Refiner {
     // estimate that keeps small refinements serial (see kParallelTriangles).
     int64_t lastViewTriangles_ = -1;
     int64_t lastFixedTriangles_ = -1;
+    // The default thread count's choice in each mode.
+    ThreadChoice viewThreads_, fixedThreads_;
     // Per subtree at the chunk level (tree order), the triangles it made in the
     // last refinement in each mode: chunks are handed out largest first.
     std::vector<int64_t> viewChunkWork_;

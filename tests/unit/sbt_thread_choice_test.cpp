@@ -1,0 +1,100 @@
+// The adaptive default thread count (sbt::ThreadChoice): what it decides from
+// the wall times it is given, and that a refiner consults it only with the
+// default count (threads 0), never with a count given explicitly.
+#include <sierra/core/Parallel.h>
+#include <sierra/sbt/Refiner.h>
+#include <sierra/sbt/VertexErrors.h>
+#include <sierra/terrain/DiamondSquare.h>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace sbt = sierra::sbt;
+
+// Feeds `choice` n refinements of `triangles` triangles, each taking
+// serialSeconds on one thread or parallelSeconds on several; returns how many
+// ran on one thread.
+int run(sbt::ThreadChoice& choice, int n, double serialSeconds, double parallelSeconds,
+        int64_t triangles = 1000) {
+    int serial = 0;
+    for (int k = 0; k < n; ++k) {
+        const bool one = choice.serial();
+        serial += one;
+        choice.record(!one, one ? serialSeconds : parallelSeconds, triangles);
+    }
+    return serial;
+}
+
+TEST(SbtThreadChoice, TriesBothWaysThenKeepsTheFasterOne) {
+    sbt::ThreadChoice choice;
+    // Two refinements in parallel (the first not counted), then two on one
+    // thread, whatever the times.
+    EXPECT_FALSE(choice.serial());
+    choice.record(true, 9.0, 1000);  // a first refinement's one-off costs
+    EXPECT_FALSE(choice.serial());
+    choice.record(true, 2.0, 1000);
+    EXPECT_TRUE(choice.serial());
+    choice.record(false, 3.0, 1000);
+    EXPECT_TRUE(choice.serial());
+    choice.record(false, 3.0, 1000);
+    // Parallel is faster (2 against 3): kept, one thread probed now and then.
+    const int serial = run(choice, 96, 3.0, 2.0);
+    EXPECT_GE(serial, 1);
+    EXPECT_LE(serial, 96 / 32 + 1);
+}
+
+TEST(SbtThreadChoice, FollowsTheLoadWhenItChanges) {
+    sbt::ThreadChoice choice;
+    run(choice, 4, 1.0, 1.0);
+    // The other core gets busy: two threads now lose by 30%.
+    run(choice, 64, 1.0, 1.3);
+    EXPECT_GE(run(choice, 64, 1.0, 1.3), 64 - 64 / 32 - 1);
+    // It frees up: two threads win by 40%. Within a few probes the choice
+    // turns, and then stays.
+    run(choice, 96, 1.0, 0.6);
+    EXPECT_LE(run(choice, 64, 1.0, 0.6), 64 / 32 + 1);
+}
+
+TEST(SbtThreadChoice, ComparesTimePerTriangle) {
+    sbt::ThreadChoice choice;
+    // The parallel refinements are larger meshes: 2 s for 2000 triangles is
+    // faster per triangle than 1.5 s for 1000.
+    for (int k = 0; k < 4; ++k) {
+        const bool one = choice.serial();
+        choice.record(!one, one ? 1.5 : 2.0, one ? 1000 : 2000);
+    }
+    int serial = 0;
+    for (int k = 0; k < 64; ++k) {
+        const bool one = choice.serial();
+        serial += one;
+        choice.record(!one, one ? 1.5 : 2.0, one ? 1000 : 2000);
+    }
+    EXPECT_LE(serial, 64 / 32 + 1);
+}
+
+TEST(SbtThreadChoice, OnlyTheDefaultThreadCountAdapts) {
+    const int saved = sierra::defaultThreadCount();
+    sierra::setDefaultThreadCount(2);
+    sierra::terrain::Heightfield f =
+        sierra::terrain::generateDiamondSquare({.size = 513, .seed = 2, .hurst = 0.7f});
+    const sbt::VertexErrors ve = sbt::computeVertexErrors(f);
+    sbt::Refiner adaptive(f, ve, {.threads = 0}), explicitTwo(f, ve, {.threads = 2});
+    sbt::StripMesh a, b;
+    for (int k = 0; k < 6; ++k) {
+        adaptive.refineFixed(-1.0f,
+                             a);  // the full grid: 524 288 triangles, above kParallelTriangles
+        explicitTwo.refineFixed(-1.0f, b);
+        EXPECT_EQ(a.indices, b.indices);
+    }
+    const sbt::ThreadChoice& learned = adaptive.threadChoice(false);
+    EXPECT_EQ(learned.samples[0] + learned.samples[1], 6);
+    EXPECT_GE(learned.samples[0], 2);  // both ways tried
+    EXPECT_GE(learned.samples[1], 2);
+    EXPECT_EQ(
+        explicitTwo.threadChoice(false).samples[0] + explicitTwo.threadChoice(false).samples[1], 0);
+    EXPECT_EQ(adaptive.threadChoice(true).samples[1], 0);  // view mode not touched
+    sierra::setDefaultThreadCount(saved);
+}
+
+}  // namespace
