@@ -72,11 +72,19 @@ void measureRefinement(benchmark::State& state, int threads, sbt::Refiner& refin
     for (int k = 0; k < argCount; ++k) key.append("/").append(std::to_string(state.range(k)));
     sbt::ThreadChoice& kept = learned[key];
     refiner.threadChoice(view) = kept;
+    const int serialBefore = kept.samples[0], parallelBefore = kept.samples[1];
     for (auto _ : state) {
         refine(mesh);
         benchmark::DoNotOptimize(mesh.indices.data());
     }
     kept = refiner.threadChoice(view);
+    if (threads == 0) {
+        // the share of the timed refinements the default ran on one thread
+        const int serial = kept.samples[0] - serialBefore,
+                  parallel = kept.samples[1] - parallelBefore;
+        state.counters["one_thread"] =
+            serial + parallel > 0 ? double(serial) / (serial + parallel) : 0.0;
+    }
     state.SetItemsProcessed(state.iterations() * mesh.triangleCount);
     state.counters["triangles"] = double(mesh.triangleCount);
     state.counters["idx_per_tri"] = mesh.indicesPerTriangle();

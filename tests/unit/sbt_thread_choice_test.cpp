@@ -56,6 +56,16 @@ TEST(SbtThreadChoice, FollowsTheLoadWhenItChanges) {
     EXPECT_LE(run(choice, 64, 1.0, 0.6), 64 / 32 + 1);
 }
 
+TEST(SbtThreadChoice, OneSlowRefinementDoesNotTurnIt) {
+    sbt::ThreadChoice choice;
+    run(choice, 64, 1.0, 0.6);
+    // A page fault storm or a preempted helper: one parallel refinement 100
+    // times slower. The median of the last five ignores it.
+    ASSERT_FALSE(choice.serial());
+    choice.record(true, 60.0, 1000);
+    EXPECT_LE(run(choice, 32, 1.0, 0.6), 1);
+}
+
 TEST(SbtThreadChoice, ComparesTimePerTriangle) {
     sbt::ThreadChoice choice;
     // The parallel refinements are larger meshes: 2 s for 2000 triangles is

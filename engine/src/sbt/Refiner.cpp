@@ -966,9 +966,13 @@ constexpr int kProbeClose = 8, kProbeFar = 32;
 
 double ThreadChoice::estimate(int way) const {
     const int n = std::min(samples[way] - 1, kKept);
-    double sum = 0.0;
-    for (int k = 0; k < n; ++k) sum += recent[way][k];
-    return sum / double(n);
+    double kept[kKept];
+    for (int k = 0; k < n; ++k) {  // insertion sort of at most kKept values
+        int at = k;
+        for (; at > 0 && kept[at - 1] > recent[way][k]; --at) kept[at] = kept[at - 1];
+        kept[at] = recent[way][k];
+    }
+    return n % 2 ? kept[n / 2] : 0.5 * (kept[n / 2 - 1] + kept[n / 2]);
 }
 
 bool ThreadChoice::serial() {

@@ -93,15 +93,17 @@ inline constexpr int64_t kParallelTriangles = int64_t(1) << 17;
 
 // The default thread count (threads 0) adapts to the machine's load: a
 // refinement that may use sierra::defaultThreadCount() threads runs on one
-// while the recent ones in its mode ran faster that way (wall time per
+// while the recent ones in its mode ran faster that way (median wall time per
 // triangle, measured; the other way is tried again every few refinements).
 // With the other core busy, two threads can lose to one (the helper shares a
 // core with the caller); the default never keeps the slower way for long.
 // An explicit count is used as given (tests and benchmarks compare them).
 struct ThreadChoice {
     // Seconds per triangle of the last kKept counted refinements on one
-    // thread ([0]) and on several ([1]), and their mean (estimate).
-    static constexpr int kKept = 4;
+    // thread ([0]) and on several ([1]), and their median (estimate: a
+    // refinement slowed once, by a page fault storm or a preempted helper,
+    // does not turn the choice).
+    static constexpr int kKept = 5;
     double recent[2][kKept] = {};
     int samples[2] = {0, 0};  // refinements each way so far (the first is not counted)
     int sinceProbe = 0;
