@@ -72,7 +72,7 @@ void measureRefinement(benchmark::State& state, int threads, sbt::Refiner& refin
     for (int k = 0; k < argCount; ++k) key.append("/").append(std::to_string(state.range(k)));
     sbt::ThreadChoice& kept = learned[key];
     refiner.threadChoice(view) = kept;
-    const int serialBefore = kept.samples[0], parallelBefore = kept.samples[1];
+    const int64_t serialBefore = kept.samples[0], parallelBefore = kept.samples[1];
     for (auto _ : state) {
         refine(mesh);
         benchmark::DoNotOptimize(mesh.indices.data());
@@ -80,10 +80,10 @@ void measureRefinement(benchmark::State& state, int threads, sbt::Refiner& refin
     kept = refiner.threadChoice(view);
     if (threads == 0) {
         // the share of the timed refinements the default ran on one thread
-        const int serial = kept.samples[0] - serialBefore,
-                  parallel = kept.samples[1] - parallelBefore;
+        const int64_t serial = kept.samples[0] - serialBefore,
+                      parallel = kept.samples[1] - parallelBefore;
         state.counters["one_thread"] =
-            serial + parallel > 0 ? double(serial) / (serial + parallel) : 0.0;
+            serial + parallel > 0 ? double(serial) / double(serial + parallel) : 0.0;
     }
     state.SetItemsProcessed(state.iterations() * mesh.triangleCount);
     state.counters["triangles"] = double(mesh.triangleCount);

@@ -957,15 +957,13 @@ void checkView(const ViewParams& view) {
 }
 }  // namespace
 
-// The largest magnitude of a world coordinate or radius of the grid: the scale
-// of the fast view path's float slack.
 // Probe the slower way every kProbeClose refinements while the two are within
 // 20%, every kProbeFar refinements otherwise: a probe costs a refinement at
 // the slower speed, and a wide gap rarely closes at once.
 constexpr int kProbeClose = 8, kProbeFar = 32;
 
 double ThreadChoice::estimate(int way) const {
-    const int n = std::min(samples[way] - 1, kKept);
+    const int n = int(std::min<int64_t>(samples[way] - 1, kKept));
     double kept[kKept];
     for (int k = 0; k < n; ++k) {  // insertion sort of at most kKept values
         int at = k;
@@ -992,11 +990,13 @@ void ThreadChoice::record(bool parallel, double seconds, int64_t triangles) {
     const int way = parallel ? 1 : 0;
     // The first refinement each way is not counted: it grows buffers, starts
     // threads and faults pages in.
-    const int counted = samples[way]++;
+    const int64_t counted = samples[way]++;
     if (counted == 0) return;
     recent[way][(counted - 1) % kKept] = seconds / double(std::max<int64_t>(triangles, 1));
 }
 
+// The largest magnitude of a world coordinate or radius of the grid: the scale
+// of the fast view path's float slack.
 void Refiner::measureMagnitude() {
     const size_t count = size_t(side_) * side_;
     const float* h = field_->samples().data();

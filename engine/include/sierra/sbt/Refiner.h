@@ -105,7 +105,7 @@ struct ThreadChoice {
     // does not turn the choice).
     static constexpr int kKept = 5;
     double recent[2][kKept] = {};
-    int samples[2] = {0, 0};  // refinements each way so far (the first is not counted)
+    int64_t samples[2] = {0, 0};  // refinements each way so far (the first is not counted)
     int sinceProbe = 0;
     double estimate(int way) const;
     // True: run the next refinement on one thread.
