@@ -287,7 +287,10 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
                 [](Scene& s, Words) { s.lod.geomorph = false; });
         addFlag("--no-cull", "Do not cull against the view frustum", g,
                 [](Scene& s, Words) { s.lod.cull = false; });
-        add("--threads", "CPU threads (0 = all cores; the SBT refinement then runs on one or all, whichever it measures faster)", g, "N", msg(d.lod.threads), 1,
+        add("--threads",
+            "CPU threads (0 = all cores; the SBT refinement then runs on one or all, whichever it "
+            "measures faster)",
+            g, "N", msg(d.lod.threads), 1,
             [](Scene& s, Words w) { s.lod.threads = parseInt(w[0], "--threads"); });
         add("--mesh",
             "Draw this TIN (an OBJ from sierra-tin of the same terrain) instead of the SBT", g,
