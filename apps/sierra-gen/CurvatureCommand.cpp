@@ -32,7 +32,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -74,12 +73,8 @@ analysis::CurvatureOptions curvatureOptions(const CurvatureCommandOptions& o) {
             throw Error(msg("curvature: --normals: ", e.what()));
         }
         options.distance = o.distance;
-        if (o.scale != "auto") {
-            char* end = nullptr;
-            options.scale = std::strtof(o.scale.c_str(), &end);
-            if (o.scale.empty() || *end != '\0')
-                throw Error(msg("curvature: --scale '", o.scale, "': expected a number or 'auto'"));
-        }
+        if (o.scale != "auto")
+            options.scale = scene::parseFloat(o.scale, "curvature: --scale", "a number or 'auto'");
         options.signedValues = o.signedValues;
         analysis::validate(options);  // its messages start "curvature: " and name the value
     });

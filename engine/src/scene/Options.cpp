@@ -11,12 +11,10 @@
 #include <sstream>
 
 namespace sierra::scene {
-namespace {
 
 // Numbers are parsed here rather than by CLI11, so every bad value gets the
 // same kind of message: the option, the text and what was expected.
-float parseFloat(const std::string& text, const std::string& option,
-                 const char* expected = "a number") {
+float parseFloat(const std::string& text, const std::string& option, const char* expected) {
     char* end = nullptr;
     errno = 0;
     float v = std::strtof(text.c_str(), &end);
@@ -24,6 +22,8 @@ float parseFloat(const std::string& text, const std::string& option,
         throw Error(msg(option, " '", text, "': expected ", expected));
     return v;
 }
+
+namespace {
 
 int parseInt(const std::string& text, const std::string& option,
              const char* expected = "an integer") {

@@ -63,6 +63,12 @@ enum OptionGroup : unsigned {
     kAllOptions = (1u << 11) - 1,
 };
 
+// A finite float option value, or sierra::Error "OPTION 'TEXT': expected
+// EXPECTED" (empty, trailing characters, out of float range, NaN or inf):
+// the registrar's parser, for an app's own options too.
+float parseFloat(const std::string& text, const std::string& option,
+                 const char* expected = "a number");
+
 class SceneOptions {
   public:
     // Registers the options of `groups` on `app`. `scene` holds the app's
