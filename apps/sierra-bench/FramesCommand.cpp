@@ -200,14 +200,23 @@ void runFrames(const FramesOptions& o) {
     double triangles = medianOf(&FrameRecord::triangles);
     double bytes = medianOf(&FrameRecord::bytes);
     double indices = medianOf(&FrameRecord::indices);
+    // Refinement throughput, frame by frame (triangles over that frame's
+    // refine + strip time), then the median: the per-core rate when the
+    // refinement ran on one thread.
+    std::vector<double> rates;
+    for (const FrameRecord& r : records)
+        if (r.refine > 0) rates.push_back(double(r.triangles) / (r.refine * 1e-3));
+    const double rate = rates.empty() ? 0.0 : median(rates);
+    const bool adaptive = sc.lod.threads == 0;
+    const std::string threadsText =
+        adaptive ? msg("default (1 or ", defaultThreadCount(), ", whichever measures faster)")
+                 : msg(sc.lod.threads);
 
     std::printf(
         "sierra-bench frames: %s, %dx%d, %s path, %zu frames, lod %s, tau %g px, geomorph %s, msaa "
-        "%d, "
-        "threads %d\n",
+        "%d, threads %s\n",
         description.c_str(), width, height, pathText.c_str(), cameras.size(), lodText.c_str(),
-        draw.tau, draw.geomorph ? "on" : "off", sc.output.msaa,
-        sc.lod.threads ? sc.lod.threads : defaultThreadCount());
+        draw.tau, draw.geomorph ? "on" : "off", sc.output.msaa, threadsText.c_str());
     std::printf("renderer: %s\n", context.renderer().c_str());
     std::printf("%-22s %10s %10s %10s\n", "stage (ms)", "median", "p95", "p99");
     auto row = [](const char* name, Stats s) {
@@ -220,6 +229,7 @@ void runFrames(const FramesOptions& o) {
     row("read-back", readS);
     row("frame", total);
     std::printf("triangles per frame (median): %.0f\n", triangles);
+    std::printf("refine + strip rate (median over frames): %.1f M triangles/s\n", rate * 1e-6);
     std::printf("indices per triangle: %.3f\n", triangles > 0 ? indices / triangles : 0.0);
     std::printf("bytes uploaded per frame (median): %.0f (%.2f per triangle)\n", bytes,
                 triangles > 0 ? bytes / triangles : 0.0);
@@ -237,6 +247,7 @@ void runFrames(const FramesOptions& o) {
     j["geomorph"] = draw.geomorph;
     j["msaa"] = sc.output.msaa;
     j["threads"] = sc.lod.threads ? sc.lod.threads : defaultThreadCount();
+    j["threads_adaptive"] = adaptive;
     auto toJson = [](Stats s) {
         return nlohmann::json{{"median", s.median}, {"p95", s.p95}, {"p99", s.p99}};
     };
@@ -244,6 +255,7 @@ void runFrames(const FramesOptions& o) {
                {"draw", toJson(drawS)},          {"draw_gl_timer", toJson(gpuS)},
                {"read_back", toJson(readS)},     {"frame", toJson(total)}};
     j["triangles_median"] = triangles;
+    j["refine_triangles_per_second_median"] = rate;
     j["indices_per_triangle"] = triangles > 0 ? indices / triangles : 0.0;
     j["bytes_per_frame_median"] = bytes;
     j["bytes_per_triangle"] = triangles > 0 ? bytes / triangles : 0.0;
