@@ -5,6 +5,8 @@
 // BM_Curvature/2049/... for the CPU time of the same field.
 #include <sierra/analysis/Curvature.h>
 #include <sierra/gpu/EglContext.h>
+#include <sierra/gpu/Objects.h>
+#include <sierra/gpu/Program.h>
 #include <sierra/render/CurvatureGpu.h>
 #include <sierra/terrain/DiamondSquare.h>
 
@@ -94,6 +96,83 @@ BENCHMARK(BM_CurvatureGpu)
     ->ArgsProduct({{2049}, {1, 2, 3}, {0}, {0}, {2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The floor of the fragment runs on this driver: a full-screen pass that
+// writes a value computed from gl_FragCoord to the same 8 RGBA32F layers
+// (ceil(size / 8) x size, sample i of a run in layer i % 8) and reads
+// nothing, finished with glFinish. On llvmpipe a colour write loads the
+// destination block before it stores it (its blend stage reads every colour
+// buffer, blending on or off), so the field's 67 MB at 2049^2 cost a read
+// and a write; the CPU reference only writes. Arg: grid side.
+void BM_CurvatureGpuWriteFloor(benchmark::State& state) {
+    const int size = int(state.range(0));
+    GpuSetup& s = setup(size);
+    constexpr int kRun = sierra::render::CurvatureGpu::kRun;
+    const int runs = (size + kRun - 1) / kRun;
+    GLuint name = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &name);
+    sierra::gpu::Texture layers(name, sierra::gpu::kAdopt);
+    glTextureStorage3D(name, 1, GL_RGBA32F, runs, size, kRun);
+    sierra::gpu::Framebuffer framebuffer = sierra::gpu::Framebuffer::create();
+    GLenum buffers[kRun];
+    for (int k = 0; k < kRun; ++k) {
+        glNamedFramebufferTextureLayer(framebuffer.id(), GLenum(GL_COLOR_ATTACHMENT0 + k), name, 0,
+                                       k);
+        buffers[k] = GLenum(GL_COLOR_ATTACHMENT0 + k);
+    }
+    glNamedFramebufferDrawBuffers(framebuffer.id(), kRun, buffers);
+    framebuffer.checkComplete("write floor");
+    auto stage = [](GLenum type, const char* source) {
+        const GLuint shader = glCreateShader(type);
+        glShaderSource(shader, 1, &source, nullptr);
+        glCompileShader(shader);
+        return shader;
+    };
+    const GLuint vs = stage(GL_VERTEX_SHADER,
+                            "#version 450 core\n"
+                            "void main() {\n"
+                            "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
+                            "    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);\n"
+                            "}\n");
+    const GLuint fs =
+        stage(GL_FRAGMENT_SHADER,
+              "#version 450 core\n"
+              "layout(location = 0) out vec4 o[8];\n"
+              "void main() {\n"
+              "    vec2 f = gl_FragCoord.xy;\n"
+              "    for (int k = 0; k < 8; ++k) o[k] = vec4(f.x + float(k), f.y, f.x * f.y, 1.0);\n"
+              "}\n");
+    GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    sierra::gpu::Program owned(program, sierra::gpu::kAdopt);
+    GLint linked = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) {
+        state.SkipWithError("write floor: the shader did not link");
+        return;
+    }
+    sierra::gpu::VertexArray vertexArray = sierra::gpu::VertexArray::create();
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer.id());
+    glViewport(0, 0, runs, size);
+    glUseProgram(program);
+    glBindVertexArray(vertexArray.id());
+    for (GLenum cap : {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_STENCIL_TEST, GL_SCISSOR_TEST})
+        glDisable(cap);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+    for (auto _ : state) {
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glFinish();
+    }
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    state.SetItemsProcessed(state.iterations() * int64_t(size) * size);
+    state.SetLabel("8 RGBA32F layers written, nothing read, on " + s.context.renderer());
+}
+BENCHMARK(BM_CurvatureGpuWriteFloor)->Arg(2049)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // A field with no data (the lowest tenth of the terrain, a coast) on the CPU
 // with all threads (device 0) and on the GPU's default path (device 1).
