@@ -56,6 +56,18 @@ TEST(SbtThreadChoice, FollowsTheLoadWhenItChanges) {
     EXPECT_LE(run(choice, 64, 1.0, 0.6), 64 / 32 + 1);
 }
 
+TEST(SbtThreadChoice, ANearTieGoesToOneThread) {
+    // Two threads 5% faster per triangle: within the margin, one thread is
+    // kept (its times scatter less), the other way probed now and then.
+    sbt::ThreadChoice near;
+    run(near, 4, 1.0, 0.95);
+    EXPECT_GE(run(near, 64, 1.0, 0.95), 64 - 64 / 8 - 1);
+    // 15% faster: past the margin, two threads are kept.
+    sbt::ThreadChoice past;
+    run(past, 4, 1.0, 0.85);
+    EXPECT_LE(run(past, 64, 1.0, 0.85), 64 / 8 + 1);
+}
+
 TEST(SbtThreadChoice, OneSlowRefinementDoesNotTurnIt) {
     sbt::ThreadChoice choice;
     run(choice, 64, 1.0, 0.6);

@@ -957,10 +957,16 @@ void checkView(const ViewParams& view) {
 }
 }  // namespace
 
-// Probe the slower way every kProbeClose refinements while the two are within
-// 20%, every kProbeFar refinements otherwise: a probe costs a refinement at
-// the slower speed, and a wide gap rarely closes at once.
+// Probe the way not taken every kProbeClose refinements while the two are
+// within 20%, every kProbeFar refinements otherwise: a probe costs a
+// refinement at the slower speed, and a wide gap rarely closes at once.
 constexpr int kProbeClose = 8, kProbeFar = 32;
+// Several threads are taken only when their median is faster per triangle by
+// this factor: near a tie the parallel times scatter more (a preempted helper
+// costs the caller its chunk, BM_RefineFixed/1025/-1/2 with one core busy had
+// a coefficient of variation of 8% against 0.7% on one thread), so a tie
+// called either way by noise made the default 2-7% slower than one thread.
+constexpr double kParallelMargin = 1.1;
 
 double ThreadChoice::estimate(int way) const {
     const int n = int(std::min<int64_t>(samples[way] - 1, kKept));
@@ -977,13 +983,13 @@ bool ThreadChoice::serial() {
     if (samples[1] < 2) return false;
     if (samples[0] < 2) return true;
     const double one = estimate(0), several = estimate(1);
-    const bool serialFaster = one < several;
+    const bool serialChosen = one <= several * kParallelMargin;
     const double gap = std::max(one, several) / std::max(1e-30, std::min(one, several));
     if (++sinceProbe >= (gap < 1.2 ? kProbeClose : kProbeFar)) {
         sinceProbe = 0;
-        return !serialFaster;
+        return !serialChosen;
     }
-    return serialFaster;
+    return serialChosen;
 }
 
 void ThreadChoice::record(bool parallel, double seconds, int64_t triangles) {

@@ -93,8 +93,10 @@ inline constexpr int64_t kParallelTriangles = int64_t(1) << 17;
 
 // The default thread count (threads 0) adapts to the machine's load: a
 // refinement that may use sierra::defaultThreadCount() threads runs on one
-// while the recent ones in its mode ran faster that way (median wall time per
-// triangle, measured; the other way is tried again every few refinements).
+// unless the recent ones in its mode ran at least 10% faster per triangle on
+// several (median wall time per triangle, measured; a near tie goes to one
+// thread, whose times scatter less; the other way is tried again every few
+// refinements).
 // With the other core busy, two threads can lose to one (the helper shares a
 // core with the caller); the default never keeps the slower way for long.
 // An explicit count is used as given (tests and benchmarks compare them).
