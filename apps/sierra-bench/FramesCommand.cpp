@@ -92,6 +92,11 @@ gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& tar
 void runFrames(const FramesOptions& o) {
     const scene::Scene& sc = o.scene;
     // Outputs are checked before the run, so a bad path fails at once.
+    if (!o.saveFrames.empty() && lowerExtension(o.saveFrames) != ".png")
+        throw UsageError(
+            msg("frames: --save-frames must name a .png file (frames are written as "
+                "PNG, NAME_0000.png, ...), got '",
+                o.saveFrames, "'"));
     for (const std::string* path : {&o.json, &o.saveFrames})
         if (!path->empty()) ensureWritableLocation(*path);
     const int width = sc.output.width, height = sc.output.height;

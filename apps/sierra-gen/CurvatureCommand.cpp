@@ -53,11 +53,6 @@ struct CurvatureCommandOptions {
     std::string png;
 };
 
-bool endsWith(const std::string& text, const std::string& tail) {
-    return text.size() >= tail.size() &&
-           text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
-}
-
 // The options as the analysis takes them; throws UsageError naming the option.
 analysis::CurvatureOptions curvatureOptions(const CurvatureCommandOptions& o) {
     analysis::CurvatureOptions options;
@@ -80,9 +75,9 @@ analysis::CurvatureOptions curvatureOptions(const CurvatureCommandOptions& o) {
     });
     if (o.device != "cpu" && o.device != "gpu")
         throw UsageError(msg("curvature: --device must be cpu or gpu, got '", o.device, "'"));
-    if (!endsWith(o.out, ".npy"))
+    if (lowerExtension(o.out) != ".npy")
         throw UsageError(msg("curvature: --out must name a .npy file, got '", o.out, "'"));
-    if (!o.png.empty() && !endsWith(o.png, ".png"))
+    if (!o.png.empty() && lowerExtension(o.png) != ".png")
         throw UsageError(msg("curvature: --png must name a .png file, got '", o.png, "'"));
     return options;
 }

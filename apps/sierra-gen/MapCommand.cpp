@@ -57,6 +57,9 @@ void runMap(const MapOptions& o) {
             "slope)");
 
     // The output location and the table are checked before the work.
+    if (lowerExtension(o.out) != ".png")
+        throw UsageError(
+            msg("map: --out must name a .png file (maps are written as PNG), got '", o.out, "'"));
     ensureWritableLocation(o.out);
     std::optional<terrain::CptTable> cpt;
     if (!o.cpt.empty()) cpt = terrain::readCpt(o.cpt);

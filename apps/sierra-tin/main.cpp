@@ -135,8 +135,7 @@ double budgetEpsilon(int64_t triangles, const terrain::Heightfield& field,
 
 int run(const Options& o) {
     // Reject an unknown mesh format and an unwritable output before the work, not after it.
-    std::string ext = o.out.size() >= 4 ? o.out.substr(o.out.size() - 4) : "";
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowerExtension(o.out);
     if (ext != ".obj" && ext != ".ply" && ext != ".stl")
         throw Error(msg(o.out, ": unknown mesh format (use .obj, .ply or .stl)"));
     ensureWritableLocation(o.out);

@@ -112,5 +112,13 @@ TEST_F(CoreFiles, EnsureWritableLocationCreatesOrRefusesEarly) {
     EXPECT_NO_THROW(ensureWritableLocation("sierra_core_files_bare_name.png"));
 }
 
+TEST(CoreFilesExtension, IsTheFileNamesLastDotOnInLowerCase) {
+    EXPECT_EQ(lowerExtension("out/Frame.PNG"), ".png");
+    EXPECT_EQ(lowerExtension("a.b/mesh.tar.OBJ"), ".obj");
+    EXPECT_EQ(lowerExtension("dir.png/frame"), "");  // a dot in a folder is not the file's
+    EXPECT_EQ(lowerExtension("frame"), "");
+    EXPECT_EQ(lowerExtension(""), "");
+}
+
 }  // namespace
 }  // namespace sierra

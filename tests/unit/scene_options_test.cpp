@@ -281,6 +281,14 @@ TEST_F(SceneOptionsTest, BadValuesGiveClearErrors) {
     EXPECT_THAT(parseError({"--channel", "alpha"}), HasSubstr("--channel"));
     EXPECT_THAT(parseError({"--size", "0x5"}), HasSubstr("--size"));
     EXPECT_THAT(parseError({"--depth-out", "d.png"}), HasSubstr(".npy"));
+    // Images are PNG whatever their name: another extension is refused.
+    EXPECT_THAT(parseError({"--out", "frame.jpg"}),
+                AllOf(HasSubstr("--out"), HasSubstr(".png"), HasSubstr("frame.jpg")));
+    EXPECT_THAT(parseError({"--debug-out", "debug.bmp"}),
+                AllOf(HasSubstr("--debug-out"), HasSubstr(".png")));
+    EXPECT_THAT(parseError({"--snapshot-only", "ui"}),
+                AllOf(HasSubstr("--snapshot-only"), HasSubstr(".png")));
+    EXPECT_EQ(parseError({"--out", "FRAME.PNG", "--depth-out", "D.NPY"}), "");
     EXPECT_THAT(parseError({"--seed", "-1"}), HasSubstr("--seed"));
     EXPECT_THAT(parseError({"--threads", "1000"}), HasSubstr("--threads"));
     EXPECT_THAT(parseError({"--elevation", "95"}), HasSubstr("--elevation"));

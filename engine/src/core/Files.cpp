@@ -3,6 +3,7 @@
 #include <sierra/core/Error.h>
 
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -186,6 +187,12 @@ void ensureWritableLocation(const std::string& path) {
         throw Error(msg("cannot write ", path, ": the directory ", dir, " is not writable (",
                         std::strerror(errno), ")"));
     checkTarget(path);
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
 }
 
 }  // namespace sierra

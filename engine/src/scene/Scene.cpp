@@ -3,6 +3,7 @@
 #include <sierra/scene/Assets.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
 #include <sierra/terrain/DiamondSquare.h>
 
 #include "scene/Names.h"
@@ -204,8 +205,17 @@ void validateOutput(const OutputDesc& o) {
     if (o.msaa != 0 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8)
         fail("output.msaa", "--msaa", msg("must be 0 (off), 2, 4 or 8, got ", o.msaa));
     if (o.frame.empty()) fail("output.frame", "--out", "must name a PNG file");
-    if (!o.depth.empty() &&
-        (o.depth.size() < 4 || o.depth.compare(o.depth.size() - 4, 4, ".npy") != 0))
+    // Images are written as PNG whatever their name: a name that promises
+    // another format (frame.jpg) is refused rather than silently mislabelled.
+    auto png = [&](const std::string& path, const char* key, const char* option) {
+        if (!path.empty() && lowerExtension(path) != ".png")
+            fail(key, option,
+                 msg("must be a .png file (images are written as PNG), got '", path, "'"));
+    };
+    png(o.frame, "output.frame", "--out");
+    png(o.debug, "output.debug", "--debug-out");
+    png(o.snapshotOnly, "output.snapshot_only", "--snapshot-only");
+    if (!o.depth.empty() && lowerExtension(o.depth) != ".npy")
         fail("output.depth", "--depth-out", msg("must be a .npy file, got '", o.depth, "'"));
 }
 

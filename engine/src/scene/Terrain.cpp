@@ -1,6 +1,7 @@
 #include <sierra/scene/Terrain.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
 #include <sierra/terrain/DiamondSquare.h>
 #include <sierra/terrain/HeightfieldIO.h>
 #include <sierra/terrain/Padding.h>
@@ -154,9 +155,7 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
 bool metricHeights(const TerrainSource& source) {
     if (source.heightUnits != HeightUnits::Auto) return source.heightUnits == HeightUnits::Metres;
     if (source.heightmap.empty()) return false;
-    std::string ext = std::filesystem::path(source.heightmap).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
+    const std::string ext = lowerExtension(source.heightmap);
     // SRTM and GeoTIFF carry metres: their loaders set the ground spacing, and
     // heights need no exaggeration.
     return ext == ".hgt" || ext == ".tif" || ext == ".tiff";

@@ -2,6 +2,7 @@
 
 #include "terrain/Npz.h"
 
+#include <sierra/core/Files.h>
 #include <sierra/terrain/FileIO.h>
 #include <sierra/terrain/Maps.h>
 #include <sierra/terrain/Padding.h>
@@ -43,12 +44,6 @@ const char* const kSupported =
 #else
     " (.tif/.tiff need a build with SIERRA_WITH_GDAL=ON)";
 #endif
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
 
 // Most samples a field within the limits may hold: width * height never
 // exceeds the padded square.

@@ -35,13 +35,6 @@ void putBinary(std::string& out, T value) {
     out.append(bytes, sizeof(T));  // little-endian hosts only (x86-64, aarch64)
 }
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
 void checkMesh(const TinMesh& mesh) {
     SIERRA_CHECK(mesh.heights.size() == mesh.vertices.size() &&
                      mesh.surfaces.size() == mesh.triangles.size() &&

@@ -49,4 +49,8 @@ void writeFileAtomic(const std::string& path, std::string_view text);
 // run. Throws sierra::Error "cannot write PATH: ..." naming what is wrong.
 void ensureWritableLocation(const std::string& path);
 
+// The extension of `path`'s file name with its dot, in lower case (".png" for
+// "out/Frame.PNG"; "" when the name has none).
+std::string lowerExtension(const std::string& path);
+
 }  // namespace sierra
