@@ -5,15 +5,17 @@
 // polyline's rank) and expanded to an antialiased quad of uWidth pixels
 // (overlay_common.glsl).
 //
-// Distance thinning: where a grid cell covers c < kFullCellPixels on the
-// screen, a segment is drawn only when its polyline's rank (evenly spread over
-// [0, 1), LinePass) is below (c / kFullCellPixels)^2. A far polyline shrinks
-// to a blob of the quad's least size (its width and antialiasing ramp), so
-// the polylines per screen area, (1 / c)^2 times those per cell, are what
-// blackens a far slope: keeping that fraction keeps them at the density of a
-// cell of kFullCellPixels (hatches thin by the same square, a stride in both
-// axes). A polyline stays whole where c does not cross its rank. The
-// segment's first end decides for all four corners.
+// Distance thinning: where a grid cell covers c < kFullCellPixels * w on the
+// screen (w = max(1, uWidth)), a segment is drawn only when its polyline's
+// rank (evenly spread over [0, 1), LinePass) is below (c / (kFullCellPixels
+// * w))^2. A far polyline shrinks to a blob of the quad's least size (its
+// width and antialiasing ramp), so the polylines per screen area, (1 / c)^2
+// times those per cell, each covering about w^2 pixels, are what blackens a
+// far slope: keeping that fraction keeps them at the density of one polyline
+// per cell of kFullCellPixels * w pixels, whatever the width (hatches thin
+// by the same square, a stride in both axes). A polyline stays whole where c
+// does not cross its rank. The segment's first end decides for all four
+// corners.
 #include "frame.glsl"
 #include "terrain_common.glsl"
 #include "overlay_common.glsl"
@@ -35,7 +37,7 @@ void main() {
     Segment s = uSegments[gl_VertexID >> 2];
     vec3 a = overlayPoint(s.a.xy), b = overlayPoint(s.b.xy);
     int corner = gl_VertexID & 3;
-    float cell = cellPixels(a, uViewProj * vec4(a, 1.0)) / kFullCellPixels;
+    float cell = cellPixels(a, uViewProj * vec4(a, 1.0)) / (kFullCellPixels * max(uWidth, 1.0));
     if (s.a.w >= cell * cell) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // thinned out: outside the clip volume
         vAcross = 0.0;

@@ -280,9 +280,12 @@ TEST_F(Overlays, LinesThinOutWhereACellIsUnderAPixel) {
     auto lined = render::TerrainRenderer::create({.field = &field});
     lined.setSurface(render::makePaperSurface());
     lined.addPass(render::LinePass::create(lines));
+    auto wide = render::TerrainRenderer::create({.field = &field});
+    wide.setSurface(render::makePaperSurface());
+    wide.addPass(render::LinePass::create(lines, {.width = 4.0f}));
     auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
     // The share of the terrain's pixels that the lines darken.
-    auto darkShare = [&](float orthoHeight) {
+    auto darkShare = [&](float orthoHeight, render::TerrainRenderer& withLines) {
         const render::Camera camera =
             test::topDownCamera({128.0f, 0.0f, 128.0f}, orthoHeight, 400.0f);
         auto frame = [&](render::TerrainRenderer& r) {
@@ -290,7 +293,7 @@ TEST_F(Overlays, LinesThinOutWhereACellIsUnderAPixel) {
             r.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full});
             return target.read();
         };
-        const gpu::Image without = frame(plain), with = frame(lined);
+        const gpu::Image without = frame(plain), with = frame(withLines);
         const SkyTest isSky{SkyTest::clearColour()};
         int64_t terrain = 0, darkened = 0;
         for (int y = 0; y < kHeight; ++y)
@@ -302,12 +305,25 @@ TEST_F(Overlays, LinesThinOutWhereACellIsUnderAPixel) {
             }
         return double(darkened) / double(std::max<int64_t>(terrain, 1));
     };
-    const double close = darkShare(float(kHeight) / 2.0f), far = darkShare(float(kHeight) * 4.0f);
+    const double close = darkShare(float(kHeight) / 2.0f, lined),
+                 far = darkShare(float(kHeight) * 4.0f, lined);
     std::printf("%zu lines, dark share: %.3f with 2 pixels a cell, %.3f with 0.25\n",
                 lines.polylineCount(), close, far);
     EXPECT_GT(close, 0.02) << "too few line pixels to compare";
     EXPECT_GT(far, 0.25 * close) << "the far lines are gone";
     EXPECT_LT(far, 1.5 * close) << "the far lines blacken the terrain";
+    // Lines 4 pixels wide cover 16 times the pixels of a far polyline's blob:
+    // they thin out below cells of 4 pixels, to the same density of
+    // polylines per screen area as the thin ones at 1.
+    const double wideClose = darkShare(float(kHeight) / 2.0f, wide),
+                 wideFar = darkShare(float(kHeight) * 4.0f, wide);
+    std::printf("4-pixel lines, dark share: %.3f with 2 pixels a cell, %.3f with 0.25\n", wideClose,
+                wideFar);
+    // (Thinned by the cell alone: 0.68 and 0.82 against 0.42 for thin lines
+    // close up; by the cell over the width: 0.25 and 0.12.)
+    EXPECT_GT(wideFar, 0.1 * close) << "the far wide lines are gone";
+    EXPECT_LT(wideFar, 1.5 * close) << "the far wide lines blacken the terrain";
+    EXPECT_LT(wideClose, 1.5 * close) << "the close wide lines blacken the terrain";
 }
 
 TEST_F(Overlays, NothingIsDrawnBesideTheTerrainWhereThereIsWater) {

@@ -6,9 +6,11 @@
 // colour is set. Each point is lifted towards the camera along its view ray
 // by the SBT's saturated error at the nearest vertex (overlay_common.glsl),
 // so the lines neither sink into nor float over the mesh at any tau. Where a
-// grid cell covers c < kFullCellPixels on the screen the polylines thin out
-// (line.vert): a fraction (c / kFullCellPixels)^2 of them is drawn, so a far
-// slope keeps the density of lines per screen area of a near one.
+// grid cell covers c < kFullCellPixels * w on the screen (w = max(1, width))
+// the polylines thin out (line.vert): a fraction (c / (kFullCellPixels *
+// w))^2 of them is drawn, so a far slope keeps the density of lines per
+// screen area of a near one, and wide lines, which cover w^2 times the
+// pixels, thin out sooner.
 
 #include <sierra/analysis/Lines.h>
 #include <sierra/gpu/Objects.h>
@@ -36,7 +38,8 @@ class LinePass final : public Pass {
     void draw(const FrameContext& frame) override;
     size_t segmentCount() const { return segments_; }
 
-    // Below this screen size of a grid cell (pixels) the lines thin out.
+    // Below this screen size of a grid cell (pixels, times the line width
+    // when it is over 1) the lines thin out.
     static constexpr float kFullCellPixels = 1.0f;
 
   private:
