@@ -6,6 +6,7 @@
 #include "GlTest.h"
 #include "GoldenCompare.h"
 
+#include <sierra/core/Parallel.h>
 #include <sierra/gpu/Gl.h>
 #include <sierra/gpu/ReadBack.h>
 #include <sierra/render/Capture.h>
@@ -154,6 +155,25 @@ std::map<std::string, std::string> styleTexts(const render::DebugPanel& panel) {
             for (const render::StyleParam& p : section.params)
                 if (p.kind == render::StyleParam::Kind::Text) texts[p.name] = p.text;
     return texts;
+}
+
+// The text of row `label` of section `title`; "" when there is none.
+std::string rowText(const render::DebugPanel& panel, const std::string& title,
+                    const std::string& label) {
+    for (const render::DebugSection& section : panel.sections)
+        if (section.title == title)
+            for (const auto& [name, text] : section.rows)
+                if (name == label) return text;
+    return "";
+}
+
+TEST_F(DebugSnapshot, ThreadsRowSaysWhetherTheCountIsMeasured) {
+    render::DrawStats stats;
+    frame(640, &stats);
+    EXPECT_EQ(rowText(panel(640, stats, false), "Renderer", "threads"), "2 (refinement)");
+    draw_.threads = 0;  // the default: one thread or all, whichever measures faster
+    EXPECT_EQ(rowText(panel(640, stats, false), "Renderer", "threads"),
+              "1 or " + std::to_string(defaultThreadCount()) + " (measured)");
 }
 
 TEST_F(DebugSnapshot, StyleShowsTheOverlaysAndTheCurvatureScaleDrawn) {

@@ -79,13 +79,17 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     panel.sections.push_back(std::move(source));
 
     DebugSection renderer{.title = "Renderer"};
-    const int threads = f.draw.threads > 0 ? f.draw.threads : defaultThreadCount();
+    // The default count (0) refines on one thread or on all, whichever it
+    // measures faster (sbt::ThreadChoice).
+    const std::string threads = f.draw.threads > 0
+                                    ? msg(f.draw.threads, " (refinement)")
+                                    : msg("1 or ", defaultThreadCount(), " (measured)");
     renderer.rows = {
         {"GL renderer", f.glRenderer},
         {"GL version", f.glVersion},
         {"EGL", f.eglPlatform},
         {"MSAA", s.output.msaa ? msg(s.output.msaa, " samples") : "off"},
-        {"threads", msg(threads, " (refinement)")},
+        {"threads", threads},
         {"frame", msg(f.frameWidth, " x ", f.height, " pixels")},
     };
     panel.sections.push_back(std::move(renderer));
