@@ -25,9 +25,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 using namespace sierra;
 
@@ -127,24 +129,50 @@ int run(const scene::Scene& s) {
                                     .frameMs = frameMs,
                                     .overlays = overlays};
         render::DebugPanel panel = render::buildDebugPanel(facts, s.output.snapshotDeterministic);
-        gpu::Image shot;
+        panel.columnWidth = uiOnly ? column : width - frameWidth;
+        const int shotWidth = uiOnly ? column : width;
+        // A frame too short for the whole panel gets a taller snapshot (the
+        // frame at its top, the UI's background below it) rather than a
+        // column cut off by a scroll bar.
+        int shotHeight = std::max(height, overlay->contentHeight(panel, shotWidth, height));
+        // Measured again at that height: without the scroll bar the text
+        // wraps less and the column is shorter.
+        if (shotHeight > height)
+            shotHeight = std::max(height, overlay->contentHeight(panel, shotWidth, shotHeight));
+        std::optional<render::FrameTarget> tall;
+        if (shotHeight > height)
+            tall.emplace(render::FrameTarget::create({.width = shotWidth,
+                                                      .height = shotHeight,
+                                                      .samples = s.output.msaa,
+                                                      .offscreen = true}));
+        const glm::vec4 uiBackground{0.2f, 0.2f, 0.22f, 1.0f};
         if (uiOnly) {
-            panel.columnWidth = column;
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            glViewport(0, 0, column, height);
-            glClearColor(0.2f, 0.2f, 0.22f, 1.0f);
-            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-            overlay->draw(panel, column, height);
-            shot = gpu::readFramebuffer(column, height);
+            if (tall) {
+                tall->begin(uiBackground);
+                tall->resolve();
+            } else {
+                glBindFramebuffer(GL_FRAMEBUFFER, 0);
+                glViewport(0, 0, column, height);
+                glClearColor(uiBackground.r, uiBackground.g, uiBackground.b, uiBackground.a);
+                glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            }
         } else {
-            panel.columnWidth = width - frameWidth;
-            target.begin(clear);
-            glViewport(0, 0, frameWidth, height);
+            render::FrameTarget& into = tall ? *tall : target;
+            into.begin(clear);
+            if (tall) {  // below the frame: the UI's background (GL's rows run bottom-up)
+                glEnable(GL_SCISSOR_TEST);
+                glScissor(0, 0, frameWidth, shotHeight - height);
+                glClearColor(uiBackground.r, uiBackground.g, uiBackground.b, uiBackground.a);
+                glClear(GL_COLOR_BUFFER_BIT);
+                glDisable(GL_SCISSOR_TEST);
+            }
+            glViewport(0, shotHeight - height, frameWidth, height);
             terrain.draw(camera, frameWidth, height, draw);
-            target.resolve();
-            overlay->draw(panel, width, height);
-            shot = gpu::readFramebuffer(width, height);
+            into.resolve();
         }
+        overlay->draw(panel, shotWidth, shotHeight);
+        const gpu::Image shot = gpu::readFramebuffer(shotWidth, shotHeight);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
         render::writePng(path, shot);
         log::info("wrote debug snapshot ", path);
     };

@@ -3,28 +3,6 @@
 # "sierra-gen: error:" line, a non-zero exit and no file.
 include(${CMAKE_CURRENT_LIST_DIR}/common.cmake.inc)
 
-# png_size(W H FILE): width and height from the PNG's IHDR chunk (bytes 16..23, big-endian).
-function(png_size w h file)
-  file(READ ${file} signature HEX LIMIT 8)
-  if(NOT signature STREQUAL "89504e470d0a1a0a")
-    message(FATAL_ERROR "${file} is not a PNG (starts with ${signature})")
-  endif()
-  file(READ ${file} wide HEX OFFSET 16 LIMIT 4)
-  file(READ ${file} high HEX OFFSET 20 LIMIT 4)
-  math(EXPR wide "0x${wide}")
-  math(EXPR high "0x${high}")
-  set(${w} ${wide} PARENT_SCOPE)
-  set(${h} ${high} PARENT_SCOPE)
-endfunction()
-
-function(expect_png_size file width height)
-  expect_file(${file})
-  png_size(w h ${file})
-  if(NOT w EQUAL width OR NOT h EQUAL height)
-    message(FATAL_ERROR "${file} is ${w}x${h}, expected ${width}x${height}")
-  endif()
-endfunction()
-
 # Each scheme on a generated 129^2 terrain: 129x129 pixels.
 foreach(scheme plasma atlas hypsometric hillshade slope)
   run_app(map_${scheme} EXPECT_OK MESSAGE "(129x129)" COMMAND ${GEN} map --generate 129 --scheme ${scheme} --out ${scheme}.png)

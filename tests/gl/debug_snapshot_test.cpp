@@ -262,6 +262,44 @@ TEST_F(DebugSnapshot, UiAloneMatchesGoldenWithPlaceholders) {
     EXPECT_EQ(again.rgba, ui.rgba);
 }
 
+TEST_F(DebugSnapshot, AShortSnapshotGrowsToShowTheWholePanel) {
+    const int column = render::debugColumnWidth(kWidth);
+    render::DrawStats stats;
+    frame(render::snapshotFrameWidth(kWidth, column), &stats);
+    render::DebugPanel p = panel(render::snapshotFrameWidth(kWidth, column), stats, true);
+    p.columnWidth = column;
+    render::DebugOverlay overlay;
+    // The panel needs more than 200 pixels, and fits the default 720.
+    const int needed = overlay.contentHeight(p, column, 200);
+    EXPECT_GT(needed, 200);
+    EXPECT_LT(needed, kHeight);
+    // Drawn 200 pixels high, the window scrolls: its scroll bar's grab (grey,
+    // against the near-black window) shows at the right edge; drawn as high
+    // as measured, nothing does. Both into offscreen targets, the tall one
+    // taller than the context's pbuffer would need to be for 200.
+    auto ui = [&](int height) {
+        auto target = render::FrameTarget::create(
+            {.width = column, .height = height, .samples = 0, .offscreen = true});
+        target.begin({0.2f, 0.2f, 0.22f, 1.0f});
+        target.resolve();
+        overlay.draw(p, column, height);
+        gpu::Image image = gpu::readFramebuffer(column, height);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        return image;
+    };
+    auto greyAtRightEdge = [&](const gpu::Image& image) {
+        int grey = 0;
+        for (int y = 30; y < image.height - 8; ++y)
+            for (int x = column - 14; x < column - 2; ++x) grey += px(image, x, y)[0] > 60;
+        return grey;
+    };
+    const gpu::Image cut = ui(200), whole = ui(needed);
+    render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/debug_whole_panel.png", whole);
+    ASSERT_EQ(whole.height, needed);
+    EXPECT_GT(greyAtRightEdge(cut), 100) << "no scroll bar on the cut-off panel";
+    EXPECT_EQ(greyAtRightEdge(whole), 0) << "the panel drawn as high as measured still scrolls";
+}
+
 TEST_F(DebugSnapshot, MeshInspectionMatchesTheFrame) {
     render::DrawStats stats;
     frame(kWidth, &stats);

@@ -15,6 +15,7 @@ namespace sierra::render {
 
 struct DebugOverlay::State {
     ImGuiContext* context = nullptr;
+    float contentHeight = 0.0f;  // of the last layout: where its content ends, padding included
 };
 
 DebugOverlay::DebugOverlay() : state_(std::make_unique<State>()) {
@@ -70,6 +71,21 @@ void DebugOverlay::draw(const DebugPanel& panel, int width, int height) {
     }
     // The backend backs up and restores the GL state it touches.
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+int DebugOverlay::contentHeight(const DebugPanel& panel, int width, int height) {
+    ImGui::SetCurrentContext(state_->context);
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(float(width), float(height));
+    io.DeltaTime = 1.0f / 60.0f;
+    // Two layouts, as draw() makes: the second is the one measured.
+    for (int pass = 0; pass < 2; ++pass) {
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui::NewFrame();
+        layout(panel, width, height);
+        ImGui::EndFrame();
+    }
+    return int(std::ceil(state_->contentHeight));
 }
 
 namespace {
@@ -172,8 +188,12 @@ void DebugOverlay::layout(const DebugPanel& panel, int width, int height) {
         ImGui::PlotLines("frame ms", panel.frameTimesMs.data(), int(panel.frameTimesMs.size()), 0,
                          nullptr, 0.0f, top * 1.1f, ImVec2(260.0f, 60.0f));
     }
+    // Two halves side by side from a column of kHalvesWidth pixels on; a
+    // narrower one stacks the sections, or every value would wrap a few
+    // characters to a line.
+    constexpr int kHalvesWidth = 480;
     const bool halves =
-        panel.columnWidth > 0 && !panel.sections.empty() &&
+        panel.columnWidth >= kHalvesWidth && !panel.sections.empty() &&
         ImGui::BeginTable("halves", 2,
                           ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_BordersInnerV);
     if (halves) ImGui::TableNextRow();
@@ -202,6 +222,9 @@ void DebugOverlay::layout(const DebugPanel& panel, int width, int height) {
         }
     }
     if (halves) ImGui::EndTable();
+    // Where the content ends (window coordinates, scrolled to the top) and
+    // the bottom padding: the window height that shows it all.
+    state_->contentHeight = ImGui::GetCursorPosY() + ImGui::GetStyle().WindowPadding.y;
     ImGui::End();
 }
 

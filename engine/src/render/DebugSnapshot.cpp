@@ -94,7 +94,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
     };
     panel.sections.push_back(std::move(renderer));
 
-    DebugSection camera{.title = "Camera"};
+    DebugSection camera{.title = "Camera", .column = 1};
     camera.rows = {
         {"position", vec(f.camera.position)},
         {"target", vec(f.camera.target)},

@@ -86,6 +86,12 @@ class DebugOverlay {
     // restoring the GL state it changes.
     void draw(const DebugPanel& panel, int width, int height);
 
+    // The height in pixels a right-hand column (panel.columnWidth > 0) needs
+    // to show all of the panel without scrolling, laid out as draw() would
+    // in a framebuffer `width` pixels wide; draws nothing. A snapshot shorter
+    // than this cuts the column off (a scroll bar shows it).
+    int contentHeight(const DebugPanel& panel, int width, int height);
+
   private:
     void layout(const DebugPanel& panel, int width, int height);
     struct State;

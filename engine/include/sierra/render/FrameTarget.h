@@ -10,9 +10,13 @@
 namespace sierra::render {
 
 struct FrameTargetDesc {
-    int width = 640;  // must match the pbuffer
+    int width = 640;  // must match the pbuffer, unless offscreen
     int height = 360;
     int samples = 0;  // 0 = draw straight into the pbuffer; 2..16 = MSAA through an FBO
+    // Resolve into a framebuffer of its own (RGBA8 colour and depth) instead
+    // of the pbuffer: a target of any size up to the driver's limits, e.g. a
+    // debug snapshot taller than the frame.
+    bool offscreen = false;
 };
 
 class FrameTarget {
@@ -21,7 +25,8 @@ class FrameTarget {
 
     // Binds the target, sets the viewport, clears colour (RGBA) and depth.
     void begin(const glm::vec4& clearColour);
-    // Resolves multisampling into the pbuffer and binds the pbuffer for reading.
+    // Resolves multisampling into the pbuffer (or the offscreen framebuffer)
+    // and binds that framebuffer for drawing and reading.
     void resolve();
     // resolve() then a synchronous read-back.
     gpu::Image read();
@@ -32,9 +37,12 @@ class FrameTarget {
 
   private:
     FrameTargetDesc desc_;
-    gpu::Framebuffer fbo_;
+    gpu::Framebuffer fbo_;  // multisampled
     gpu::Texture colour_;
     gpu::Texture depth_;
+    gpu::Framebuffer resolved_;  // offscreen: what resolve() binds instead of the pbuffer
+    gpu::Texture resolvedColour_;
+    gpu::Texture resolvedDepth_;
 };
 
 }  // namespace sierra::render
