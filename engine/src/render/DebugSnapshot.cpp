@@ -130,7 +130,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         mesh.rows = {
             {"triangles", msg(m.triangles)},
             {"distinct vertices", msg(m.distinctVertices)},
-            {"indices / triangle",
+            {"indices/triangle",
              fixed(m.triangles ? double(m.indices) / double(m.triangles) : 0.0, 3)},
             {"bytes uploaded", msg(m.indices * 4, " (", bytes(double(m.indices) * 4.0), ")")},
             {"tau, lambda", msg(fixed(m.tau, 2), " px, ", fixed(m.lambda, 1), " px")},
@@ -143,7 +143,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         mesh.histograms.push_back(std::move(h));
     } else {
         mesh.rows = {{"triangles", msg(last.triangles)},
-                     {"indices / triangle", fixed(last.indicesPerTriangle(), 3)},
+                     {"indices/triangle", fixed(last.indicesPerTriangle(), 3)},
                      {"level of detail", "full grid (no SBT)"}};
     }
     panel.sections.push_back(std::move(mesh));
