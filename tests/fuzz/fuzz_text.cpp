@@ -8,6 +8,7 @@
 #include <sierra/scene/SceneJson.h>
 #include <sierra/terrain/Cpt.h>
 #include <sierra/terrain/HeightfieldIO.h>
+#include <sierra/terrain/Maps.h>
 #include <sierra/zones/Palette.h>
 
 #include <cstddef>
