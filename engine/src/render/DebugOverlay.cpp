@@ -56,35 +56,32 @@ int snapshotFrameWidth(int width, int columnWidth) {
     return std::max(width / 3, width - columnWidth);
 }
 
-void DebugOverlay::draw(const DebugPanel& panel, int width, int height) {
+void DebugOverlay::layOutTwice(const DebugPanel& panel, int width, int height, bool render) {
     ImGui::SetCurrentContext(state_->context);
     ImGuiIO& io = ImGui::GetIO();
     io.DisplaySize = ImVec2(float(width), float(height));
     io.DeltaTime = 1.0f / 60.0f;
     // An auto-sized window is measured on its first frame and shown from the
-    // second: lay the panel out twice and draw only the second.
+    // second: the panel is laid out twice and the second counts.
     for (int pass = 0; pass < 2; ++pass) {
         ImGui_ImplOpenGL3_NewFrame();
         ImGui::NewFrame();
         layout(panel, width, height);
-        ImGui::Render();
+        if (render)
+            ImGui::Render();
+        else
+            ImGui::EndFrame();
     }
+}
+
+void DebugOverlay::draw(const DebugPanel& panel, int width, int height) {
+    layOutTwice(panel, width, height, true);
     // The backend backs up and restores the GL state it touches.
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
 int DebugOverlay::contentHeight(const DebugPanel& panel, int width, int height) {
-    ImGui::SetCurrentContext(state_->context);
-    ImGuiIO& io = ImGui::GetIO();
-    io.DisplaySize = ImVec2(float(width), float(height));
-    io.DeltaTime = 1.0f / 60.0f;
-    // Two layouts, as draw() makes: the second is the one measured.
-    for (int pass = 0; pass < 2; ++pass) {
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui::NewFrame();
-        layout(panel, width, height);
-        ImGui::EndFrame();
-    }
+    layOutTwice(panel, width, height, false);
     return int(std::ceil(state_->contentHeight));
 }
 

@@ -4,6 +4,23 @@
 
 namespace sierra::render {
 
+namespace {
+// A framebuffer with an RGBA8 colour and a 32-bit float depth texture of
+// `desc`'s target, size and samples.
+gpu::Framebuffer colourAndDepth(gpu::TextureDesc desc, gpu::Texture& colour, gpu::Texture& depth,
+                                const char* what) {
+    desc.format = GL_RGBA8;
+    colour = gpu::Texture::create(desc);
+    desc.format = GL_DEPTH_COMPONENT32F;
+    depth = gpu::Texture::create(desc);
+    gpu::Framebuffer fbo = gpu::Framebuffer::create();
+    fbo.attach(GL_COLOR_ATTACHMENT0, colour);
+    fbo.attach(GL_DEPTH_ATTACHMENT, depth);
+    fbo.checkComplete(what);
+    return fbo;
+}
+}  // namespace
+
 FrameTarget FrameTarget::create(const FrameTargetDesc& desc) {
     SIERRA_CHECK(desc.samples == 0 || (desc.samples >= 2 && desc.samples <= 16),
                  "multisampling takes 0 (off) or 2..16 samples, got ", desc.samples);
@@ -12,36 +29,24 @@ FrameTarget FrameTarget::create(const FrameTargetDesc& desc) {
     if (desc.offscreen) {
         GLint maxSide = 0;
         glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSide);
-        SIERRA_CHECK(desc.width >= 1 && desc.height >= 1 && desc.width <= maxSide &&
-                         desc.height <= maxSide,
-                     "an offscreen frame target of ", desc.width, "x", desc.height,
-                     " pixels; this GL draws at most ", maxSide, " pixels a side");
-        gpu::TextureDesc t{.format = GL_RGBA8, .width = desc.width, .height = desc.height};
-        target.resolvedColour_ = gpu::Texture::create(t);
-        t.format = GL_DEPTH_COMPONENT32F;
-        target.resolvedDepth_ = gpu::Texture::create(t);
-        target.resolved_ = gpu::Framebuffer::create();
-        target.resolved_.attach(GL_COLOR_ATTACHMENT0, target.resolvedColour_);
-        target.resolved_.attach(GL_DEPTH_ATTACHMENT, target.resolvedDepth_);
-        target.resolved_.checkComplete("offscreen frame target");
+        SIERRA_CHECK(
+            desc.width >= 1 && desc.height >= 1 && desc.width <= maxSide && desc.height <= maxSide,
+            "an offscreen frame target of ", desc.width, "x", desc.height,
+            " pixels; this GL draws at most ", maxSide, " pixels a side");
+        target.resolved_ =
+            colourAndDepth({.width = desc.width, .height = desc.height}, target.resolvedColour_,
+                           target.resolvedDepth_, "offscreen frame target");
     }
     if (desc.samples > 0) {
         GLint maxSamples = 0;
         glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
         SIERRA_CHECK(desc.samples <= maxSamples, desc.samples,
                      "x multisampling requested; this GL offers at most ", maxSamples);
-        gpu::TextureDesc t{.target = GL_TEXTURE_2D_MULTISAMPLE,
-                           .format = GL_RGBA8,
-                           .width = desc.width,
-                           .height = desc.height,
-                           .samples = desc.samples};
-        target.colour_ = gpu::Texture::create(t);
-        t.format = GL_DEPTH_COMPONENT32F;
-        target.depth_ = gpu::Texture::create(t);
-        target.fbo_ = gpu::Framebuffer::create();
-        target.fbo_.attach(GL_COLOR_ATTACHMENT0, target.colour_);
-        target.fbo_.attach(GL_DEPTH_ATTACHMENT, target.depth_);
-        target.fbo_.checkComplete("multisampled frame target");
+        target.fbo_ = colourAndDepth({.target = GL_TEXTURE_2D_MULTISAMPLE,
+                                      .width = desc.width,
+                                      .height = desc.height,
+                                      .samples = desc.samples},
+                                     target.colour_, target.depth_, "multisampled frame target");
     }
     return target;
 }

@@ -94,6 +94,8 @@ class DebugOverlay {
 
   private:
     void layout(const DebugPanel& panel, int width, int height);
+    // Two frames of layout(), the second rendered (ImGui's draw data) or not.
+    void layOutTwice(const DebugPanel& panel, int width, int height, bool render);
     struct State;
     std::unique_ptr<State> state_;
 };
