@@ -143,7 +143,8 @@ int run(const scene::Scene& s) {
         if (shotHeight > height)
             tall.emplace(render::FrameTarget::create({.width = shotWidth,
                                                       .height = shotHeight,
-                                                      .samples = s.output.msaa,
+                                                      // the UI alone draws no terrain
+                                                      .samples = uiOnly ? 0 : s.output.msaa,
                                                       .offscreen = true}));
         const glm::vec4 uiBackground{0.2f, 0.2f, 0.22f, 1.0f};
         if (uiOnly) {
