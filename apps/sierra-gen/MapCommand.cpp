@@ -84,7 +84,7 @@ void runMap(const MapOptions& o) {
     }();
     terrain::RgbImage image = terrain::renderMap(field, scheme, ramp, o.sun);
     if (o.colourBar) {
-        const bool metres = scene::metricHeights(o.scene.terrain);
+        const bool metres = scene::metricHeights(o.scene.terrain, field);
         if (scheme == terrain::MapScheme::Slope)
             terrain::addColourBar(image, ramp, 1.0f, "deg");
         else

@@ -13,8 +13,24 @@ string(REGEX MATCH "vertical scale 1[^.0-9]" scale "${LAST_OUTPUT}")
 if(NOT scale)
   message(FATAL_ERROR "metric heights should be drawn at vertical scale 1:\n${LAST_OUTPUT}")
 endif()
-run_app(valley_unitless EXPECT_OK MESSAGE "no water"
+# By default the archives' georeferencing gives the ground spacing in metres
+# (dx, dy and bounds in degrees; latitude and longitude lists), and the
+# heights are taken as metres.
+run_app(valley_auto EXPECT_OK MESSAGE "no water"
         COMMAND ${RENDER} --heightmap ${samples}/jacksboro_fault_dem.npz ${small} --out valley2.png)
+if(NOT LAST_OUTPUT MATCHES "spacing 74\\.57[0-9]*x92\\.47[0-9]* m, vertical scale 1[^.0-9]")
+  message(FATAL_ERROR "the valley's 3 arc-second steps at 36.6 N are 74.6 x 92.5 m:\n${LAST_OUTPUT}")
+endif()
+run_app(coast_auto EXPECT_OK MESSAGE "sea level 0"
+        COMMAND ${RENDER} --heightmap ${samples}/topobathy.npz ${small} --out coast2.png)
+if(NOT LAST_OUTPUT MATCHES "spacing 2439\\.[0-9]*x2431\\.[0-9]* m, vertical scale 1[^.0-9]")
+  message(FATAL_ERROR "the coast's 2 arc-minute steps at 49 N are about 2.4 km:\n${LAST_OUTPUT}")
+endif()
+run_app(valley_unitless EXPECT_OK MESSAGE "no water"
+        COMMAND ${RENDER} --heightmap ${samples}/jacksboro_fault_dem.npz --height-units none ${small} --out valley3.png)
+if(LAST_OUTPUT MATCHES "vertical scale 1[^.0-9]")
+  message(FATAL_ERROR "unitless heights take the automatic relief, not scale 1:\n${LAST_OUTPUT}")
+endif()
 # Topography and bathymetry: the sea is at 0 m.
 run_app(coast EXPECT_OK MESSAGE "sea level 0"
         COMMAND ${RENDER} --heightmap ${samples}/topobathy.npz --height-units m --spacing 3000 ${small} --out coast.png)

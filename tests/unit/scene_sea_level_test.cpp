@@ -2,6 +2,7 @@
 // or when asked; never on a loaded unitless heightmap.
 
 #include <sierra/scene/Terrain.h>
+#include <sierra/terrain/Padding.h>
 
 #include <gtest/gtest.h>
 
@@ -37,8 +38,23 @@ TEST(SceneSeaLevel, LoadedHeightmapsGetWaterOnlyBelowZeroMetres) {
     EXPECT_EQ(scene::resolveSeaLevel(metric, ramp(-1437.0f, 2205.0f)), 0.0f)
         << "topobathymetry: sea at 0 m";
     scene::TerrainSource srtm{.heightmap = "N36W084.hgt"};
-    EXPECT_TRUE(scene::metricHeights(srtm));
+    EXPECT_TRUE(scene::metricHeights(srtm, ramp(-10.0f, 300.0f)));
     EXPECT_EQ(scene::resolveSeaLevel(srtm, ramp(-10.0f, 300.0f)), 0.0f);
+}
+
+// A file whose georeferencing says metres (an .npz with geographic bounds)
+// counts as metric under automatic units, through padding; explicit units
+// still win.
+TEST(SceneSeaLevel, GeoreferencedMetresAreMetric) {
+    terrain::Heightfield dem = ramp(-20.0f, 400.0f);
+    scene::TerrainSource npz{.heightmap = "dem.npz"};
+    EXPECT_FALSE(scene::metricHeights(npz, dem)) << "an .npz without georeferencing";
+    dem.setMetres(true);
+    EXPECT_TRUE(scene::metricHeights(npz, dem));
+    EXPECT_TRUE(scene::metricHeights(npz, terrain::padToPowerOfTwoPlusOne(dem)));
+    EXPECT_EQ(scene::resolveSeaLevel(npz, dem), 0.0f) << "metric data below 0 m: sea at 0";
+    npz.heightUnits = scene::HeightUnits::None;
+    EXPECT_FALSE(scene::metricHeights(npz, dem));
 }
 
 TEST(SceneSeaLevel, AskedForOrTurnedOff) {
@@ -48,7 +64,7 @@ TEST(SceneSeaLevel, AskedForOrTurnedOff) {
     scene::TerrainSource none{.seaLevel = {.mode = scene::SeaLevel::Mode::None}};
     EXPECT_TRUE(std::isnan(scene::resolveSeaLevel(none, f)));
     scene::TerrainSource unitless{.heightmap = "x.hgt", .heightUnits = scene::HeightUnits::None};
-    EXPECT_FALSE(scene::metricHeights(unitless)) << "explicit units win over the extension";
+    EXPECT_FALSE(scene::metricHeights(unitless, f)) << "explicit units win over the extension";
 }
 
 }  // namespace

@@ -170,7 +170,7 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         {.kind = StyleParam::Kind::Flag, .name = "wireframe", .flag = s.style.wireframe}};
     // The tree and snow lines are metres of the elevation ramp: heights without
     // units take the hypsometric ramp, and a colour table replaces both.
-    if (!s.style.cpt.empty() || !scene::metricHeights(s.terrain)) {
+    if (!s.style.cpt.empty() || !scene::metricHeights(s.terrain, field)) {
         style.params.push_back({.kind = StyleParam::Kind::Text,
                                 .name = "tree, snow line",
                                 .text = s.style.cpt.empty() ? "n/a (no units)" : "n/a (table)"});

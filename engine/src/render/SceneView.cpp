@@ -148,7 +148,7 @@ TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& 
     return {.field = &field,
             .seaLevel = seaLevel,
             .threads = s.lod.threads,
-            .metric = scene::metricHeights(s.terrain),
+            .metric = scene::metricHeights(s.terrain, field),
             .treeLine = s.style.treeLine,
             .snowLine = s.style.snowLine,
             .cpt = s.style.cpt};

@@ -176,8 +176,9 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
                         .value = parseFloat(w[0], "--sea-level", "a height, 'auto' or 'none'")};
             });
         add("--height-units",
-            "What heights measure: auto (metres for SRTM/GeoTIFF), m (metres) or none", g,
-            "auto|m|none", toString(d.terrain.heightUnits), 1, [](Scene& s, Words w) {
+            "What heights measure: auto (metres for SRTM, GeoTIFF and .npz with geographic "
+            "bounds), m (metres) or none",
+            g, "auto|m|none", toString(d.terrain.heightUnits), 1, [](Scene& s, Words w) {
                 s.terrain.heightUnits = parseHeightUnits(w[0], "--height-units");
             });
         add("--channel",

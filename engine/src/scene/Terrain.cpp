@@ -128,7 +128,7 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
             !warning.empty())
             what += msg(" [warning: ", warning, "]");
     }
-    metric = metricHeights(source);
+    metric = metricHeights(source, field);
     int originalWidth = field.width(), originalHeight = field.height();
     if (padding == Padding::PowerOfTwoPlusOne) field = terrain::padToPowerOfTwoPlusOne(field);
     if (field.width() != originalWidth || field.height() != originalHeight)
@@ -147,14 +147,16 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
         }
     }
     field.setVerticalScale(scale);
-    what += msg(", spacing ", field.spacingX(), "x", field.spacingZ(), ", vertical scale ", scale);
+    what += msg(", spacing ", field.spacingX(), "x", field.spacingZ(), field.metres() ? " m" : "",
+                ", vertical scale ", scale);
     if (description) *description = what;
     return field;
 }
 
-bool metricHeights(const TerrainSource& source) {
+bool metricHeights(const TerrainSource& source, const terrain::Heightfield& field) {
     if (source.heightUnits != HeightUnits::Auto) return source.heightUnits == HeightUnits::Metres;
     if (source.heightmap.empty()) return false;
+    if (field.metres()) return true;
     const std::string ext = lowerExtension(source.heightmap);
     // SRTM and GeoTIFF carry metres: their loaders set the ground spacing, and
     // heights need no exaggeration.
@@ -187,7 +189,7 @@ float resolveSeaLevel(const TerrainSource& source, const terrain::Heightfield& f
             break;
     }
     if (source.heightmap.empty()) return heightQuantile(field, 0.3);
-    if (metricHeights(source) && field.range().first < 0.0f) return 0.0f;
+    if (metricHeights(source, field) && field.range().first < 0.0f) return 0.0f;
     return kNone;
 }
 

@@ -16,7 +16,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string_view>
 
 #ifdef SIERRA_WITH_GDAL
@@ -36,6 +38,9 @@ constexpr uint64_t kHeaderSlack = uint64_t(1) << 20;
 constexpr int kSrtm3Side = 1201;
 constexpr int kSrtm1Side = 3601;
 constexpr int16_t kSrtmNoData = -32768;
+// WGS 84: semi-major axis in metres, inverse flattening.
+constexpr double kWgs84SemiMajor = 6378137.0;
+constexpr double kWgs84InverseFlattening = 298.257223563;
 
 const char* const kSupported =
     ".png .pgm .r16 .r32 .hgt .npy .npz"
@@ -445,6 +450,7 @@ Heightfield loadHgt(const std::string& path, const std::vector<uint8_t>& bytes) 
     // shrinks with the cosine of the latitude, which the file does not give).
     const float spacing = side == kSrtm3Side ? 90.0f : 30.0f;
     field.setSpacing(spacing, spacing);
+    field.setMetres(true);
     return field;
 }
 
@@ -577,27 +583,149 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
     return field;
 }
 
-// ---------------------------------------------------------------------------- GeoTIFF
-
-#ifdef SIERRA_WITH_GDAL
-// Ground spacing in metres of one pixel step of a geographic (degrees)
-// raster, at the latitude of the tile's centre: east-west shrinks with the
-// cosine of the latitude. On the system's ellipsoid: the meridian radius of
-// curvature for north-south, the prime vertical one for east-west.
-std::pair<double, double> geographicSpacing(const OGRSpatialReference& srs, const double geo[6],
-                                            int height) {
-    const double radiansPerUnit = srs.GetAngularUnits(nullptr);  // degrees: pi / 180
-    const double a = srs.GetSemiMajor(nullptr);
-    const double inverseFlattening = srs.GetInvFlattening(nullptr);
-    const double f = inverseFlattening > 0.0 ? 1.0 / inverseFlattening : 0.0;
+// Ground spacing in metres of a step of (east, north) radians of longitude
+// and latitude at `latitude` radians, on an ellipsoid of semi-major axis `a`
+// metres and flattening `f`: the meridian radius of curvature north-south,
+// the prime vertical one (shrinking with the cosine of the latitude)
+// east-west.
+std::pair<double, double> ellipsoidSpacing(double east, double north, double latitude, double a,
+                                           double f) {
     const double e2 = f * (2.0 - f);
-    const double latitude = (geo[3] + geo[5] * height * 0.5) * radiansPerUnit;
     const double s = std::sin(latitude);
     const double w = std::sqrt(1.0 - e2 * s * s);
     const double meridian = a * (1.0 - e2) / (w * w * w);
     const double primeVertical = a / w;
-    return {std::abs(geo[1]) * radiansPerUnit * primeVertical * std::cos(latitude),
-            std::abs(geo[5]) * radiansPerUnit * meridian};
+    return {east * primeVertical * std::cos(latitude), north * meridian};
+}
+
+// Row j becomes row height - 1 - j (mask included).
+void flipRows(Heightfield& field) {
+    const int w = field.width(), h = field.height();
+    std::span<float> v = field.samples();
+    for (int j = 0; j < h / 2; ++j)
+        std::swap_ranges(v.begin() + ptrdiff_t(j) * w, v.begin() + ptrdiff_t(j + 1) * w,
+                         v.begin() + ptrdiff_t(h - 1 - j) * w);
+    if (field.hasMask()) {
+        std::vector<uint8_t> mask(field.mask().begin(), field.mask().end());
+        for (int j = 0; j < h / 2; ++j)
+            std::swap_ranges(mask.begin() + ptrdiff_t(j) * w, mask.begin() + ptrdiff_t(j + 1) * w,
+                             mask.begin() + ptrdiff_t(h - 1 - j) * w);
+        field.setMask(std::move(mask));
+    }
+}
+
+// Column i becomes column width - 1 - i (mask included).
+void flipColumns(Heightfield& field) {
+    const int w = field.width(), h = field.height();
+    std::span<float> v = field.samples();
+    for (int j = 0; j < h; ++j)
+        std::reverse(v.begin() + ptrdiff_t(j) * w, v.begin() + ptrdiff_t(j + 1) * w);
+    if (field.hasMask()) {
+        std::vector<uint8_t> mask(field.mask().begin(), field.mask().end());
+        for (int j = 0; j < h; ++j)
+            std::reverse(mask.begin() + ptrdiff_t(j) * w, mask.begin() + ptrdiff_t(j + 1) * w);
+        field.setMask(std::move(mask));
+    }
+}
+
+// An .npz DEM's georeferencing, in either of the forms matplotlib's sample
+// DEMs use:
+// - scalars dx and dy, the sample spacing. With bounds xmin, xmax, ymin and
+//   ymax that span the grid (its samples or its cells, to within a step)
+//   inside longitudes -180 ... 360 and latitudes -90 ... 90, dx and dy are
+//   degrees; otherwise they are taken in the file's own unit;
+// - lists latitude (or lat) and longitude (or lon) of every row and column,
+//   in degrees, each strictly monotonic. Rows run north to south in Sierra
+//   (north is -z) and columns west to east, so a grid stored south first or
+//   east first is flipped to that order; the spacing is the mean step.
+// Degrees become metres on WGS 84 at the grid's middle latitude, and the
+// heights are then taken as metres. An archive with neither keeps spacing 1.
+void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& bytes,
+                          Heightfield& field) {
+    const size_t longest = size_t(std::max(field.width(), field.height()));
+    const std::map<std::string, std::vector<double>> numbers = npzNumbers(path, bytes, longest);
+    auto scalar = [&](const char* name) -> std::optional<double> {
+        auto it = numbers.find(name);
+        if (it == numbers.end() || it->second.size() != 1) return std::nullopt;
+        return it->second[0];
+    };
+    auto list = [&](std::initializer_list<const char*> names,
+                    int length) -> const std::vector<double>* {
+        for (const char* name : names)
+            if (auto it = numbers.find(name);
+                it != numbers.end() && it->second.size() == size_t(length))
+                return &it->second;
+        return nullptr;
+    };
+    auto toMetres = [&](double east, double north, double latitude) {
+        constexpr double kRadians = 3.14159265358979323846 / 180.0;
+        const auto [x, z] = ellipsoidSpacing(east * kRadians, north * kRadians, latitude * kRadians,
+                                             kWgs84SemiMajor, 1.0 / kWgs84InverseFlattening);
+        field.setSpacing(float(x), float(z));
+        field.setMetres(true);
+    };
+    const std::optional<double> dx = scalar("dx"), dy = scalar("dy");
+    if (dx || dy) {
+        if (!dx || !dy)
+            throw Error(msg(path, ": has ", dx ? "dx" : "dy", " but not ", dx ? "dy" : "dx",
+                            "; a georeferenced .npz gives both sample spacings"));
+        for (auto [name, v] : {std::pair{"dx", *dx}, std::pair{"dy", *dy}})
+            if (!(v > 0.0) || !std::isfinite(v) || v > 1e9)
+                throw Error(msg(path, ": ", name, " = ", v,
+                                " is not a usable sample spacing (a positive, finite number)"));
+        const std::optional<double> x0 = scalar("xmin"), x1 = scalar("xmax"), y0 = scalar("ymin"),
+                                    y1 = scalar("ymax");
+        auto spans = [](double a, double b, double step, int samples) {
+            const double steps = std::abs(b - a) / step;
+            return steps >= double(samples) - 2.0 && steps <= double(samples) + 1.0;
+        };
+        auto within = [](double a, double b, double lo, double hi) {
+            return std::min(a, b) >= lo && std::max(a, b) <= hi;
+        };
+        if (x0 && x1 && y0 && y1 && within(*x0, *x1, -180.0, 360.0) &&
+            within(*y0, *y1, -90.0, 90.0) && spans(*x0, *x1, *dx, field.width()) &&
+            spans(*y0, *y1, *dy, field.height()))
+            toMetres(*dx, *dy, 0.5 * (*y0 + *y1));
+        else
+            field.setSpacing(float(*dx), float(*dy));
+        return;
+    }
+    const std::vector<double>* lat = list({"latitude", "lat"}, field.height());
+    const std::vector<double>* lon = list({"longitude", "lon"}, field.width());
+    if (!lat || !lon) return;
+    auto check = [&](const char* what, const std::vector<double>& v, double lo, double hi) {
+        const bool rising = v.back() > v.front();
+        for (size_t k = 0; k < v.size(); ++k)
+            if (!std::isfinite(v[k]) || v[k] < lo || v[k] > hi ||
+                (k > 0 && (v[k] > v[k - 1]) != rising) || (k > 0 && v[k] == v[k - 1]))
+                throw Error(msg(path, ": its ", what, " list is not ", what,
+                                "s in degrees, strictly rising or falling (value ", k, ": ", v[k],
+                                ")"));
+        return rising;
+    };
+    if (field.height() < 2 || field.width() < 2) return;
+    const bool northward = check("latitude", *lat, -90.0, 90.0);
+    const bool eastward = check("longitude", *lon, -180.0, 360.0);
+    const double north = std::abs(lat->back() - lat->front()) / double(lat->size() - 1);
+    const double east = std::abs(lon->back() - lon->front()) / double(lon->size() - 1);
+    toMetres(east, north, 0.5 * (lat->front() + lat->back()));
+    if (northward) flipRows(field);
+    if (!eastward) flipColumns(field);
+}
+
+// ---------------------------------------------------------------------------- GeoTIFF
+
+#ifdef SIERRA_WITH_GDAL
+// Ground spacing in metres of one pixel step of a geographic raster, on the
+// system's ellipsoid, at the latitude of the tile's centre.
+std::pair<double, double> geographicSpacing(const OGRSpatialReference& srs, const double geo[6],
+                                            int height) {
+    const double radiansPerUnit = srs.GetAngularUnits(nullptr);  // degrees: pi / 180
+    const double inverseFlattening = srs.GetInvFlattening(nullptr);
+    return ellipsoidSpacing(std::abs(geo[1]) * radiansPerUnit, std::abs(geo[5]) * radiansPerUnit,
+                            (geo[3] + geo[5] * height * 0.5) * radiansPerUnit,
+                            srs.GetSemiMajor(nullptr),
+                            inverseFlattening > 0.0 ? 1.0 / inverseFlattening : 0.0);
 }
 
 Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
@@ -660,12 +788,14 @@ Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
         if (srs->IsProjected()) {
             const double metres = srs->GetLinearUnits(nullptr);
             field.setSpacing(float(std::abs(geo[1]) * metres), float(std::abs(geo[5]) * metres));
+            field.setMetres(true);
         } else if (srs->IsGeographic()) {
             const auto [dx, dz] = geographicSpacing(*srs, geo, height);
             if (!(dx > 0.0 && dz > 0.0 && std::isfinite(dx) && std::isfinite(dz)))
                 throw Error(msg(path, ": GeoTIFF pixel size ", geo[1], " x ", geo[5],
                                 " degrees gives no usable ground spacing"));
             field.setSpacing(float(dx), float(dz));
+            field.setMetres(true);
         }
     }
     return field;
@@ -800,9 +930,11 @@ Heightfield decode(Format format, const std::string& path, const std::vector<uin
             return loadNpy(path, bytes, options);
         case Format::Npz: {
             std::string reason;
-            return loadNpy(path,
-                           npzMember(path, bytes, {}, maxFileBytes(format, path, options, reason)),
-                           options);
+            Heightfield field = loadNpy(
+                path, npzMember(path, bytes, {}, maxFileBytes(format, path, options, reason)),
+                options);
+            applyNpzGeoreference(path, bytes, field);
+            return field;
         }
         case Format::Tiff:
             break;

@@ -5,7 +5,9 @@
 #include <zlib.h>
 
 #include <array>
+#include <bit>
 #include <cstring>
+#include <optional>
 
 namespace sierra::terrain {
 
@@ -57,11 +59,13 @@ struct Member {
     uint64_t compressed = 0, size = 0, localHeader = 0;
 };
 
-}  // namespace
+Error failure(const std::string& path, const std::string& why) {
+    return Error(msg(path, ": ", why));
+}
 
-std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_t>& bytes,
-                               const std::string& member, uint64_t maxBytes) {
-    auto fail = [&](const std::string& why) { return Error(msg(path, ": ", why)); };
+// The archive's members from its zip directory.
+std::vector<Member> readDirectory(const std::string& path, const std::vector<uint8_t>& bytes) {
+    auto fail = [&](const std::string& why) { return failure(path, why); };
     // The end-of-central-directory record: 22 bytes, at most 64 KiB of comment after it.
     if (bytes.size() < 22) throw fail("too short for an .npz (zip) archive");
     size_t eocd = std::string::npos;
@@ -99,64 +103,131 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
         members.push_back(m);
         at += 46 + nameLength + extra + comment;
     }
+    return members;
+}
 
-    auto extract = [&](const Member& m) {
-        if (m.method != 0 && m.method != 8)
-            throw fail(msg("member ", m.name, " uses zip method ", m.method,
-                           "; .npz members are stored or deflated"));
-        if (m.size > maxBytes)
-            throw fail(
-                msg("member ", m.name, " holds ", m.size, " bytes, over the limit of ", maxBytes));
-        // Deflate expands at most 1032:1, so a small member claiming a huge size
-        // is refused before its buffer is allocated.
-        if (m.size > m.compressed * 1032 + 1024)
-            throw fail(msg("member ", m.name, " claims ", m.size, " bytes from ", m.compressed,
-                           " compressed, more than deflate can expand"));
-        size_t local = size_t(m.localHeader);
-        if (local + 30 > bytes.size() || read32(bytes, local) != 0x04034b50u)
-            throw fail(msg("corrupt .npz: no local header for ", m.name));
-        size_t data = local + 30 + read16(bytes, local + 26) + read16(bytes, local + 28);
-        if (data + m.compressed > bytes.size())
-            throw fail(msg("truncated .npz: member ", m.name, " is cut short"));
-        std::vector<uint8_t> out(size_t(m.size));
-        if (m.method == 0) {
-            if (m.compressed != m.size)
-                throw fail(msg("corrupt .npz: stored member ", m.name, " changes size"));
-            // An empty member has no data to copy (and out.data() may be null).
-            if (!out.empty()) std::memcpy(out.data(), bytes.data() + data, out.size());
-        } else {
-            // Raw deflate (no zlib header) into a buffer of exactly the declared size.
-            z_stream z{};
-            if (inflateInit2(&z, -MAX_WBITS) != Z_OK) throw fail("cannot start zlib's inflate");
-            z.next_in = const_cast<Bytef*>(bytes.data() + data);
-            z.avail_in = uInt(m.compressed);
-            z.next_out = out.data();
-            z.avail_out = uInt(out.size());
-            int rc = inflate(&z, Z_FINISH);
-            uint64_t produced = z.total_out;
-            inflateEnd(&z);
-            if (rc != Z_STREAM_END || produced != m.size)
-                throw fail(msg("member ", m.name, " does not inflate to its declared size (",
-                               rc == Z_STREAM_END ? "size differs" : "corrupt deflate data", ")"));
-        }
-        if (crc32(out.data(), out.size()) != m.crc)
-            throw fail(msg("member ", m.name, " fails its CRC check"));
-        return out;
-    };
+// The inflated bytes of member `m`, at most maxBytes, CRC checked.
+std::vector<uint8_t> extract(const std::string& path, const std::vector<uint8_t>& bytes,
+                             const Member& m, uint64_t maxBytes) {
+    auto fail = [&](const std::string& why) { return failure(path, why); };
+    if (m.method != 0 && m.method != 8)
+        throw fail(msg("member ", m.name, " uses zip method ", m.method,
+                       "; .npz members are stored or deflated"));
+    if (m.size > maxBytes)
+        throw fail(
+            msg("member ", m.name, " holds ", m.size, " bytes, over the limit of ", maxBytes));
+    // Deflate expands at most 1032:1, so a small member claiming a huge size
+    // is refused before its buffer is allocated.
+    if (m.size > m.compressed * 1032 + 1024)
+        throw fail(msg("member ", m.name, " claims ", m.size, " bytes from ", m.compressed,
+                       " compressed, more than deflate can expand"));
+    size_t local = size_t(m.localHeader);
+    if (local + 30 > bytes.size() || read32(bytes, local) != 0x04034b50u)
+        throw fail(msg("corrupt .npz: no local header for ", m.name));
+    size_t data = local + 30 + read16(bytes, local + 26) + read16(bytes, local + 28);
+    if (data + m.compressed > bytes.size())
+        throw fail(msg("truncated .npz: member ", m.name, " is cut short"));
+    std::vector<uint8_t> out(size_t(m.size));
+    if (m.method == 0) {
+        if (m.compressed != m.size)
+            throw fail(msg("corrupt .npz: stored member ", m.name, " changes size"));
+        // An empty member has no data to copy (and out.data() may be null).
+        if (!out.empty()) std::memcpy(out.data(), bytes.data() + data, out.size());
+    } else {
+        // Raw deflate (no zlib header) into a buffer of exactly the declared size.
+        z_stream z{};
+        if (inflateInit2(&z, -MAX_WBITS) != Z_OK) throw fail("cannot start zlib's inflate");
+        z.next_in = const_cast<Bytef*>(bytes.data() + data);
+        z.avail_in = uInt(m.compressed);
+        z.next_out = out.data();
+        z.avail_out = uInt(out.size());
+        int rc = inflate(&z, Z_FINISH);
+        uint64_t produced = z.total_out;
+        inflateEnd(&z);
+        if (rc != Z_STREAM_END || produced != m.size)
+            throw fail(msg("member ", m.name, " does not inflate to its declared size (",
+                           rc == Z_STREAM_END ? "size differs" : "corrupt deflate data", ")"));
+    }
+    if (crc32(out.data(), out.size()) != m.crc)
+        throw fail(msg("member ", m.name, " fails its CRC check"));
+    return out;
+}
 
+// The values of a 0-d or 1-d array of a little-endian float or integer type
+// (numpy.savez of a number or of a coordinate list), or nothing.
+std::optional<std::vector<double>> npyNumbers(const std::vector<uint8_t>& npy) {
+    const int dims = npyDimensions(npy);
+    if (dims != 0 && dims != 1) return std::nullopt;
+    const bool v1 = npy[6] == 1;
+    const size_t headerLength = v1 ? read16(npy, 8) : read32(npy, 8);
+    const size_t data = (v1 ? 10 : 12) + headerLength;
+    if (data > npy.size()) return std::nullopt;
+    const std::string header(npy.begin() + (v1 ? 10 : 12), npy.begin() + std::ptrdiff_t(data));
+    const size_t key = header.find("descr");
+    if (key == std::string::npos) return std::nullopt;
+    const size_t open = header.find_first_of("'\"", header.find(':', key));
+    if (open == std::string::npos || open + 4 > header.size()) return std::nullopt;
+    const std::string descr = header.substr(open + 1, 3);
+    const char order = descr[0], kind = descr[1];
+    const int width = descr[2] - '0';
+    if ((order != '<' && order != '|') || (width != 1 && width != 2 && width != 4 && width != 8) ||
+        (kind != 'f' && kind != 'i' && kind != 'u') || (kind == 'f' && width < 4))
+        return std::nullopt;
+    // The shape's length (1-d) must match the data; a 0-d array holds one value.
+    const size_t count = (npy.size() - data) / size_t(width);
+    if (count == 0 || (dims == 0 && count != 1) || (npy.size() - data) % size_t(width) != 0)
+        return std::nullopt;
+    std::vector<double> values(count);
+    for (size_t n = 0; n < count; ++n) {
+        const size_t at = data + n * size_t(width);
+        uint64_t bits = 0;
+        for (int k = width - 1; k >= 0; --k) bits = bits << 8 | npy[at + size_t(k)];
+        if (kind == 'f')
+            values[n] = width == 8 ? std::bit_cast<double>(bits)
+                                   : double(std::bit_cast<float>(uint32_t(bits)));
+        else if (kind == 'u')
+            values[n] = double(bits);
+        else  // sign-extended
+            values[n] = double(int64_t(bits << (64 - 8 * width)) >> (64 - 8 * width));
+    }
+    return values;
+}
+
+}  // namespace
+
+std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_t>& bytes,
+                               const std::string& member, uint64_t maxBytes) {
+    auto fail = [&](const std::string& why) { return failure(path, why); };
+    const std::vector<Member> members = readDirectory(path, bytes);
     std::string names;
     for (const Member& m : members) {
         names += (names.empty() ? "" : ", ") + m.name;
         if (!member.empty()) {
-            if (m.name == member || m.name == member + ".npy") return extract(m);
+            if (m.name == member || m.name == member + ".npy")
+                return extract(path, bytes, m, maxBytes);
             continue;
         }
         if (m.size > maxBytes || !m.name.ends_with(".npy")) continue;
-        std::vector<uint8_t> npy = extract(m);
+        std::vector<uint8_t> npy = extract(path, bytes, m, maxBytes);
         if (npyDimensions(npy) == 2) return npy;
     }
     if (!member.empty()) throw fail(msg("no member '", member, "' (members: ", names, ")"));
     throw fail(msg("no 2-D array among the members (", names, ")"));
+}
+
+std::map<std::string, std::vector<double>> npzNumbers(const std::string& path,
+                                                      const std::vector<uint8_t>& bytes,
+                                                      size_t maxValues) {
+    std::map<std::string, std::vector<double>> out;
+    for (const Member& m : readDirectory(path, bytes)) {
+        // The header (128 bytes as numpy writes it) and at most maxValues
+        // values of 8 bytes: anything larger is not a number or a list of them.
+        const uint64_t most = 4096 + 8 * uint64_t(maxValues);
+        if (!m.name.ends_with(".npy") || m.size > most) continue;
+        std::optional<std::vector<double>> v = npyNumbers(extract(path, bytes, m, most));
+        if (v && v->size() <= maxValues) out[m.name.substr(0, m.name.size() - 4)] = std::move(*v);
+    }
+    return out;
 }
 
 }  // namespace sierra::terrain

@@ -37,6 +37,7 @@ Heightfield padToPowerOfTwoPlusOne(const Heightfield& field) {
     Heightfield padded(side, side);
     padded.setSpacing(field.spacingX(), field.spacingZ());
     padded.setVerticalScale(field.verticalScale());
+    padded.setMetres(field.metres());
     std::vector<uint8_t> mask(size_t(side) * side, 0);
     for (int j = 0; j < side; ++j) {
         const int sj = std::min(j, height - 1);

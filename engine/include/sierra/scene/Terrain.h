@@ -82,8 +82,8 @@ enum class Padding {
 
 // The terrain ready for the SBT (or, with Padding::None, as read). Automatic spacing is the
 // loader's (1 for image and array formats; SRTM: 90 m for 1201 wide tiles, 30 m for 3601; GeoTIFF:
-// the pixel size of a projected system). Automatic vertical scale is 1 for metric heights (height
-// units metres, or auto with SRTM/GeoTIFF) and otherwise makes the relief 20% of the horizontal
+// the pixel size of a projected system). Automatic vertical scale is 1 for metric heights
+// (metricHeights) and otherwise makes the relief 20% of the horizontal
 // extent. `description`, when given, receives one line saying what was loaded and the choices made.
 // Throws sierra::Error for bad input, and for a `hurst` or `channel` that this build's terrain
 // module cannot honour yet.
@@ -96,9 +96,11 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
                                  Padding padding = Padding::PowerOfTwoPlusOne,
                                  int maxPaddedSide = terrain::kDefaultMaxPaddedSide);
 
-// True when the source's heights are metres: height units `m`, or automatic
-// with an SRTM (.hgt) or GeoTIFF file.
-bool metricHeights(const TerrainSource& source);
+// True when the heights of `field`, loaded from `source`, are metres: height
+// units `m`, or automatic with an SRTM (.hgt) or GeoTIFF file, or with a file
+// whose georeferencing says metres (terrain::Heightfield::metres: an .npz
+// with geographic bounds).
+bool metricHeights(const TerrainSource& source, const terrain::Heightfield& field);
 
 // The height below which `share` (0..1) of the valid samples lie.
 float heightQuantile(const terrain::Heightfield& field, double share);

@@ -37,6 +37,12 @@ class Heightfield {
     void setSpacing(float x, float z);
     void setVerticalScale(float scale);
 
+    // True when the file's georeferencing says the heights and the ground
+    // spacing are metres (SRTM, a GeoTIFF with a reference system, an .npz
+    // with geographic bounds); false when their units are unknown.
+    bool metres() const { return metres_; }
+    void setMetres(bool metres) { metres_ = metres; }
+
     // World height of sample (i, j): at(i, j) * verticalScale().
     float worldHeight(int i, int j) const { return at(i, j) * verticalScale_; }
 
@@ -56,6 +62,7 @@ class Heightfield {
     float spacingX_ = 1.0f;
     float spacingZ_ = 1.0f;
     float verticalScale_ = 1.0f;
+    bool metres_ = false;
     std::vector<float> samples_;
     std::vector<uint8_t> mask_;
 };
