@@ -234,7 +234,20 @@ TEST_F(TerrainLoaders, SrtmHgt1201WithNoData) {
     auto [lo, hi] = f.range();
     EXPECT_EQ(lo, -500.0f);
     EXPECT_EQ(hi, 2499.0f);
-    EXPECT_EQ(f.spacingX(), 90.0f);
+    // 3 arc-seconds on WGS 84 at 45.5 N (the name gives the south edge, 45 N):
+    // 92.6 m north-south, 65.1 m east-west.
+    EXPECT_NEAR(f.spacingZ(), 92.6, 0.05);
+    EXPECT_NEAR(f.spacingX(), 65.13, 0.01);
+    EXPECT_TRUE(f.metres());
+    // S45 spans 45 to 44 S: the same spacing as N44, mirrored.
+    EXPECT_FLOAT_EQ(loadHeightfield(write("s45w070.hgt", b)).spacingX(),
+                    loadHeightfield(write("N44W070.hgt", b)).spacingX());
+    EXPECT_GT(loadHeightfield(write("N44W070.hgt", b)).spacingX(), f.spacingX() + 1.0f);
+    // A name that gives no latitude keeps the nominal 90 m.
+    Heightfield unnamed = loadHeightfield(write("tile.hgt", b));
+    EXPECT_EQ(unnamed.spacingX(), 90.0f);
+    EXPECT_EQ(unnamed.spacingZ(), 90.0f);
+    EXPECT_TRUE(unnamed.metres());
 }
 
 TEST_F(TerrainLoaders, NpyFloat32Float64Int16Uint16Uint8) {

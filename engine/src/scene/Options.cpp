@@ -152,8 +152,9 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
                 s.terrain.rawHeight = height;
             });
         add("--spacing",
-            "World units between samples (0 = the file's: 1; SRTM 90/30 m; GeoTIFF pixel size)", g,
-            "S", show(d.terrain.spacing), 1,
+            "World units between samples (0 = the file's: 1, or metres for SRTM, GeoTIFF and "
+            "georeferenced .npz)",
+            g, "S", show(d.terrain.spacing), 1,
             [](Scene& s, Words w) { s.terrain.spacing = parseFloat(w[0], "--spacing"); });
         add("--vertical-scale",
             "Stored height to world height (0 = automatic: 1 for metres, else relief 20% of the "

@@ -420,6 +420,47 @@ uint64_t rawFileBytes(const std::string& path, bool isFloat, const LoadOptions& 
 
 // ---------------------------------------------------------------------------- SRTM
 
+// Ground spacing in metres of a step of (east, north) radians of longitude
+// and latitude at `latitude` radians, on an ellipsoid of semi-major axis `a`
+// metres and flattening `f`: the meridian radius of curvature north-south,
+// the prime vertical one (shrinking with the cosine of the latitude)
+// east-west.
+std::pair<double, double> ellipsoidSpacing(double east, double north, double latitude, double a,
+                                           double f) {
+    const double e2 = f * (2.0 - f);
+    const double s = std::sin(latitude);
+    const double w = std::sqrt(1.0 - e2 * s * s);
+    const double meridian = a * (1.0 - e2) / (w * w * w);
+    const double primeVertical = a / w;
+    return {east * primeVertical * std::cos(latitude), north * meridian};
+}
+
+// Ground spacing in metres of a step of (east, north) degrees at `latitude`
+// degrees on WGS 84.
+std::pair<double, double> degreesToMetres(double east, double north, double latitude) {
+    constexpr double kRadians = 3.14159265358979323846 / 180.0;
+    return ellipsoidSpacing(east * kRadians, north * kRadians, latitude * kRadians, kWgs84SemiMajor,
+                            1.0 / kWgs84InverseFlattening);
+}
+
+// The latitude of an SRTM tile's south edge from its file name (N45E006.hgt:
+// 45; S12W077.hgt: -12), or nothing for a name of another form.
+std::optional<int> srtmTileLatitude(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    if (name.size() < 7 || (name[0] != 'N' && name[0] != 'n' && name[0] != 'S' && name[0] != 's'))
+        return std::nullopt;
+    if (!std::isdigit(static_cast<unsigned char>(name[1])) ||
+        !std::isdigit(static_cast<unsigned char>(name[2])))
+        return std::nullopt;
+    const char ew = char(std::toupper(static_cast<unsigned char>(name[3])));
+    if (ew != 'E' && ew != 'W') return std::nullopt;
+    for (int k = 4; k < 7; ++k)
+        if (!std::isdigit(static_cast<unsigned char>(name[size_t(k)]))) return std::nullopt;
+    const int degrees = (name[1] - '0') * 10 + (name[2] - '0');
+    if (degrees > 89) return std::nullopt;
+    return name[0] == 'N' || name[0] == 'n' ? degrees : -degrees;
+}
+
 Heightfield loadHgt(const std::string& path, const std::vector<uint8_t>& bytes) {
     int side = 0;
     for (int s : {kSrtm3Side, kSrtm1Side})
@@ -446,10 +487,18 @@ Heightfield loadHgt(const std::string& path, const std::vector<uint8_t>& bytes) 
         field.setMask(std::move(mask));
         fillNoData(field);
     }
-    // Nominal ground spacing in metres (exact along north-south; east-west it
-    // shrinks with the cosine of the latitude, which the file does not give).
-    const float spacing = side == kSrtm3Side ? 90.0f : 30.0f;
-    field.setSpacing(spacing, spacing);
+    // Ground spacing in metres: 3 or 1 arc-second steps on WGS 84 at the
+    // tile's middle latitude, which its name gives (N45E006.hgt: the tile's
+    // south-west corner); nominal 90 or 30 m both ways for a file named
+    // otherwise.
+    const double step = (side == kSrtm3Side ? 3.0 : 1.0) / 3600.0;
+    if (const std::optional<int> south = srtmTileLatitude(path)) {
+        const auto [east, north] = degreesToMetres(step, step, *south + 0.5);
+        field.setSpacing(float(east), float(north));
+    } else {
+        const float spacing = side == kSrtm3Side ? 90.0f : 30.0f;
+        field.setSpacing(spacing, spacing);
+    }
     field.setMetres(true);
     return field;
 }
@@ -583,21 +632,6 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
     return field;
 }
 
-// Ground spacing in metres of a step of (east, north) radians of longitude
-// and latitude at `latitude` radians, on an ellipsoid of semi-major axis `a`
-// metres and flattening `f`: the meridian radius of curvature north-south,
-// the prime vertical one (shrinking with the cosine of the latitude)
-// east-west.
-std::pair<double, double> ellipsoidSpacing(double east, double north, double latitude, double a,
-                                           double f) {
-    const double e2 = f * (2.0 - f);
-    const double s = std::sin(latitude);
-    const double w = std::sqrt(1.0 - e2 * s * s);
-    const double meridian = a * (1.0 - e2) / (w * w * w);
-    const double primeVertical = a / w;
-    return {east * primeVertical * std::cos(latitude), north * meridian};
-}
-
 // Row j becomes row height - 1 - j (mask included).
 void flipRows(Heightfield& field) {
     const int w = field.width(), h = field.height();
@@ -658,9 +692,7 @@ void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& b
         return nullptr;
     };
     auto toMetres = [&](double east, double north, double latitude) {
-        constexpr double kRadians = 3.14159265358979323846 / 180.0;
-        const auto [x, z] = ellipsoidSpacing(east * kRadians, north * kRadians, latitude * kRadians,
-                                             kWgs84SemiMajor, 1.0 / kWgs84InverseFlattening);
+        const auto [x, z] = degreesToMetres(east, north, latitude);
         field.setSpacing(float(x), float(z));
         field.setMetres(true);
     };
