@@ -58,6 +58,27 @@ for method, name in ((zipfile.ZIP_STORED, "stored.npz"), (zipfile.ZIP_DEFLATED, 
     with zipfile.ZipFile(buf, "w", method) as z:
         z.writestr("elevation.npy", f4)
     put("npz", name, buf.getvalue())
+# Georeferenced archives: scalars dx, dy and bounds, or latitude and longitude lists.
+def scalar(value):
+    header = "{'descr': '<f8', 'fortran_order': False, 'shape': (), }"
+    header += " " * ((64 - (10 + len(header) + 1) % 64) % 64) + "\n"
+    return b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode() + struct.pack("<d", value)
+def vector(values):
+    header = "{'descr': '<f4', 'fortran_order': False, 'shape': (%d,), }" % len(values)
+    header += " " * ((64 - (10 + len(header) + 1) % 64) % 64) + "\n"
+    return b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode() + struct.pack("<%df" % len(values), *values)
+buf = io.BytesIO()
+with zipfile.ZipFile(buf, "w") as z:
+    z.writestr("elevation.npy", f4)
+    for k, v in {"dx": 0.01, "dy": 0.01, "xmin": 10.0, "xmax": 10.03, "ymin": 45.02, "ymax": 45.0}.items():
+        z.writestr(k + ".npy", scalar(v))
+put("npz", "degrees.npz", buf.getvalue())
+buf = io.BytesIO()
+with zipfile.ZipFile(buf, "w") as z:
+    z.writestr("topo.npy", f4)
+    z.writestr("latitude.npy", vector([48.0, 48.5]))
+    z.writestr("longitude.npy", vector([234.0, 234.2, 234.4]))
+put("npz", "latlon.npz", buf.getvalue())
 put("r16", "4x4.r16", struct.pack("<16H", *range(16)))
 put("r32", "3x3.r32", struct.pack("<9f", *range(9)))
 put("hgt", "srtm3.hgt", struct.pack(">h", -32768) + b"\0\x10" * (1201 * 1201 - 1))
