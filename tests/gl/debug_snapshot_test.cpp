@@ -176,6 +176,17 @@ TEST_F(DebugSnapshot, ThreadsRowSaysWhetherTheCountIsMeasured) {
               "1 or " + std::to_string(defaultThreadCount()) + " (measured)");
 }
 
+// Metres, when the file's georeferencing says so, are named beside the
+// spacing; a unitless grid's spacing has no unit.
+TEST_F(DebugSnapshot, SpacingNamesMetresOnlyForGeoreferencedFields) {
+    render::DrawStats stats;
+    frame(640, &stats);
+    EXPECT_EQ(rowText(panel(640, stats, false), "Source", "spacing"), "1.00 x 1.00");
+    field_.setSpacing(74.5732f, 92.4751f);
+    field_.setMetres(true);
+    EXPECT_EQ(rowText(panel(640, stats, false), "Source", "spacing"), "74.57 x 92.48 m");
+}
+
 TEST_F(DebugSnapshot, StyleShowsTheOverlaysAndTheCurvatureScaleDrawn) {
     render::DrawStats stats;
     frame(640, &stats);
