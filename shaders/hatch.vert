@@ -24,6 +24,7 @@
 
 layout(binding = 3) uniform sampler2D uStrokes;  // RGBA32F: stroke direction, opacity (hatch_strokes.comp)
 uniform float uLength;   // grid units
+uniform float uOpacityGain;  // multiplies the stroke field's opacity (HatchPassDesc::opacityGain)
 uniform int uBaseStride;   // strokes sit on every uBaseStride-th vertex (HatchPass::baseStride)
 uniform int uLatticeSide;  // strokes per lattice row
 
@@ -55,7 +56,7 @@ void main() {
     int strokeId = gl_VertexID;
     ivec2 ij = ivec2(strokeId % uLatticeSide, strokeId / uLatticeSide) * uBaseStride;
     vec4 stroke = texelFetch(uStrokes, ij, 0);
-    float opacity = stroke.w;
+    float opacity = min(stroke.w * uOpacityGain, 1.0);
     if (opacity < 1.0 / 255.0) return;
     vec3 centre = overlayPoint(vec2(ij));
     vec4 clip = uViewProj * vec4(centre, 1.0);

@@ -81,6 +81,7 @@ TEST_F(Overlays, PassesRejectBadWidths) {
     terrain::Heightfield field = fractal(17);
     auto curvature = std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
     EXPECT_THROW(render::HatchPass::create(curvature, {.length = 0.0f}), Error);
+    EXPECT_THROW(render::HatchPass::create(curvature, {.opacityGain = 0.0f}), Error);
 }
 
 // Orientation of the dark strokes in an image: the structure tensor of the
@@ -143,6 +144,46 @@ TEST_F(Overlays, HatchesOnACylinderRunAlongOrAcrossItsAxisAsAsked) {
             << d.y << ") on screen, expected (" << expected.x << ", " << expected.y << ")";
     }
     (void)renderer;
+}
+
+// The opacity gain multiplies the field's opacity: a field at a quarter of
+// the scale drawn with gain 4 gives the strokes of the full scale with gain 1
+// (what lets one automatic scale, chosen for lines, serve hatches too).
+TEST_F(Overlays, HatchOpacityGainMultipliesTheFieldsOpacity) {
+    const int n = 65;
+    terrain::Heightfield field(n, n);  // a cylinder of radius 40 along x
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            float z = float(j - 32);
+            field.at(i, j) = std::sqrt(std::max(1600.0f - z * z, 0.0f));
+        }
+    auto target = render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4});
+    const render::Camera camera = test::topDownCamera({32.0f, 40.0f, 32.0f}, 20.0f);
+    auto draw = [&](float scale, float gain) {
+        auto curvature =
+            std::make_shared<render::CurvatureGpu>(render::CurvatureGpu::create(field));
+        curvature->compute({.method = analysis::CurvatureMethod::ThreeVertex, .scale = scale});
+        auto r = render::TerrainRenderer::create({.field = &field});
+        r.setSurface(render::makePaperSurface());
+        if (gain > 0.0f)
+            r.addPass(render::HatchPass::create(
+                curvature, {.length = 1.0f, .width = 1.5f, .opacityGain = gain}));
+        target.begin(render::TerrainRenderer::clearColour({}));
+        r.draw(camera, kWidth, kHeight, {.lod = render::Lod::Full});
+        gpu::Image image = target.read();
+        double ink = 0.0;  // summed darkness below white
+        for (size_t k = 0; k + 3 < image.rgba.size(); k += 4)
+            ink += 255.0 * 3 - (double(image.rgba[k]) + image.rgba[k + 1] + image.rgba[k + 2]);
+        return ink;
+    };
+    // Three-vertex curvature of the cylinder is about 1/40 across it: scale 40
+    // makes the strokes opaque, scale 10 a quarter.
+    const double paper = draw(40.0f, 0.0f);  // the shaded cylinder without strokes
+    const double full = draw(40.0f, 1.0f) - paper, quarter = draw(10.0f, 1.0f) - paper,
+                 restored = draw(10.0f, 4.0f) - paper;
+    ASSERT_GT(full, 0.05 * paper) << "the strokes are visible";
+    EXPECT_LT(quarter, 0.4 * full) << "a quarter of the opacity draws a fraction of the ink";
+    EXPECT_NEAR(restored, full, 0.05 * full) << "gain 4 restores the full scale's strokes";
 }
 
 const uint8_t* pixel(const gpu::Image& image, int x, int y) {

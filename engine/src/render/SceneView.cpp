@@ -309,9 +309,17 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s) {
                       ")");
         }
         if (style.layers.hatch) {
+            // One automatic scale serves both layers, chosen for the lines
+            // (the top 5% at the line threshold): the hatches' opacity is
+            // brought to what a scale chosen for them alone gives (the top 5%
+            // opaque).
+            const float gain = style.autoScale && style.layers.lines && style.lines.threshold > 0.0f
+                                   ? 1.0f / style.lines.threshold
+                                   : 1.0f;
             renderer.addPass(HatchPass::create(curvature, {.length = style.hatch.length,
                                                            .width = style.hatch.width,
-                                                           .direction = style.hatch.direction}));
+                                                           .direction = style.hatch.direction,
+                                                           .opacityGain = gain}));
         }
         if (style.layers.lines) {
             // Traced once per terrain and style, from the GPU field read back.

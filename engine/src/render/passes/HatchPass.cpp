@@ -19,6 +19,8 @@ std::unique_ptr<HatchPass> HatchPass::create(std::shared_ptr<const CurvatureGpu>
                  "hatch pass: length must be > 0 grid units, got ", desc.length);
     SIERRA_CHECK(std::isfinite(desc.width) && desc.width > 0.0f,
                  "hatch pass: width must be > 0 pixels, got ", desc.width);
+    SIERRA_CHECK(std::isfinite(desc.opacityGain) && desc.opacityGain > 0.0f,
+                 "hatch pass: opacity gain must be > 0, got ", desc.opacityGain);
     auto pass = std::make_unique<HatchPass>();
     pass->program_ = gpu::Program::create(
         {.vertex = "hatch.vert", .fragment = "line.frag", .geometry = "hatch_geom.glsl"});
@@ -83,6 +85,7 @@ void HatchPass::draw(const FrameContext& frame) {
     setOverlayState();
     glUseProgram(program_.id());
     glUniform1f(program_.uniform("uLength"), desc_.length);
+    glUniform1f(program_.uniform("uOpacityGain"), desc_.opacityGain);
     glUniform1f(program_.uniform("uWidth"), desc_.width);
     glUniform4fv(program_.uniform("uColour"), 1, glm::value_ptr(desc_.colour));
     frame.terrain.bind();

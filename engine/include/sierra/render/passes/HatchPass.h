@@ -27,6 +27,11 @@ struct HatchPassDesc {
     float width = 1.0f;    // pixels, > 0
     analysis::HatchDirection direction = analysis::HatchDirection::Along;
     glm::vec4 colour{0.0f, 0.0f, 0.0f, 1.0f};  // RGBA 0..1; alpha multiplies the opacity
+    // Multiplies every stroke's opacity (the largest curvature) before it is
+    // clamped to 1, > 0. An automatic curvature scale chosen for lines brings
+    // the top 5% of the samples to the line threshold t; a gain of 1 / t
+    // brings them to full opacity, as the scale chosen for hatches alone does.
+    float opacityGain = 1.0f;
 };
 
 class HatchPass final : public Pass {
