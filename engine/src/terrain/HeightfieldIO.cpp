@@ -632,33 +632,19 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
     return field;
 }
 
-// Row j becomes row height - 1 - j (mask included).
-void flipRows(Heightfield& field) {
+// Row j becomes row height - 1 - j (byRows), or column i column width - 1 -
+// i. For .npy grids, which carry no no-data mask (NaN is refused).
+void flip(Heightfield& field, bool byRows) {
+    SIERRA_CHECK(!field.hasMask(), "flip: a field with a no-data mask");
     const int w = field.width(), h = field.height();
     std::span<float> v = field.samples();
-    for (int j = 0; j < h / 2; ++j)
-        std::swap_ranges(v.begin() + ptrdiff_t(j) * w, v.begin() + ptrdiff_t(j + 1) * w,
-                         v.begin() + ptrdiff_t(h - 1 - j) * w);
-    if (field.hasMask()) {
-        std::vector<uint8_t> mask(field.mask().begin(), field.mask().end());
+    if (byRows) {
         for (int j = 0; j < h / 2; ++j)
-            std::swap_ranges(mask.begin() + ptrdiff_t(j) * w, mask.begin() + ptrdiff_t(j + 1) * w,
-                             mask.begin() + ptrdiff_t(h - 1 - j) * w);
-        field.setMask(std::move(mask));
-    }
-}
-
-// Column i becomes column width - 1 - i (mask included).
-void flipColumns(Heightfield& field) {
-    const int w = field.width(), h = field.height();
-    std::span<float> v = field.samples();
-    for (int j = 0; j < h; ++j)
-        std::reverse(v.begin() + ptrdiff_t(j) * w, v.begin() + ptrdiff_t(j + 1) * w);
-    if (field.hasMask()) {
-        std::vector<uint8_t> mask(field.mask().begin(), field.mask().end());
+            std::swap_ranges(v.begin() + ptrdiff_t(j) * w, v.begin() + ptrdiff_t(j + 1) * w,
+                             v.begin() + ptrdiff_t(h - 1 - j) * w);
+    } else {
         for (int j = 0; j < h; ++j)
-            std::reverse(mask.begin() + ptrdiff_t(j) * w, mask.begin() + ptrdiff_t(j + 1) * w);
-        field.setMask(std::move(mask));
+            std::reverse(v.begin() + ptrdiff_t(j) * w, v.begin() + ptrdiff_t(j + 1) * w);
     }
 }
 
@@ -741,8 +727,8 @@ void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& b
     const double north = std::abs(lat->back() - lat->front()) / double(lat->size() - 1);
     const double east = std::abs(lon->back() - lon->front()) / double(lon->size() - 1);
     toMetres(east, north, 0.5 * (lat->front() + lat->back()));
-    if (northward) flipRows(field);
-    if (!eastward) flipColumns(field);
+    if (northward) flip(field, true);
+    if (!eastward) flip(field, false);
 }
 
 // ---------------------------------------------------------------------------- GeoTIFF
