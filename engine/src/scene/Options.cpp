@@ -178,7 +178,7 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
             });
         add("--height-units",
             "What heights measure: auto (metres for SRTM, GeoTIFF and .npz with geographic "
-            "bounds), m (metres) or none",
+            "coordinates), m (metres) or none",
             g, "auto|m|none", toString(d.terrain.heightUnits), 1, [](Scene& s, Words w) {
                 s.terrain.heightUnits = parseHeightUnits(w[0], "--height-units");
             });
