@@ -525,8 +525,42 @@ size_t skipBlanks(std::string_view s, size_t pos) {
     return pos;
 }
 
-Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
-                    const LoadOptions& options) {
+// A .npy header, checked: its dtype, its shape and where its data starts.
+struct NpyHeader {
+    std::string descr;            // '<f4' ...
+    int valueBytes = 0;           // bytes per value of descr
+    std::vector<uint64_t> shape;  // each extent at most 2^40
+    std::string dims;             // the shape tuple's text, for messages
+    uint64_t dataStart = 0;
+};
+
+// The value bytes of a little-endian float or integer dtype ('<f4', '<i8',
+// '|u1' ...), 0 for any other.
+int numericBytes(const std::string& descr) {
+    if (descr.size() != 3 || (descr[0] != '<' && descr[0] != '|')) return 0;
+    const int width = descr[2] - '0';
+    if (width != 1 && width != 2 && width != 4 && width != 8) return 0;
+    if (descr[1] == 'f') return width >= 4 ? width : 0;
+    return descr[1] == 'i' || descr[1] == 'u' ? width : 0;
+}
+
+// Value k of data in numericBytes' dtype `descr`.
+double npyNumber(const std::string& descr, const uint8_t* data, size_t k) {
+    const int width = descr[2] - '0';
+    const uint8_t* p = data + k * size_t(width);
+    if (descr[1] == 'f')
+        return width == 4 ? double(std::bit_cast<float>(le32(p))) : std::bit_cast<double>(le64(p));
+    const uint64_t bits = width == 1 ? p[0] : width == 2 ? le16(p) : width == 4 ? le32(p) : le64(p);
+    if (descr[1] == 'u') return double(bits);
+    const int shift = 64 - 8 * width;  // sign-extended
+    return double(int64_t(bits << shift) >> shift);
+}
+
+// Parses and checks a .npy header (magic, version, C order, a shape tuple).
+// `supported` lists the dtypes taken, as the message names them. Throws
+// sierra::Error naming `path` for anything else.
+NpyHeader parseNpyHeader(const std::string& path, const std::vector<uint8_t>& bytes,
+                         std::initializer_list<const char*> supported) {
     static const uint8_t kMagic[6] = {0x93, 'N', 'U', 'M', 'P', 'Y'};
     if (bytes.size() < 10 || std::memcmp(bytes.data(), kMagic, 6) != 0)
         throw Error(msg(path, ": not a NumPy .npy file (no \\x93NUMPY magic)"));
@@ -537,8 +571,9 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
     const size_t lengthBytes = major == 1 ? 2 : 4;
     if (bytes.size() < 8 + lengthBytes) throw Error(msg(path, ": truncated .npy header"));
     const uint64_t headerLength = major == 1 ? le16(&bytes[8]) : le32(&bytes[8]);
-    const uint64_t dataStart = 8 + lengthBytes + headerLength;
-    if (dataStart > bytes.size())
+    NpyHeader out;
+    out.dataStart = 8 + lengthBytes + headerLength;
+    if (out.dataStart > bytes.size())
         throw Error(msg(path, ": truncated .npy header: ", headerLength,
                         " header bytes announced, the file has ", bytes.size()));
     const std::string_view header(reinterpret_cast<const char*>(bytes.data()) + 8 + lengthBytes,
@@ -549,24 +584,20 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
     if (at == std::string_view::npos)
         throw Error(msg(path, ": .npy header has no 'descr'; not an array written by numpy.save?"));
     at = skipBlanks(header, at);
-    std::string descr;
+    std::string& descr = out.descr;
     if (at < header.size() && (header[at] == '\'' || header[at] == '"')) {
         size_t end = header.find(header[at], at + 1);
         if (end != std::string_view::npos) descr = std::string(header.substr(at + 1, end - at - 1));
     }
-    struct DType {
-        const char* name;
-        int bytes;
-    };
-    static const DType kTypes[] = {{"<f4", 4}, {"<f8", 8}, {"<i2", 2},
-                                   {"<u2", 2}, {"|u1", 1}, {"<u1", 1}};
-    const DType* type = nullptr;
-    for (const DType& t : kTypes)
-        if (descr == t.name) type = &t;
-    if (!type)
+    std::string names;
+    for (const char* name : supported) {
+        names += msg(names.empty() ? "" : " ", name);
+        if (descr == name) out.valueBytes = numericBytes(descr);
+    }
+    if (out.valueBytes == 0)
         throw Error(msg(path, ": .npy dtype '",
                         descr.empty() ? std::string(header.substr(at, 16)) : descr,
-                        "' is not supported; expected one of <f4 <f8 <i2 <u2 |u1 (little-endian)"));
+                        "' is not supported; expected one of ", names, " (little-endian)"));
 
     at = npyValue(header, "fortran_order");
     if (at == std::string_view::npos)
@@ -587,8 +618,8 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
     size_t close = header.find(')', at);
     if (close == std::string_view::npos)
         throw Error(msg(path, ": .npy header 'shape' tuple is not closed"));
-    std::vector<uint64_t> shape;
     const std::string_view dims = header.substr(at + 1, close - at - 1);
+    out.dims = std::string(dims);
     for (size_t p = 0; p < dims.size();) {
         p = skipBlanks(dims, p);
         if (p >= dims.size()) break;
@@ -597,37 +628,34 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
         uint64_t v = 0;
         for (; p < dims.size() && std::isdigit(static_cast<unsigned char>(dims[p])); ++p)
             v = std::min<uint64_t>(v * 10 + (dims[p] - '0'), uint64_t(1) << 40);
-        shape.push_back(v);
+        out.shape.push_back(v);
         p = skipBlanks(dims, p);
         if (p < dims.size() && dims[p] == ',') ++p;
     }
+    return out;
+}
+
+Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
+                    const LoadOptions& options) {
+    const NpyHeader h = parseNpyHeader(path, bytes, {"<f4", "<f8", "<i2", "<u2", "|u1", "<u1"});
+    const std::vector<uint64_t>& shape = h.shape;
+    const std::string& descr = h.descr;
+    const std::string& dims = h.dims;
+    const uint64_t dataStart = h.dataStart;
     if (shape.size() != 2)
         throw Error(
             msg(path, ": .npy array has shape (", dims, "); expected a 2-D array (rows, columns)"));
     const int64_t height = int64_t(shape[0]), width = int64_t(shape[1]);
     checkSize(path, width, height, ".npy array", options);
 
-    const uint64_t need = uint64_t(width) * uint64_t(height) * uint64_t(type->bytes);
+    const uint64_t need = uint64_t(width) * uint64_t(height) * uint64_t(h.valueBytes);
     if (bytes.size() - dataStart < need)
         throw Error(msg(path, ": truncated .npy data: ", height, "x", width, " ", descr,
                         " values need ", need, " bytes, the file has ", bytes.size() - dataStart));
     Heightfield field{int(width), int(height)};
     auto out = field.samples();
     const uint8_t* p = bytes.data() + dataStart;
-    for (size_t k = 0; k < out.size(); ++k) {
-        switch (descr[1]) {
-            case 'f':
-                out[k] = type->bytes == 4 ? std::bit_cast<float>(le32(p + 4 * k))
-                                          : float(std::bit_cast<double>(le64(p + 8 * k)));
-                break;
-            case 'i':
-                out[k] = float(int16_t(le16(p + 2 * k)));
-                break;
-            default:
-                out[k] = type->bytes == 2 ? float(le16(p + 2 * k)) : float(p[k]);
-                break;
-        }
-    }
+    for (size_t k = 0; k < out.size(); ++k) out[k] = float(npyNumber(descr, p, k));
     if (descr[1] == 'f') checkFinite(path, field);
     return field;
 }
@@ -662,8 +690,28 @@ void flip(Heightfield& field, bool byRows) {
 // heights are then taken as metres. An archive with neither keeps spacing 1.
 void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& bytes,
                           Heightfield& field) {
+    // Numbers and lists of numbers (0-d and 1-d arrays of a little-endian
+    // float or integer type) among the archive's small members, by name;
+    // members of any other kind are no georeferencing and are skipped.
     const size_t longest = size_t(std::max(field.width(), field.height()));
-    const std::map<std::string, std::vector<double>> numbers = npzNumbers(path, bytes, longest);
+    std::map<std::string, std::vector<double>> numbers;
+    for (auto& [name, npy] : npzSmallMembers(path, bytes, 4096 + 8 * uint64_t(longest))) {
+        NpyHeader h;
+        try {
+            h = parseNpyHeader(name, npy,
+                               {"<f4", "<f8", "<i1", "<i2", "<i4", "<i8", "|i1", "<u1", "|u1",
+                                "<u2", "<u4", "<u8"});
+        } catch (const Error&) {
+            continue;
+        }
+        const uint64_t count = h.shape.empty() ? 1 : h.shape[0];
+        if (h.shape.size() > 1 || count == 0 || count > longest ||
+            npy.size() - h.dataStart < count * uint64_t(h.valueBytes))
+            continue;
+        std::vector<double>& values = numbers[name];
+        for (size_t k = 0; k < count; ++k)
+            values.push_back(npyNumber(h.descr, npy.data() + h.dataStart, k));
+    }
     auto scalar = [&](const char* name) -> std::optional<double> {
         auto it = numbers.find(name);
         if (it == numbers.end() || it->second.size() != 1) return std::nullopt;

@@ -5,9 +5,7 @@
 #include <zlib.h>
 
 #include <array>
-#include <bit>
 #include <cstring>
-#include <optional>
 
 namespace sierra::terrain {
 
@@ -153,46 +151,6 @@ std::vector<uint8_t> extract(const std::string& path, const std::vector<uint8_t>
     return out;
 }
 
-// The values of a 0-d or 1-d array of a little-endian float or integer type
-// (numpy.savez of a number or of a coordinate list), or nothing.
-std::optional<std::vector<double>> npyNumbers(const std::vector<uint8_t>& npy) {
-    const int dims = npyDimensions(npy);
-    if (dims != 0 && dims != 1) return std::nullopt;
-    const bool v1 = npy[6] == 1;
-    const size_t headerLength = v1 ? read16(npy, 8) : read32(npy, 8);
-    const size_t data = (v1 ? 10 : 12) + headerLength;
-    if (data > npy.size()) return std::nullopt;
-    const std::string header(npy.begin() + (v1 ? 10 : 12), npy.begin() + std::ptrdiff_t(data));
-    const size_t key = header.find("descr");
-    if (key == std::string::npos) return std::nullopt;
-    const size_t open = header.find_first_of("'\"", header.find(':', key));
-    if (open == std::string::npos || open + 4 > header.size()) return std::nullopt;
-    const std::string descr = header.substr(open + 1, 3);
-    const char order = descr[0], kind = descr[1];
-    const int width = descr[2] - '0';
-    if ((order != '<' && order != '|') || (width != 1 && width != 2 && width != 4 && width != 8) ||
-        (kind != 'f' && kind != 'i' && kind != 'u') || (kind == 'f' && width < 4))
-        return std::nullopt;
-    // The shape's length (1-d) must match the data; a 0-d array holds one value.
-    const size_t count = (npy.size() - data) / size_t(width);
-    if (count == 0 || (dims == 0 && count != 1) || (npy.size() - data) % size_t(width) != 0)
-        return std::nullopt;
-    std::vector<double> values(count);
-    for (size_t n = 0; n < count; ++n) {
-        const size_t at = data + n * size_t(width);
-        uint64_t bits = 0;
-        for (int k = width - 1; k >= 0; --k) bits = bits << 8 | npy[at + size_t(k)];
-        if (kind == 'f')
-            values[n] = width == 8 ? std::bit_cast<double>(bits)
-                                   : double(std::bit_cast<float>(uint32_t(bits)));
-        else if (kind == 'u')
-            values[n] = double(bits);
-        else  // sign-extended
-            values[n] = double(int64_t(bits << (64 - 8 * width)) >> (64 - 8 * width));
-    }
-    return values;
-}
-
 }  // namespace
 
 std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_t>& bytes,
@@ -215,18 +173,13 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
     throw fail(msg("no 2-D array among the members (", names, ")"));
 }
 
-std::map<std::string, std::vector<double>> npzNumbers(const std::string& path,
-                                                      const std::vector<uint8_t>& bytes,
-                                                      size_t maxValues) {
-    std::map<std::string, std::vector<double>> out;
-    for (const Member& m : readDirectory(path, bytes)) {
-        // The header (128 bytes as numpy writes it) and at most maxValues
-        // values of 8 bytes: anything larger is not a number or a list of them.
-        const uint64_t most = 4096 + 8 * uint64_t(maxValues);
-        if (!m.name.ends_with(".npy") || m.size > most) continue;
-        std::optional<std::vector<double>> v = npyNumbers(extract(path, bytes, m, most));
-        if (v && v->size() <= maxValues) out[m.name.substr(0, m.name.size() - 4)] = std::move(*v);
-    }
+std::map<std::string, std::vector<uint8_t>> npzSmallMembers(const std::string& path,
+                                                            const std::vector<uint8_t>& bytes,
+                                                            uint64_t maxBytes) {
+    std::map<std::string, std::vector<uint8_t>> out;
+    for (const Member& m : readDirectory(path, bytes))
+        if (m.name.ends_with(".npy") && m.size <= maxBytes)
+            out[m.name.substr(0, m.name.size() - 4)] = extract(path, bytes, m, maxBytes);
     return out;
 }
 

@@ -3,7 +3,6 @@
 // members, stored or deflated. Only what heightmaps need: find the member,
 // inflate it into a buffer of its declared size, check its CRC.
 
-#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -20,14 +19,13 @@ std::vector<uint8_t> npzMember(const std::string& path, const std::vector<uint8_
                                const std::string& member = {},
                                uint64_t maxBytes = uint64_t(1) << 32);
 
-// The archive's numbers and lists of numbers (0-d and 1-d arrays of a
-// little-endian float or integer type, at most maxValues values), by member
-// name without ".npy": the georeferencing some DEM archives carry beside
-// their array (scalars dx, dy, xmin, xmax, ymin, ymax, or the latitude and
-// longitude of every row and column). Members of any other shape or type
-// are skipped; a corrupt archive throws as npzMember does.
-std::map<std::string, std::vector<double>> npzNumbers(const std::string& path,
-                                                      const std::vector<uint8_t>& bytes,
-                                                      size_t maxValues);
+// The .npy bytes of the archive's members of at most maxBytes, by name
+// without ".npy": small arrays beside the heights, such as the
+// georeferencing some DEM archives carry (scalars dx, dy, xmin, xmax, ymin,
+// ymax, or the latitude and longitude of every row and column). A corrupt
+// archive throws as npzMember does.
+std::map<std::string, std::vector<uint8_t>> npzSmallMembers(const std::string& path,
+                                                            const std::vector<uint8_t>& bytes,
+                                                            uint64_t maxBytes);
 
 }  // namespace sierra::terrain
