@@ -113,13 +113,14 @@ void series(const StageSeries& s, bool deterministic, float width) {
     auto [median, p95] = medianAndP95(s.values);
     const std::string overlay =
         msg("median ", fixed(median, 2), " ", s.unit, ", p95 ", fixed(p95, 2), " ", s.unit);
-    ImGui::TextUnformatted(msg(s.name, " (", s.unit, ", ", s.values.size(), " frames)").c_str());
+    // Wrapped: a narrow column (a small frame's panel) must not clip the heading.
+    ImGui::TextWrapped("%s", msg(s.name, " (", s.unit, ", ", s.values.size(), " frames)").c_str());
     if (s.values.size() >= 2) {
         const float top = *std::max_element(s.values.begin(), s.values.end());
         ImGui::PlotLines(("##" + s.name).c_str(), s.values.data(), int(s.values.size()), 0,
                          overlay.c_str(), 0.0f, std::max(top * 1.15f, 1e-3f), ImVec2(width, 26.0f));
     } else {
-        ImGui::TextUnformatted(overlay.c_str());
+        ImGui::TextWrapped("%s", overlay.c_str());
     }
 }
 
@@ -132,8 +133,8 @@ void histogram(const Histogram& h, float width) {
         top = std::max(top, h.counts[k]);
         if (h.counts[k] > 0) last = int(k), first = first < 0 ? int(k) : first;
     }
-    ImGui::Text("%s (%s %d..%d)", h.name.c_str(), h.binLabel.c_str(), h.firstBin,
-                h.firstBin + int(h.counts.size()) - 1);
+    ImGui::TextWrapped("%s (%s %d..%d)", h.name.c_str(), h.binLabel.c_str(), h.firstBin,
+                       h.firstBin + int(h.counts.size()) - 1);
     const std::string overlay =
         first < 0 ? std::string("empty")
                   : msg(fixed(total, 0), " in ", h.binLabel, " ", h.firstBin + first, "..",
