@@ -80,18 +80,22 @@ FrameUniformData TerrainRenderer::frameUniforms(const Camera& camera, int width,
     return u;
 }
 
+namespace {
+LodSettings lodSettings(const DrawOptions& options) {
+    return {.lod = options.lod,
+            .tau = options.tau,
+            .cull = options.cull,
+            .geomorph = options.geomorph,
+            .threads = options.threads};
+}
+}  // namespace
+
 DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height,
                                 const DrawOptions& options) {
     State& s = *state_;
     SIERRA_CHECK(width > 0 && height > 0, "frame size must be positive, got ", width, "x", height);
     DrawStats stats;
-    MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height,
-                                     {.lod = options.lod,
-                                      .tau = options.tau,
-                                      .cull = options.cull,
-                                      .geomorph = options.geomorph,
-                                      .threads = options.threads},
-                                     stats);
+    MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height, lodSettings(options), stats);
     Stopwatch submit;
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
     GLint previousBlock = 0;
@@ -134,13 +138,7 @@ DepthImage TerrainRenderer::renderDepth(const Camera& camera, int width, int hei
     if (!s.depth || s.depth->width() != width || s.depth->height() != height)
         s.depth = DepthPass::create(width, height);
     MeshStats stats;
-    MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height,
-                                     {.lod = options.lod,
-                                      .tau = options.tau,
-                                      .cull = options.cull,
-                                      .geomorph = options.geomorph,
-                                      .threads = options.threads},
-                                     stats);
+    MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height, lodSettings(options), stats);
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
     GLint previousBlock = 0;
     glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kFrameUniformBinding, &previousBlock);

@@ -58,6 +58,19 @@ bool isSbtGrid(const terrain::Heightfield& field, int* n) {
     return true;
 }
 
+namespace {
+// n of a (2^n + 1)^2 grid the SBT can index; anything else is an error.
+int checkedSbtLevels(const terrain::Heightfield& field) {
+    int n = 0;
+    SIERRA_CHECK(isSbtGrid(field, &n), "the SBT needs a (2^n+1)^2 grid with n >= 1, got ",
+                 field.width(), "x", field.height(), " (pad it with padToPowerOfTwoPlusOne)");
+    SIERRA_CHECK(field.width() <= kMaxSbtSide, "a ", field.width(), "x", field.width(),
+                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide,
+                 "x", kMaxSbtSide, ")");
+    return n;
+}
+}  // namespace
+
 int vertexLevel(int i, int j, int n) {
     int ti = trailingZeros(i, n), tj = trailingZeros(j, n);
     if (ti >= n && tj >= n) return -1;
@@ -88,12 +101,7 @@ bool hypotenuseEndpoints(int i, int j, int n, int* ai, int* aj, int* bi, int* bj
 }
 
 VertexErrors computeVertexErrors(const terrain::Heightfield& field, int threads) {
-    int n = 0;
-    SIERRA_CHECK(isSbtGrid(field, &n), "the SBT needs a (2^n+1)^2 grid with n >= 1, got ",
-                 field.width(), "x", field.height(), " (pad it with padToPowerOfTwoPlusOne)");
-    SIERRA_CHECK(field.width() <= kMaxSbtSide, "a ", field.width(), "x", field.width(),
-                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide,
-                 "x", kMaxSbtSide, ")");
+    const int n = checkedSbtLevels(field);
     if (threads <= 0) threads = defaultThreadCount();
     const int side = field.width(), S = side - 1;
     VertexErrors out;
@@ -170,12 +178,7 @@ VertexErrors computeVertexErrors(const terrain::Heightfield& field, int threads)
 }
 
 std::vector<float> buildMorphBase(const terrain::Heightfield& field, int threads) {
-    int n = 0;
-    SIERRA_CHECK(isSbtGrid(field, &n), "the SBT needs a (2^n+1)^2 grid with n >= 1, got ",
-                 field.width(), "x", field.height(), " (pad it with padToPowerOfTwoPlusOne)");
-    SIERRA_CHECK(field.width() <= kMaxSbtSide, "a ", field.width(), "x", field.width(),
-                 " grid has more vertices than 32-bit strip indices address (at most ", kMaxSbtSide,
-                 "x", kMaxSbtSide, ")");
+    const int n = checkedSbtLevels(field);
     if (threads <= 0) threads = defaultThreadCount();
     const int side = field.width();
     std::vector<float> base(size_t(side) * side);
