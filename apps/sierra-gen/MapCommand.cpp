@@ -66,7 +66,10 @@ void runMap(const MapOptions& o) {
     std::string source;
     terrain::Heightfield field = scene::loadTerrain(o.scene.terrain, &source, scene::Padding::None);
     log::info("terrain: ", source, "; map ", field.width(), "x", field.height());
-    auto [lo, hi] = field.range();
+    // Plain variables, not a structured binding: the ramp's lambda captures
+    // them (Clang before 16 cannot capture a binding).
+    const std::pair<float, float> range = field.range();
+    float lo = range.first, hi = range.second;
     if (!(hi > lo)) hi = lo + 1.0f;
     float sea = scene::resolveSeaLevel(o.scene.terrain, field);
     if (!std::isfinite(sea)) sea = lo - (hi - lo);  // no water: below every sample

@@ -122,7 +122,8 @@ TEST_F(ZonesIo, Figure1ZonesMustNotTouch) {
 // column of pixels has no frame, and the map's own name says so (a 2x2 map is fine).
 TEST_F(ZonesIo, Figure1MapNeedsTwoByTwo) {
     Palette p = loadPalette(write("p.json", kGood));
-    for (auto [w, h] : {std::pair{1, 1}, {5, 1}, {1, 4}}) {
+    for (std::pair<int, int> size : {std::pair{1, 1}, {5, 1}, {1, 4}}) {
+        const int w = size.first, h = size.second;       // captured below: no structured binding
         std::vector<uint8_t> rgb(size_t(w) * h * 3, 0);  // all borderline (#000000)
         std::string e = errorOf([&] { classifyZoneMap(w, h, rgb, p, "tiny.png"); });
         EXPECT_NE(e.find("tiny.png"), std::string::npos) << e;

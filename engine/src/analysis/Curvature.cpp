@@ -230,9 +230,9 @@ struct Kernel {
         const int dist = opt.distance;
         // Straight arithmetic first, selects in loops of their own: GCC 12
         // does not vectorise the measure with a select in the same loop. buf
-        // and second never overlap the heights or gradients (ivdep: no
+        // and second never overlap the heights or gradients (SIERRA_IVDEP: no
         // run-time alias checks).
-#pragma GCC ivdep
+        SIERRA_IVDEP
         for (int i = iLo; i < iHi; ++i) buf[i] = measure<kMethod>(v, row + i, 1, second[i]);
         if (opt.output == CurvatureOutput::SecondDerivative) {
             for (int i = iLo; i < iHi; ++i) buf[i] = second[i];
@@ -240,7 +240,7 @@ struct Kernel {
         }
         for (int i = iLo; i < iHi; ++i) buf[i] *= scale;
         if (dist > 1) {
-#pragma GCC ivdep
+            SIERRA_IVDEP
             for (int i = iLo; i < iHi; ++i) {
                 float farYpp;
                 buf[i] *= measure<kMethod>(v, row + i, dist, farYpp);
