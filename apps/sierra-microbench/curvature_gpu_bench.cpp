@@ -5,6 +5,7 @@
 // BM_Curvature/2049/... for the CPU time of the same field.
 #include <sierra/analysis/Curvature.h>
 #include <sierra/gpu/EglContext.h>
+#include <sierra/gpu/GlStateScope.h>
 #include <sierra/gpu/Objects.h>
 #include <sierra/gpu/Program.h>
 #include <sierra/render/CurvatureGpu.h>
@@ -107,6 +108,8 @@ BENCHMARK(BM_CurvatureGpu)
 void BM_CurvatureGpuWriteFloor(benchmark::State& state) {
     const int size = int(state.range(0));
     GpuSetup& s = setup(size);
+    // The benchmarks share one context: this one's bindings end with it.
+    sierra::gpu::GlStateScope scope;
     constexpr int kRun = sierra::render::CurvatureGpu::kRun;
     const int runs = (size + kRun - 1) / kRun;
     GLuint name = 0;
@@ -168,7 +171,6 @@ void BM_CurvatureGpuWriteFloor(benchmark::State& state) {
         glDrawArrays(GL_TRIANGLES, 0, 3);
         glFinish();
     }
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     state.SetItemsProcessed(state.iterations() * int64_t(size) * size);
     state.SetLabel("8 RGBA32F layers written, nothing read, on " + s.context.renderer());
 }

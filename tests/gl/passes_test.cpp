@@ -4,6 +4,7 @@
 #include "GlTest.h"
 
 #include <sierra/gpu/GlStateScope.h>
+#include <sierra/gpu/Program.h>
 #include <sierra/render/Camera.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
@@ -98,6 +99,37 @@ TEST_F(Passes, StateCaptureSeesEveryChange) {
     EXPECT_NE(diff.find("texture unit 5"), std::string::npos) << diff;
     a.restore();
     EXPECT_EQ(a.differences(gpu::GlState::capture()), "");
+}
+
+TEST_F(Passes, AProgramDeletedWhileCurrentIsNotRestored) {
+    // GL keeps a program deleted while it is current until another one is
+    // used; a pass in between uses its own, so the name is gone by the time
+    // the scope ends and binding it again would be GL_INVALID_VALUE (the
+    // KHR_debug check of GlTest fails the test on any error).
+    const GLuint deleted =
+        gpu::Program::create({.vertex = "solid.vert", .fragment = "solid.frag"}).release();
+    glUseProgram(deleted);
+    glDeleteProgram(deleted);
+    ASSERT_TRUE(glIsProgram(deleted));  // flagged, still current
+    gpu::Program other = gpu::Program::create({.vertex = "solid.vert", .fragment = "solid.frag"});
+    {
+        gpu::GlStateScope scope;
+        glUseProgram(other.id());
+        EXPECT_FALSE(glIsProgram(deleted));  // no longer current: gone
+    }
+    GLint current = -1;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+    EXPECT_EQ(current, 0);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    // A live program is restored as before.
+    glUseProgram(other.id());
+    {
+        gpu::GlStateScope scope;
+        glUseProgram(0);
+    }
+    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+    EXPECT_EQ(GLuint(current), other.id());
+    glUseProgram(0);
 }
 
 TEST_F(Passes, DepthOfAFlatTerrainSeenFromAboveIsItsHeight) {

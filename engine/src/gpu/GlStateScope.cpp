@@ -104,7 +104,10 @@ void GlState::restore() const {
     glPolygonOffset(polygonOffsetFactor, polygonOffsetUnits);
     glCullFace(GLenum(cullFace));
     glFrontFace(GLenum(frontFace));
-    glUseProgram(GLuint(program));
+    // A program deleted while it was current lives on only as long as it stays
+    // current: once a pass has used another, its name is gone and binding it
+    // again is an error. The state then is no program, as GL itself leaves it.
+    glUseProgram(program != 0 && glIsProgram(GLuint(program)) ? GLuint(program) : 0);
     glBindVertexArray(GLuint(vertexArray));
     glBindBuffer(GL_ARRAY_BUFFER, GLuint(arrayBuffer));
     for (int k = 0; k < kUniformBindings; ++k)
