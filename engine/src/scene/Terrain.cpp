@@ -149,6 +149,12 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
     field.setVerticalScale(scale);
     what += msg(", spacing ", field.spacingX(), "x", field.spacingZ(), field.metres() ? " m" : "",
                 ", vertical scale ", scale);
+    // Metres drawn at scale 1 over a grid of unknown ground spacing: one
+    // metre a sample is a guess that can exaggerate the relief a thousandfold.
+    if (metric && !field.metres() && source.spacing <= 0.0f && source.verticalScale <= 0.0f)
+        what +=
+            " [warning: the heights are metres but the ground spacing is unknown, so 1 m a "
+            "sample is assumed; --spacing gives it]";
     if (description) *description = what;
     return field;
 }
