@@ -34,14 +34,16 @@ endif()
 # Topography and bathymetry: the sea is at 0 m.
 run_app(coast EXPECT_OK MESSAGE "sea level 0"
         COMMAND ${RENDER} --heightmap ${samples}/topobathy.npz --height-units m --spacing 3000 ${small} --out coast.png)
-if(LAST_OUTPUT MATCHES "ground spacing is unknown")
-  message(FATAL_ERROR "--spacing gives the ground spacing:\n${LAST_OUTPUT}")
-endif()
 # Metres on a grid without a ground spacing: drawn, with a warning that names --spacing.
 run_app(metres_no_spacing EXPECT_OK MESSAGE "the heights are metres but the ground spacing is unknown"
         COMMAND ${RENDER} --generate 65 --height-units m ${small} --out metres.png)
 if(LAST_OUTPUT MATCHES "spacing 1x1 m")
   message(FATAL_ERROR "an unreferenced grid's spacing is not metres:\n${LAST_OUTPUT}")
+endif()
+run_app(metres_spacing EXPECT_OK MESSAGE "spacing 0.01x0.01, vertical scale 1"
+        COMMAND ${RENDER} --generate 65 --height-units m --spacing 0.01 ${small} --out metres2.png)
+if(LAST_OUTPUT MATCHES "ground spacing is unknown")
+  message(FATAL_ERROR "--spacing gives the ground spacing:\n${LAST_OUTPUT}")
 endif()
 # Asked for, or turned off.
 run_app(valley_sea EXPECT_OK MESSAGE "sea level 500"
