@@ -366,6 +366,31 @@ TEST(SbtFixed, IdenticalForOneTwoFourThreads) {
     }
 }
 
+// One thread joins each chunk into the output as soon as it is walked, and
+// the output grows from the size the last refinement wrote; several threads
+// join at the end. Both give the same mesh, into a mesh reused across
+// refinements that grow (past that size several times over) and shrink.
+TEST(SbtFixed, OneThreadJoinsIntoAReusedMeshAsSeveralThreadsDo) {
+    Heightfield f = fractal(257, 8);
+    auto ve = sbt::computeVertexErrors(f);
+    sbt::Refiner serial(f, ve, {.threads = 1});
+    sbt::StripMesh reused;
+    for (float eps : {20.0f, 0.3f, 5.0f, -1.0f, 40.0f, 1.0f, -1.0f}) {
+        SCOPED_TRACE("eps " + std::to_string(eps));
+        const size_t before = reused.indices.size();
+        serial.refineFixed(eps, reused);
+        sbt::Refiner parallel(f, ve, {.threads = 2});  // its first refinement runs in parallel
+        sbt::StripMesh fresh;
+        parallel.refineFixed(eps, fresh);
+        ASSERT_EQ(reused.indices, fresh.indices);
+        EXPECT_EQ(reused.triangleCount, fresh.triangleCount);
+        EXPECT_EQ(reused.stripCount, fresh.stripCount);
+        if (eps == 0.3f) {
+            EXPECT_GT(reused.indices.size(), 4 * before) << "the output grew";
+        }
+    }
+}
+
 TEST(SbtFixed, IndicesPerTriangleAtMost1Point7) {
     for (int size : {129, 257}) {
         Heightfield f = size == 129 ? gaussians(size, 4) : fractal(size, 4);
@@ -539,6 +564,41 @@ TEST(SbtView, RandomCamerasConformBoundErrorAndCullOnlyOutside) {
             EXPECT_EQ(again.indices, visible.indices);
         }
     }
+}
+
+// As SbtFixed.OneThreadJoinsIntoAReusedMeshAsSeveralThreadsDo, for views with
+// and without culling: culled gaps restart the strip, so the joins meet
+// every kind of seam between chunks.
+TEST(SbtView, OneThreadJoinsIntoAReusedMeshAsSeveralThreadsDo) {
+    std::mt19937_64 rng(31);
+    Heightfield f = fractal(257, 5, 1.0f);
+    f.setVerticalScale(30.0f);
+    auto ve = sbt::computeVertexErrors(f);
+    sbt::Refiner serial(f, ve, {.threads = 1});
+    sbt::StripMesh reused;
+    int restarts = 0;
+    for (int trial = 0; trial < 16; ++trial) {
+        SCOPED_TRACE("trial " + std::to_string(trial));
+        auto [lo, hi] = f.range();
+        Camera cam =
+            randomCamera(rng, 256.0f, (hi - lo) * f.verticalScale() + 10.0f, 16.0f / 9.0f, 1.0f);
+        sbt::ViewParams vp;
+        vp.eye = cam.eye;
+        vp.lambda = sbt::projectionLambda(1080.0f, 1.0f);
+        vp.tau = std::uniform_real_distribution<float>(0.3f, 8.0f)(rng);
+        vp.planes = sbt::frustumPlanes(cam.viewProj.data());
+        vp.cull = trial % 4 != 3;
+        serial.refineView(vp, reused);
+        sbt::Refiner parallel(f, ve, {.threads = 2});  // its first refinement runs in parallel
+        sbt::StripMesh fresh;
+        parallel.refineView(vp, fresh);
+        ASSERT_EQ(reused.indices, fresh.indices);
+        EXPECT_EQ(reused.triangleCount, fresh.triangleCount);
+        EXPECT_EQ(reused.stripCount, fresh.stripCount);
+        EXPECT_EQ(reused.culledSubtrees, fresh.culledSubtrees);
+        restarts += reused.stripCount > 1;
+    }
+    EXPECT_GT(restarts, 3) << "views whose strip restarts at culled gaps";
 }
 
 }  // namespace

@@ -768,17 +768,86 @@ int64_t firstTriangle(const uint32_t* s, int64_t count, uint32_t side, int64_t* 
     return 0;
 }
 
+// Joins the chunks' strips, in chunk order, into one strip mesh. Every strip
+// starts with its entry vertex twice (a, a); dropping one copy flips the GL
+// parity of the whole strip, which is how each strip is made to decode
+// clockwise in (i, j). A strip whose entry is the previous strip's last vertex
+// and whose first triangle shares an edge with the previous one (consecutive
+// subtrees on the curve, no culled gap between them) continues that strip
+// through degenerate triangles instead of a restart. `place` decides where each
+// strip of a chunk goes (it needs only the last three indices written, kept in
+// `tail`) and hands that to `emit`, which copies it at once or later.
+struct StripJoin {
+    uint32_t side;
+    int64_t pos = 0, stripStart = 0;
+    uint32_t tail[3] = {kRestartIndex, kRestartIndex,
+                        kRestartIndex};  // last, second-last, third-last
+    int64_t leaves = 0, culled = 0;
+    int strips = 0;
+
+    template <typename Emit>
+    void place(const Refiner::Chunk& ch, Emit&& emit) {
+        leaves += ch.leaves;
+        culled += ch.culled;
+        const uint32_t* src = ch.buffer.data();
+        for (size_t s = 0; s < ch.starts.size(); ++s) {
+            const int64_t begin = ch.starts[s];
+            const int64_t end = s + 1 < ch.starts.size() ? int64_t(ch.starts[s + 1]) - 1 : ch.used;
+            int64_t k0 = 0;  // first non-degenerate triangle, relative to begin
+            const int64_t g = firstTriangle(src + begin, end - begin, side, &k0);
+            if (g == 0) continue;  // nothing drawn
+            bool merge = false;
+            if (pos - stripStart >= 3 && tail[0] == src[begin]) {
+                int shared = 0;
+                for (int x = 0; x < 3; ++x)
+                    for (int y = 0; y < 3; ++y) shared += tail[x] == src[begin + k0 + y];
+                merge = shared == 2;
+            }
+            // decoded clockwise iff (g > 0) == (position odd)
+            const int64_t want = g > 0 ? 1 : 0;
+            int64_t drop;
+            bool restart = false;
+            if (merge) {
+                const int64_t p0 = pos - stripStart;  // where src[begin + drop] lands
+                drop = ((p0 + k0 - 1) & 1) == want ? 1 : 0;
+            } else {
+                if (pos != 0) restart = true, ++pos;
+                stripStart = pos;
+                drop = (k0 & 1) == want ? 0 : 1;
+                ++strips;
+            }
+            const uint32_t* from = src + begin + drop;
+            const int64_t length = end - begin - drop;
+            emit(Refiner::Copy{from, length, pos, restart});
+            if (length >= 3) {
+                tail[0] = from[length - 1], tail[1] = from[length - 2], tail[2] = from[length - 3];
+            } else {
+                for (int64_t k = 0; k < length; ++k)
+                    tail[2] = tail[1], tail[1] = tail[0], tail[0] = from[k];
+            }
+            pos += length;
+        }
+    }
+};
+
+inline void copyStrip(uint32_t* first, const Refiner::Copy& cp) {
+    if (cp.restart) first[cp.dst - 1] = kRestartIndex;
+    std::memcpy(first + cp.dst, cp.src, size_t(cp.length) * sizeof(uint32_t));
+}
+
 }  // namespace
 
 // One refinement's working data (see Refiner::frames_).
 struct Refiner::Frame {
     std::vector<Op> ops;
-    std::vector<size_t> cuts;      // chunk c runs ops[cuts[c], cuts[c + 1])
-    std::vector<Chunk> chunks[2];  // per slot of parallelRescuedChunks: first runs, rescues
-    std::vector<int> order;        // chunks in the order they are handed out
-    std::vector<uint8_t> winners;  // per place in `order`: the slot whose strip counts
-    std::vector<uint8_t> slotOf;   // per chunk: the slot whose strip counts
-    std::vector<float> eyeTerms;   // view keys: squared eye distances along x, then z
+    std::vector<size_t> cuts;          // chunk c runs ops[cuts[c], cuts[c + 1])
+    std::vector<Chunk> chunks[2];      // per slot of parallelRescuedChunks: first runs, rescues
+    std::vector<int> order;            // chunks in the order they are handed out
+    std::vector<uint8_t> winners;      // per place in `order`: the slot whose strip counts
+    std::vector<uint8_t> slotOf;       // per chunk: the slot whose strip counts
+    std::vector<float> eyeTerms;       // view keys: squared eye distances along x, then z
+    std::vector<int64_t> chunkLeaves;  // per chunk: the triangles of the run that counts
+    Chunk serialChunk;                 // the one buffer of a refinement on one thread
     // The walker set up for this refinement (a Walker<kView, kFast>, copied per chunk).
     alignas(64) unsigned char walker[1024];
 };
@@ -1235,118 +1304,93 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     const bool adaptive = threads_ <= 0 && threads > 1;
     if (adaptive && choice.serial()) threads = 1;
     const auto started = std::chrono::steady_clock::now();
-    // Chunks a preempted helper holds are run again by the caller
-    // (parallelRescuedChunks): the join never waits for a helper. The body
-    // reads only the frame, which outlives the call.
-    Frame* const f = &frame;
+    StripJoin join{uint32_t(side_)};
+    std::vector<int64_t>& chunkLeaves = frame.chunkLeaves;
+    chunkLeaves.resize(size_t(chunkCount));
     bool pooled = false;
-    try {
-        pooled = parallelRescuedChunks(
-            chunkCount,
-            [f](int unit, int slot, const ChunkStop& stop) {
-                const size_t c = size_t(f->order[size_t(unit)]);
-                W w;
-                std::memcpy(&w, f->walker, sizeof(W));
-                w.bind(f->chunks[slot][c], stop.possible() ? &stop : nullptr);
-                try {
-                    w.execute(f->ops.data() + f->cuts[c], f->ops.data() + f->cuts[c + 1]);
-                    w.finish();
-                } catch (const Stopped&) {
-                    // the other run of this chunk finished first; this output is not used
-                }
-            },
-            threads, frame.winners.data());
-    } catch (...) {
-        // Which frame a helper may still read is unknown here: wait (a body
-        // throws only when memory runs out).
-        waitParallelHelpers();
-        busyFrame_ = -1;
-        throw;
-    }
-    if (pooled) busyFrame_ = frameIndex;
-    for (int u = 0; u < chunkCount; ++u)
-        frame.slotOf[size_t(frame.order[size_t(u)])] = frame.winners[size_t(u)];
-
-    // Join in chunk order. Every strip starts with its entry vertex twice (a, a);
-    // dropping one copy flips the GL parity of the whole strip, which is how each
-    // strip is made to decode clockwise in (i, j). A strip whose entry is the
-    // previous strip's last vertex and whose first triangle shares an edge with
-    // the previous one (consecutive subtrees on the curve, no culled gap between
-    // them) continues that strip through degenerate triangles instead of a restart.
-    //
-    // A serial pass decides every strip's place (it needs only the last three
-    // indices written, kept in `tail`); the copies then run in parallel: on a
-    // full 2049^2 grid they move 56 MB, a seventh of a thread's refinement time.
-    copies_.clear();
-    int64_t pos = 0, stripStart = 0;
-    uint32_t tail[3] = {kRestartIndex, kRestartIndex,
-                        kRestartIndex};  // last, second-last, third-last
-    int64_t leaves = 0, culled = 0;
-    int strips = 0;
-    const uint32_t side = uint32_t(side_);
-    for (int c = 0; c < chunkCount; ++c) {
-        Chunk& ch = frame.chunks[frame.slotOf[size_t(c)]][size_t(c)];
-        leaves += ch.leaves;
-        culled += ch.culled;
-        const uint32_t* src = ch.buffer.data();
-        for (size_t s = 0; s < ch.starts.size(); ++s) {
-            const int64_t begin = ch.starts[s];
-            const int64_t end = s + 1 < ch.starts.size() ? int64_t(ch.starts[s + 1]) - 1 : ch.used;
-            int64_t k0 = 0;  // first non-degenerate triangle, relative to begin
-            const int64_t g = firstTriangle(src + begin, end - begin, side, &k0);
-            if (g == 0) continue;  // nothing drawn
-            bool merge = false;
-            if (pos - stripStart >= 3 && tail[0] == src[begin]) {
-                int shared = 0;
-                for (int x = 0; x < 3; ++x)
-                    for (int y = 0; y < 3; ++y) shared += tail[x] == src[begin + k0 + y];
-                merge = shared == 2;
-            }
-            // decoded clockwise iff (g > 0) == (position odd)
-            const int64_t want = g > 0 ? 1 : 0;
-            int64_t drop;
-            bool restart = false;
-            if (merge) {
-                const int64_t p0 = pos - stripStart;  // where src[begin + drop] lands
-                drop = ((p0 + k0 - 1) & 1) == want ? 1 : 0;
-            } else {
-                if (pos != 0) restart = true, ++pos;
-                stripStart = pos;
-                drop = (k0 & 1) == want ? 0 : 1;
-                ++strips;
-            }
-            const uint32_t* from = src + begin + drop;
-            const int64_t length = end - begin - drop;
-            copies_.push_back(Copy{from, length, pos, restart});
-            if (length >= 3) {
-                tail[0] = from[length - 1], tail[1] = from[length - 2], tail[2] = from[length - 3];
-            } else {
-                for (int64_t k = 0; k < length; ++k)
-                    tail[2] = tail[1], tail[1] = tail[0], tail[0] = from[k];
-            }
-            pos += length;
+    if (threads == 1) {
+        // One thread: the chunks run in order through one buffer, and each is
+        // joined (copied into the output) at once, while its strip is still in
+        // the cache, instead of every chunk's strip being written to a buffer of
+        // its own and read back at the end. The output grows as the strips are
+        // placed, from what the last refinement in this mode wrote.
+        const int64_t lastIndices = kView ? lastViewIndices_ : lastFixedIndices_;
+        const size_t guess = size_t(std::max<int64_t>(lastIndices + lastIndices / 32, 4096));
+        if (out.indices.size() < guess) out.indices.resize(guess);
+        W w;
+        for (int c = 0; c < chunkCount; ++c) {
+            std::memcpy(&w, frame.walker, sizeof(W));
+            w.bind(frame.serialChunk, nullptr);
+            w.execute(ops.data() + cuts[size_t(c)], ops.data() + cuts[size_t(c) + 1]);
+            w.finish();
+            chunkLeaves[size_t(c)] = frame.serialChunk.leaves;
+            join.place(frame.serialChunk, [&](const Copy& cp) {
+                const size_t need = size_t(cp.dst + cp.length);
+                if (out.indices.size() < need)
+                    out.indices.resize(std::max(need, out.indices.size() + out.indices.size() / 4));
+                copyStrip(out.indices.data(), cp);
+            });
         }
+        out.indices.resize(size_t(join.pos));
+    } else {
+        // Chunks a preempted helper holds are run again by the caller
+        // (parallelRescuedChunks): the join never waits for a helper. The
+        // body reads only the frame, which outlives the call.
+        Frame* const f = &frame;
+        try {
+            pooled = parallelRescuedChunks(
+                chunkCount,
+                [f](int unit, int slot, const ChunkStop& stop) {
+                    const size_t c = size_t(f->order[size_t(unit)]);
+                    W w;
+                    std::memcpy(&w, f->walker, sizeof(W));
+                    w.bind(f->chunks[slot][c], stop.possible() ? &stop : nullptr);
+                    try {
+                        w.execute(f->ops.data() + f->cuts[c], f->ops.data() + f->cuts[c + 1]);
+                        w.finish();
+                    } catch (const Stopped&) {
+                        // the other run of this chunk finished first; this output is not used
+                    }
+                },
+                threads, frame.winners.data());
+        } catch (...) {
+            // Which frame a helper may still read is unknown here: wait (a
+            // body throws only when memory runs out).
+            waitParallelHelpers();
+            busyFrame_ = -1;
+            throw;
+        }
+        if (pooled) busyFrame_ = frameIndex;
+        for (int u = 0; u < chunkCount; ++u)
+            frame.slotOf[size_t(frame.order[size_t(u)])] = frame.winners[size_t(u)];
+        // Then the join: a serial pass decides every strip's place, and the
+        // copies run in parallel (on a full 2049^2 grid they move 56 MB, a
+        // seventh of a thread's refinement time).
+        copies_.clear();
+        for (int c = 0; c < chunkCount; ++c) {
+            const Chunk& ch = frame.chunks[frame.slotOf[size_t(c)]][size_t(c)];
+            chunkLeaves[size_t(c)] = ch.leaves;
+            join.place(ch, [&](const Copy& cp) { copies_.push_back(cp); });
+        }
+        out.indices.resize(size_t(join.pos));
+        uint32_t* const first = out.indices.data();
+        const int64_t copyCount = int64_t(copies_.size());
+        // A copy cannot be run twice (it writes the caller's output), so a helper
+        // preempted inside one holds the join: only copies of at least 2^22 indices
+        // (16 MB, 1-3 ms of one thread) are shared.
+        parallelChunks(
+            0, copyCount, int(std::min<int64_t>(copyCount, 256)),
+            [&](int64_t lo, int64_t hi, int) {
+                for (int64_t k = lo; k < hi; ++k) copyStrip(first, copies_[size_t(k)]);
+            },
+            join.pos >= (int64_t(1) << 22) ? threads : 1);
     }
-    out.indices.resize(size_t(pos));
-    uint32_t* const first = out.indices.data();
-    const int64_t copyCount = int64_t(copies_.size());
-    // A copy cannot be run twice (it writes the caller's output), so a helper
-    // preempted inside one holds the join: only copies of at least 2^22 indices
-    // (16 MB, 1-3 ms of one thread) are shared.
-    parallelChunks(
-        0, copyCount, int(std::min<int64_t>(copyCount, 256)),
-        [&](int64_t lo, int64_t hi, int) {
-            for (int64_t k = lo; k < hi; ++k) {
-                const Copy& cp = copies_[size_t(k)];
-                if (cp.restart) first[cp.dst - 1] = kRestartIndex;
-                std::memcpy(first + cp.dst, cp.src, size_t(cp.length) * sizeof(uint32_t));
-            }
-        },
-        pos >= (int64_t(1) << 22) ? threads : 1);
+    const int64_t leaves = join.leaves;
     out.triangleCount = leaves;
-    out.stripCount = strips;
-    out.culledSubtrees = culled;
+    out.stripCount = join.strips;
+    out.culledSubtrees = join.culled;
     lastTriangles = leaves;
+    (kView ? lastViewIndices_ : lastFixedIndices_) = join.pos;
     if (adaptive)
         choice.record(
             pooled,  // false: the pool ran it serially (a helper was busy)
@@ -1359,8 +1403,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         for (int c = 0; c < chunkCount; ++c)
             for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
                 if (ops[k].kind == Op::kSubtree) {
-                    work[size_t(ops[k].node - levelFirst)] =
-                        frame.chunks[frame.slotOf[size_t(c)]][size_t(c)].leaves;
+                    work[size_t(ops[k].node - levelFirst)] = chunkLeaves[size_t(c)];
                     break;
                 }
     }

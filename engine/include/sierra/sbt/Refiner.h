@@ -241,6 +241,7 @@ class Refiner {
     // estimate that keeps small refinements serial (see kParallelTriangles).
     int64_t lastViewTriangles_ = -1;
     int64_t lastFixedTriangles_ = -1;
+    int64_t lastViewIndices_ = 0, lastFixedIndices_ = 0;  // strip indices of the last refinement
     // The default thread count's choice in each mode.
     ThreadChoice viewThreads_, fixedThreads_;
     // Per subtree at the chunk level (tree order), the triangles it made in the
