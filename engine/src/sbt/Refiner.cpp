@@ -62,16 +62,18 @@ inline uint32_t floatKey(float x) {
 }
 
 // View keys of lengths (errors and radii, >= 0): the float's bit pattern
-// above a base, shifted right by kLengthKeyShift: 6 exponent and 10 mantissa
-// bits, eight times finer than the top 16 bits of the float (on a rough
-// 2049^2 fractal at tau = 1 the vertices the keys leave undecided fell from
-// 6 738 to 1 109 of 1.1 M). The base lies 64 binades below the largest value
-// keyed (lengthKeyBase), so every value up to it has a key; a value below the
-// base's float gets key 0. The map is monotone: a value with key k lies in
+// above a base, shifted right by kLengthKeyShift: 5 exponent and 11 mantissa
+// bits, sixteen times finer than the top 16 bits of the float (on a rough
+// 2049^2 fractal at tau = 1 the vertices the keys leave undecided per
+// refinement fell from 6 738 of 1.1 M to 1 126 with 10 mantissa bits and to
+// 660 with 11). The base lies 32 binades below the largest value keyed
+// (lengthKeyBase): every value down to 2^-32 of the largest has a key (the
+// radii of a 32769^2 grid span 15 binades); a value below the base's float
+// gets key 0. The map is monotone: a value with key k lies in
 // [float of (k << shift) + base, float of ((k + 1) << shift) + base), except
 // with key 0, where it lies in [0, float of base): the walker's low bound
 // subtracts the base's float (Walker::keyLowError).
-constexpr int kLengthKeyShift = 13;
+constexpr int kLengthKeyShift = 12;
 inline uint32_t lengthKeyBase(float largest) {
     const uint32_t top = std::bit_cast<uint32_t>(largest);
     constexpr uint32_t span = uint32_t(0xFFFF) << kLengthKeyShift;

@@ -221,10 +221,10 @@ class Refiner {
     // children of a triangle are tested at once: the world height quantised over the grid's
     // height range (keyYBase_ + key * keyYStep_, within keyYError_ of the
     // exact one), and its error and its radius as length keys (lengthKey in
-    // Refiner.cpp: 6 exponent and 10 mantissa bits of the float above a base
-    // 64 binades below the largest value, keyErrorBase_ and keyRadiusBase_;
+    // Refiner.cpp: 5 exponent and 11 mantissa bits of the float above a base
+    // 32 binades below the largest value, keyErrorBase_ and keyRadiusBase_;
     // the value lies between the floats of its key and of the next key). They
-    // decide all but the vertices near the threshold (0.1% on a rough 2049^2
+    // decide all but the vertices near the threshold (0.06% on a rough 2049^2
     // fractal at tau = 1), which read the exact arrays, and a subtree's keys
     // sit together level by level instead of scattered over three row-major
     // arrays.
