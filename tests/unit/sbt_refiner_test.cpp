@@ -389,6 +389,17 @@ TEST(SbtFixed, OneThreadJoinsIntoAReusedMeshAsSeveralThreadsDo) {
             EXPECT_GT(reused.indices.size(), 4 * before) << "the output grew";
         }
     }
+    // A mesh of the same size again, on one thread after two: the output is
+    // not reallocated (no doubled capacity, no pages faulted in anew).
+    sbt::Refiner both(f, ve, {.threads = 2});
+    sbt::StripMesh mesh;
+    both.refineFixed(-1.0f, mesh);
+    const std::vector<uint32_t> full = mesh.indices;
+    const size_t capacity = mesh.indices.capacity();
+    both.setThreads(1);
+    both.refineFixed(-1.0f, mesh);
+    EXPECT_EQ(mesh.indices, full);
+    EXPECT_EQ(mesh.indices.capacity(), capacity);
 }
 
 TEST(SbtFixed, IndicesPerTriangleAtMost1Point7) {

@@ -1315,10 +1315,20 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         // joined (copied into the output) at once, while its strip is still in
         // the cache, instead of every chunk's strip being written to a buffer of
         // its own and read back at the end. The output grows as the strips are
-        // placed, from what the last refinement in this mode wrote.
+        // placed: first to what the last refinement in this mode wrote, as far
+        // as the vector holds without reallocating, then by a quarter (or to
+        // that guess) whenever a strip needs it, to exactly that capacity (a
+        // vector doubles its capacity when it grows by resizing: 56 MB more on
+        // a full 2049^2 grid, written once over and so faulted in).
         const int64_t lastIndices = kView ? lastViewIndices_ : lastFixedIndices_;
-        const size_t guess = size_t(std::max<int64_t>(lastIndices + lastIndices / 32, 4096));
-        if (out.indices.size() < guess) out.indices.resize(guess);
+        const size_t guess = size_t(lastIndices + lastIndices / 32 + 4096);
+        std::vector<uint32_t>& v = out.indices;
+        if (v.size() < guess) v.resize(std::max(v.size(), std::min(guess, v.capacity())));
+        auto grow = [&v, guess](size_t need) {
+            const size_t size = std::max({need, v.size() + v.size() / 4, guess});
+            if (size > v.capacity()) v.reserve(size);
+            v.resize(size);
+        };
         W w;
         for (int c = 0; c < chunkCount; ++c) {
             std::memcpy(&w, frame.walker, sizeof(W));
@@ -1328,12 +1338,11 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             chunkLeaves[size_t(c)] = frame.serialChunk.leaves;
             join.place(frame.serialChunk, [&](const Copy& cp) {
                 const size_t need = size_t(cp.dst + cp.length);
-                if (out.indices.size() < need)
-                    out.indices.resize(std::max(need, out.indices.size() + out.indices.size() / 4));
-                copyStrip(out.indices.data(), cp);
+                if (v.size() < need) grow(need);
+                copyStrip(v.data(), cp);
             });
         }
-        out.indices.resize(size_t(join.pos));
+        v.resize(size_t(join.pos));
     } else {
         // Chunks a preempted helper holds are run again by the caller
         // (parallelRescuedChunks): the join never waits for a helper. The
