@@ -366,6 +366,20 @@ TEST(SbtFixed, IdenticalForOneTwoFourThreads) {
     }
 }
 
+// What a fresh refiner makes on two threads (its first refinement runs in
+// parallel, joined at the end) against `reused`, made on one thread.
+template <typename Refine>
+void expectAsAParallelRefinement(const Heightfield& f, const sbt::VertexErrors& ve,
+                                 const sbt::StripMesh& reused, Refine&& refine) {
+    sbt::Refiner parallel(f, ve, {.threads = 2});
+    sbt::StripMesh fresh;
+    refine(parallel, fresh);
+    ASSERT_EQ(reused.indices, fresh.indices);
+    EXPECT_EQ(reused.triangleCount, fresh.triangleCount);
+    EXPECT_EQ(reused.stripCount, fresh.stripCount);
+    EXPECT_EQ(reused.culledSubtrees, fresh.culledSubtrees);
+}
+
 // One thread joins each chunk into the output as soon as it is walked, and
 // the output grows from the size the last refinement wrote; several threads
 // join at the end. Both give the same mesh, into a mesh reused across
@@ -379,12 +393,8 @@ TEST(SbtFixed, OneThreadJoinsIntoAReusedMeshAsSeveralThreadsDo) {
         SCOPED_TRACE("eps " + std::to_string(eps));
         const size_t before = reused.indices.size();
         serial.refineFixed(eps, reused);
-        sbt::Refiner parallel(f, ve, {.threads = 2});  // its first refinement runs in parallel
-        sbt::StripMesh fresh;
-        parallel.refineFixed(eps, fresh);
-        ASSERT_EQ(reused.indices, fresh.indices);
-        EXPECT_EQ(reused.triangleCount, fresh.triangleCount);
-        EXPECT_EQ(reused.stripCount, fresh.stripCount);
+        expectAsAParallelRefinement(
+            f, ve, reused, [&](sbt::Refiner& r, sbt::StripMesh& m) { r.refineFixed(eps, m); });
         if (eps == 0.3f) {
             EXPECT_GT(reused.indices.size(), 4 * before) << "the output grew";
         }
@@ -600,13 +610,8 @@ TEST(SbtView, OneThreadJoinsIntoAReusedMeshAsSeveralThreadsDo) {
         vp.planes = sbt::frustumPlanes(cam.viewProj.data());
         vp.cull = trial % 4 != 3;
         serial.refineView(vp, reused);
-        sbt::Refiner parallel(f, ve, {.threads = 2});  // its first refinement runs in parallel
-        sbt::StripMesh fresh;
-        parallel.refineView(vp, fresh);
-        ASSERT_EQ(reused.indices, fresh.indices);
-        EXPECT_EQ(reused.triangleCount, fresh.triangleCount);
-        EXPECT_EQ(reused.stripCount, fresh.stripCount);
-        EXPECT_EQ(reused.culledSubtrees, fresh.culledSubtrees);
+        expectAsAParallelRefinement(
+            f, ve, reused, [&](sbt::Refiner& r, sbt::StripMesh& m) { r.refineView(vp, m); });
         restarts += reused.stripCount > 1;
     }
     EXPECT_GT(restarts, 3) << "views whose strip restarts at culled gaps";
