@@ -1267,32 +1267,12 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         if (ops[k].kind == Op::kSubtree) cuts.push_back(k);
     cuts.push_back(ops.size());
     const int chunkCount = int(cuts.size()) - 1;
-    for (std::vector<Chunk>& slot : frame.chunks)
-        if (slot.size() < size_t(chunkCount)) slot.resize(size_t(chunkCount));
-    frame.winners.resize(size_t(chunkCount));
-    frame.slotOf.resize(size_t(chunkCount));
     std::memcpy(frame.walker, &proto, sizeof(W));
-
-    // Largest chunks first, by the triangles each subtree made last time (its
-    // tree node at the chunk level identifies it): the chunks left at the end,
-    // which a preempted helper may hold or the caller run twice, are the
-    // small ones. The output does not depend on the order.
+    // Per subtree at the chunk level, the triangles it made last time (its
+    // tree node at the chunk level identifies it).
     std::vector<int64_t>& work = kView ? viewChunkWork_ : fixedChunkWork_;
     const uint64_t levelFirst =
         (uint64_t(2) << chunkLevel_) - 2;  // first tree node of the chunk level
-    auto workOf = [&](int c) -> int64_t {
-        for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
-            if (ops[k].kind == Op::kSubtree) {
-                const uint64_t slot = ops[k].node - levelFirst;
-                return slot < work.size() ? work[slot] : 0;
-            }
-        return 0;
-    };
-    frame.order.resize(size_t(chunkCount));
-    for (int c = 0; c < chunkCount; ++c) frame.order[size_t(c)] = c;
-    if (!work.empty())
-        std::stable_sort(frame.order.begin(), frame.order.end(),
-                         [&](int x, int y) { return workOf(x) > workOf(y); });
 
     // Threads earn their keep: a refinement that made fewer than
     // kParallelTriangles triangles last time in this mode runs serially. One
@@ -1344,6 +1324,27 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         }
         v.resize(size_t(join.pos));
     } else {
+        for (std::vector<Chunk>& slot : frame.chunks)
+            if (slot.size() < size_t(chunkCount)) slot.resize(size_t(chunkCount));
+        frame.winners.resize(size_t(chunkCount));
+        frame.slotOf.resize(size_t(chunkCount));
+        // Largest chunks first, by the triangles each subtree made last time:
+        // the chunks left at the end, which a preempted helper may hold or the
+        // caller run twice, are the small ones. The output does not depend on
+        // the order.
+        auto workOf = [&](int c) -> int64_t {
+            for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
+                if (ops[k].kind == Op::kSubtree) {
+                    const uint64_t slot = ops[k].node - levelFirst;
+                    return slot < work.size() ? work[slot] : 0;
+                }
+            return 0;
+        };
+        frame.order.resize(size_t(chunkCount));
+        for (int c = 0; c < chunkCount; ++c) frame.order[size_t(c)] = c;
+        if (!work.empty())
+            std::stable_sort(frame.order.begin(), frame.order.end(),
+                             [&](int x, int y) { return workOf(x) > workOf(y); });
         // Chunks a preempted helper holds are run again by the caller
         // (parallelRescuedChunks): the join never waits for a helper. The
         // body reads only the frame, which outlives the call.
