@@ -2,7 +2,8 @@
 // parallelRescuedChunks makes it sleep there, as a preempted thread would):
 // the refinement returns without waiting for it, its output is byte-identical
 // to one thread's, and the refinements made while the sleeper still holds the
-// previous one's data are identical too.
+// previous one's data are identical too and run on one thread, without a
+// second set of chunk buffers.
 #include <sierra/core/Parallel.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
@@ -70,6 +71,7 @@ TEST(SbtRescue, AStalledHelperNeitherChangesTheOutputNorHoldsTheRefinement) {
         EXPECT_LT(secondsSince(t0), 0.5 * kStall)
             << "the refinement waited for the sleeping helper";
         expectSame(fixed, fixedSerial);
+        const size_t bytes = refiner.bufferBytes();
         // At once again (the sleeper, if any, still holds the first one's data),
         // then a view.
         t0 = std::chrono::steady_clock::now();
@@ -78,6 +80,10 @@ TEST(SbtRescue, AStalledHelperNeitherChangesTheOutputNorHoldsTheRefinement) {
         EXPECT_LT(secondsSince(t0), 0.5 * kStall);
         expectSame(again, fixedSerial);
         expectSame(viewed, viewSerial);
+        // While the sleeper holds the first refinement's chunk strips, the
+        // others run on one thread through one small buffer: they do not grow
+        // a second set of chunk strips (the whole output's size again).
+        EXPECT_LT(refiner.bufferBytes(), bytes + fixed.indices.size() * sizeof(uint32_t) / 4);
     }  // the refiner's destructor waits for the sleeper
     sierra::setHelperStallForTesting(0.0);
     EXPECT_GT(sierra::parallelRescueCount(), rescuesBefore) << "no helper ever took a chunk";

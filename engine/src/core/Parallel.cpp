@@ -369,6 +369,16 @@ int64_t parallelRescueCount() {
 bool parallelHelpersIdle() {
     return Pool::instance().idle();
 }
+bool parallelHelpersIdleWithin(double seconds) {
+    const Pool& pool = Pool::instance();
+    if (pool.idle()) return true;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (!pool.idle()) {
+        if (std::chrono::steady_clock::now() >= until) return false;
+        std::this_thread::yield();
+    }
+    return true;
+}
 void waitParallelHelpers() {
     Pool::instance().waitIdle();
 }

@@ -51,6 +51,8 @@ struct Stopped {};
 // (about 40-100 microseconds of refinement): at the buffer check it makes
 // anyway, so the hot path pays nothing.
 constexpr int64_t kStopEvery = 4096;
+// How long a refinement waits for a helper still leaving the last one.
+constexpr double kHelperSettleSeconds = 200e-6;
 constexpr unsigned kCulled = 0x80;
 
 // Split keys: the top 16 bits of a non-negative float's bit pattern (sign 0,
@@ -1147,6 +1149,23 @@ size_t Refiner::keyBytes() const {
     return (splitKeys_.size() + viewKeys_.size()) * sizeof(uint16_t);
 }
 
+size_t Refiner::bufferBytes() const {
+    auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    auto chunkBytes = [&](const Chunk& c) { return bytes(c.buffer) + bytes(c.starts); };
+    size_t total = bytes(copies_);
+    for (const std::unique_ptr<Frame>& f : frames_) {
+        if (!f) continue;
+        total += sizeof(Frame) + bytes(f->ops) + bytes(f->cuts) + bytes(f->order) +
+                 bytes(f->winners) + bytes(f->slotOf) + bytes(f->eyeTerms) + bytes(f->chunkLeaves) +
+                 chunkBytes(f->serialChunk);
+        for (const std::vector<Chunk>& slot : f->chunks) {
+            total += bytes(slot);
+            for (const Chunk& c : slot) total += chunkBytes(c);
+        }
+    }
+    return total;
+}
+
 void Refiner::refineView(const ViewParams& view, StripMesh& out) {
     checkView(view);
     prepareView();
@@ -1165,7 +1184,13 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     static_assert(std::is_trivially_copyable_v<W> && sizeof(W) <= sizeof(Frame::walker));
     // The frame a helper of the last refinement may still read is left alone.
     int frameIndex = 0;
-    if (busyFrame_ >= 0 && !parallelHelpersIdle())
+    // A helper of the last refinement may still be leaving it: it has finished
+    // its last copy a moment before, or stops within kStopEvery indices of a
+    // chunk the caller ran again. Worth a short wait: 19% of the refinements
+    // of a full 2049^2 grid on 2 threads found one there, and they take the
+    // other frame on one thread.
+    const bool helperBusy = busyFrame_ >= 0 && !parallelHelpersIdleWithin(kHelperSettleSeconds);
+    if (helperBusy)
         frameIndex = 1 - busyFrame_;
     else
         busyFrame_ = -1;
@@ -1285,6 +1310,14 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     ThreadChoice& choice = kView ? viewThreads_ : fixedThreads_;
     const bool adaptive = threads_ <= 0 && threads > 1;
     if (adaptive && choice.serial()) threads = 1;
+    // A helper of the last refinement is still inside a chunk (preempted, or
+    // finishing a chunk the caller ran again): this refinement runs on one
+    // thread, through the other frame's one small buffer. The pool would most
+    // likely run it serially anyway (it does while a helper is busy), but on
+    // that frame's chunk buffers, which may never have been grown: a full
+    // 2049^2 grid's 56 MB, faulted in, took 155 ms where one thread takes 30.
+    // So the other frame never holds chunk strips.
+    if (helperBusy) threads = 1;
     const auto started = std::chrono::steady_clock::now();
     StripJoin join{uint32_t(side_)};
     std::vector<int64_t>& chunkLeaves = frame.chunkLeaves;

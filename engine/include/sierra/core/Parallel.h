@@ -100,6 +100,10 @@ bool parallelRescuedChunks(int chunkCount, const RescuedBody& body, int threads,
 
 // True when no helper thread is inside a body of any earlier call.
 bool parallelHelpersIdle();
+// True when parallelHelpersIdle() is or becomes true within `seconds` (polled,
+// the calling thread yielding in between): a helper that has done its last
+// unit of work leaves the call a moment after its caller has returned.
+bool parallelHelpersIdleWithin(double seconds);
 // Sleeps until parallelHelpersIdle().
 void waitParallelHelpers();
 

@@ -160,6 +160,9 @@ class Refiner {
     // Bytes held by the keys built so far (split keys: refineFixed; view keys:
     // refineView or prepareView).
     size_t keyBytes() const;
+    // Bytes held by the working buffers of the refinements so far (the chunks'
+    // strips and recursion records; capacities, which later refinements reuse).
+    size_t bufferBytes() const;
 
     int n() const { return n_; }
     int side() const { return side_; }
@@ -199,7 +202,7 @@ class Refiner {
     // walker's set-up): a helper thread preempted inside a chunk may still be
     // reading one after its refinement has returned (the caller ran that chunk
     // again, see parallelRescuedChunks), so the next refinement takes the
-    // other. busyFrame_: the set such a helper may hold, -1 none.
+    // other, on one thread. busyFrame_: the set such a helper may hold, -1 none.
     std::unique_ptr<Frame> frames_[2];
     int busyFrame_ = -1;
     std::vector<Copy> copies_;
