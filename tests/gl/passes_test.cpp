@@ -132,6 +132,55 @@ TEST_F(Passes, AProgramDeletedWhileCurrentIsNotRestored) {
     glUseProgram(0);
 }
 
+TEST_F(Passes, ObjectsDeletedInsideAScopeStayUnbound) {
+    // Deleting a bound texture, buffer, vertex array or framebuffer unbinds it
+    // (GL does, from every binding of the context); the scope's end must not
+    // bind the dead names again (an error the KHR_debug check of GlTest fails
+    // the test on), and objects still alive are bound again as before.
+    gpu::Texture kept = gpu::Texture::create({.width = 2, .height = 2});
+    GLuint texture = 0, buffer = 0, vertexArray = 0, framebuffer = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGBA8, 2, 2);
+    glCreateBuffers(1, &buffer);
+    glNamedBufferData(buffer, 256, nullptr, GL_STATIC_DRAW);
+    glCreateVertexArrays(1, &vertexArray);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    glBindTextureUnit(2, texture);
+    glBindTextureUnit(4, kept.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glBindVertexArray(vertexArray);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    const gpu::GlState before = gpu::GlState::capture();
+    {
+        gpu::GlStateScope scope;
+        glDeleteFramebuffers(1, &framebuffer);
+        glDeleteVertexArrays(1, &vertexArray);
+        glDeleteBuffers(1, &buffer);
+        glDeleteTextures(1, &texture);
+        glBindTextureUnit(4, 0);
+    }
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    gpu::GlState after = gpu::GlState::capture();
+    EXPECT_EQ(after.textures[2][1], 0);
+    EXPECT_EQ(after.textures[4][1], GLint(kept.id()));
+    EXPECT_EQ(after.uniformBindings[1], 0);
+    EXPECT_EQ(after.uniformBuffer, 0);
+    EXPECT_EQ(after.arrayBuffer, 0);
+    EXPECT_EQ(after.vertexArray, 0);
+    EXPECT_EQ(after.readFramebuffer, 0);
+    // Everything else is as it was.
+    after.textures[2][1] = before.textures[2][1];
+    after.uniformBindings[1] = before.uniformBindings[1];
+    after.uniformBuffer = before.uniformBuffer;
+    after.arrayBuffer = before.arrayBuffer;
+    after.vertexArray = before.vertexArray;
+    after.readFramebuffer = before.readFramebuffer;
+    EXPECT_EQ(before.differences(after), "");
+    glBindTextureUnit(4, 0);
+}
+
 TEST_F(Passes, DepthOfAFlatTerrainSeenFromAboveIsItsHeight) {
     terrain::Heightfield field(129, 129, 0.0f);
     auto terrain = render::TerrainRenderer::create({.field = &field});

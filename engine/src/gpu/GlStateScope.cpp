@@ -108,22 +108,38 @@ void GlState::restore() const {
     // current: once a pass has used another, its name is gone and binding it
     // again is an error. The state then is no program, as GL itself leaves it.
     glUseProgram(program != 0 && glIsProgram(GLuint(program)) ? GLuint(program) : 0);
-    glBindVertexArray(GLuint(vertexArray));
-    glBindBuffer(GL_ARRAY_BUFFER, GLuint(arrayBuffer));
+    // Any other object deleted in the meantime was unbound by GL itself, from
+    // every binding of this context; binding its name again would be an error
+    // (or bind an unrelated object that has reused the name). Its binding
+    // stays 0, as GL left it.
+    auto vertexArrayName = [](GLint name) {
+        return name != 0 && glIsVertexArray(GLuint(name)) ? GLuint(name) : 0u;
+    };
+    auto bufferName = [](GLint name) {
+        return name != 0 && glIsBuffer(GLuint(name)) ? GLuint(name) : 0u;
+    };
+    auto textureName = [](GLint name) {
+        return name != 0 && glIsTexture(GLuint(name)) ? GLuint(name) : 0u;
+    };
+    auto framebufferName = [](GLint name) {
+        return name != 0 && glIsFramebuffer(GLuint(name)) ? GLuint(name) : 0u;
+    };
+    glBindVertexArray(vertexArrayName(vertexArray));
+    glBindBuffer(GL_ARRAY_BUFFER, bufferName(arrayBuffer));
     for (int k = 0; k < kUniformBindings; ++k)
-        glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(k), GLuint(uniformBindings[size_t(k)]));
-    glBindBuffer(GL_UNIFORM_BUFFER, GLuint(uniformBuffer));
+        glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(k), bufferName(uniformBindings[size_t(k)]));
+    glBindBuffer(GL_UNIFORM_BUFFER, bufferName(uniformBuffer));
     for (int unit = 0; unit < kTextureUnits; ++unit) {
         glActiveTexture(GLenum(GL_TEXTURE0 + unit));
         for (size_t t = 0; t < kTextureTargets.size(); ++t)
-            glBindTexture(kTextureTargets[t], GLuint(textures[size_t(unit)][t]));
+            glBindTexture(kTextureTargets[t], textureName(textures[size_t(unit)][t]));
     }
     glActiveTexture(GLenum(activeTexture));
     glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
     glPixelStorei(GL_UNPACK_ALIGNMENT, unpackAlignment);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawFramebuffer));
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer));
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebufferName(drawFramebuffer));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebufferName(readFramebuffer));
     glClearColor(clearColour[0], clearColour[1], clearColour[2], clearColour[3]);
     glClearDepth(clearDepth);
 }
