@@ -112,34 +112,26 @@ void GlState::restore() const {
     // every binding of this context; binding its name again would be an error
     // (or bind an unrelated object that has reused the name). Its binding
     // stays 0, as GL left it.
-    auto vertexArrayName = [](GLint name) {
-        return name != 0 && glIsVertexArray(GLuint(name)) ? GLuint(name) : 0u;
+    auto live = [](GLint name, GLboolean (*isObject)(GLuint)) {
+        return name != 0 && isObject(GLuint(name)) ? GLuint(name) : 0u;
     };
-    auto bufferName = [](GLint name) {
-        return name != 0 && glIsBuffer(GLuint(name)) ? GLuint(name) : 0u;
-    };
-    auto textureName = [](GLint name) {
-        return name != 0 && glIsTexture(GLuint(name)) ? GLuint(name) : 0u;
-    };
-    auto framebufferName = [](GLint name) {
-        return name != 0 && glIsFramebuffer(GLuint(name)) ? GLuint(name) : 0u;
-    };
-    glBindVertexArray(vertexArrayName(vertexArray));
-    glBindBuffer(GL_ARRAY_BUFFER, bufferName(arrayBuffer));
+    glBindVertexArray(live(vertexArray, glIsVertexArray));
+    glBindBuffer(GL_ARRAY_BUFFER, live(arrayBuffer, glIsBuffer));
     for (int k = 0; k < kUniformBindings; ++k)
-        glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(k), bufferName(uniformBindings[size_t(k)]));
-    glBindBuffer(GL_UNIFORM_BUFFER, bufferName(uniformBuffer));
+        glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(k),
+                         live(uniformBindings[size_t(k)], glIsBuffer));
+    glBindBuffer(GL_UNIFORM_BUFFER, live(uniformBuffer, glIsBuffer));
     for (int unit = 0; unit < kTextureUnits; ++unit) {
         glActiveTexture(GLenum(GL_TEXTURE0 + unit));
         for (size_t t = 0; t < kTextureTargets.size(); ++t)
-            glBindTexture(kTextureTargets[t], textureName(textures[size_t(unit)][t]));
+            glBindTexture(kTextureTargets[t], live(textures[size_t(unit)][t], glIsTexture));
     }
     glActiveTexture(GLenum(activeTexture));
     glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
     glPixelStorei(GL_UNPACK_ALIGNMENT, unpackAlignment);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebufferName(drawFramebuffer));
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebufferName(readFramebuffer));
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, live(drawFramebuffer, glIsFramebuffer));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, live(readFramebuffer, glIsFramebuffer));
     glClearColor(clearColour[0], clearColour[1], clearColour[2], clearColour[3]);
     glClearDepth(clearDepth);
 }
