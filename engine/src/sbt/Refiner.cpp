@@ -1298,6 +1298,13 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     std::vector<int64_t>& work = kView ? viewChunkWork_ : fixedChunkWork_;
     const uint64_t levelFirst =
         (uint64_t(2) << chunkLevel_) - 2;  // first tree node of the chunk level
+    // Chunk c's place in `work`: its subtree's index within the chunk level
+    // (UINT64_MAX when the chunk holds no subtree).
+    auto workSlot = [&](int c) -> uint64_t {
+        for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
+            if (ops[k].kind == Op::kSubtree) return ops[k].node - levelFirst;
+        return UINT64_MAX;
+    };
 
     // Threads earn their keep: a refinement that made fewer than
     // kParallelTriangles triangles last time in this mode runs serially. One
@@ -1366,12 +1373,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         // caller run twice, are the small ones. The output does not depend on
         // the order.
         auto workOf = [&](int c) -> int64_t {
-            for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
-                if (ops[k].kind == Op::kSubtree) {
-                    const uint64_t slot = ops[k].node - levelFirst;
-                    return slot < work.size() ? work[slot] : 0;
-                }
-            return 0;
+            const uint64_t slot = workSlot(c);
+            return slot < work.size() ? work[slot] : 0;
         };
         frame.order.resize(size_t(chunkCount));
         for (int c = 0; c < chunkCount; ++c) frame.order[size_t(c)] = c;
@@ -1438,7 +1441,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     (kView ? lastViewIndices_ : lastFixedIndices_) = join.pos;
     if (adaptive)
         choice.record(
-            pooled,  // false: the pool ran it serially (a helper was busy)
+            pooled,  // false: one thread (chosen, forced by a busy helper, or the pool's)
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
             leaves);
     // Each subtree's triangles, for the next refinement's chunk order (levels
@@ -1446,11 +1449,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     if (chunkLevel_ <= 12) {
         work.assign(size_t(2) << chunkLevel_, 0);
         for (int c = 0; c < chunkCount; ++c)
-            for (size_t k = cuts[size_t(c)]; k < cuts[size_t(c) + 1]; ++k)
-                if (ops[k].kind == Op::kSubtree) {
-                    work[size_t(ops[k].node - levelFirst)] = chunkLeaves[size_t(c)];
-                    break;
-                }
+            if (const uint64_t slot = workSlot(c); slot < work.size())
+                work[size_t(slot)] = chunkLeaves[size_t(c)];
     }
 }
 
