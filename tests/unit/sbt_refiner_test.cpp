@@ -663,29 +663,33 @@ TEST(SbtView, FastPathEmitsTheBaselineStrip) {
     EXPECT_GT(triangles, 100000) << "the cameras see real meshes";
 }
 
-// prepareView builds the view keys once (3 keys of 16 bits per triangle of
-// levels 0 ... 2n - 1: 2^(2n+1) - 2 of them, about 12 bytes per sample),
-// and refineView then neither rebuilds them nor emits another strip than a
-// refiner that builds them itself; refineFixed adds its split keys (one per
-// triangle).
+// prepareView builds the view keys once (2 keys of 16 bits per triangle of
+// levels 0 ... 2n - 1: 2^(2n+1) - 2 of them, about 8 bytes per sample), with
+// the reaches for the lambda / tau it is given, and refineView then neither
+// rebuilds them nor emits another strip than a refiner that builds them
+// itself; refineFixed adds its split keys (one per triangle).
 TEST(SbtView, PrepareViewBuildsTheKeysOnce) {
     const int side = 129;  // n = 7
     Heightfield f = sierra::terrain::generateDiamondSquare({.size = side, .seed = 5});
     f.setVerticalScale(20.0f);
     auto ve = sbt::computeVertexErrors(f);
     const size_t triangles = (size_t(1) << 15) - 2;
+    const float lambda = sbt::projectionLambda(1080.0f, 0.8f);
     sbt::Refiner prepared(f, ve, {.threads = 1}), lazy(f, ve, {.threads = 1});
     EXPECT_EQ(prepared.keyBytes(), 0u);
-    prepared.prepareView();
-    EXPECT_EQ(prepared.keyBytes(), 3 * 2 * triangles);
-    prepared.prepareView();
-    EXPECT_EQ(prepared.keyBytes(), 3 * 2 * triangles);
+    EXPECT_EQ(prepared.reachKeyFactor(), 0.0);
+    prepared.prepareView(double(lambda));
+    EXPECT_EQ(prepared.keyBytes(), 2 * 2 * triangles);
+    EXPECT_EQ(prepared.reachKeyFactor(), double(lambda));
+    prepared.prepareView(2.0 * double(lambda));
+    EXPECT_EQ(prepared.keyBytes(), 2 * 2 * triangles);
+    EXPECT_EQ(prepared.reachKeyFactor(), double(lambda)) << "prepared once";
     std::mt19937_64 rng(9);
     for (int k = 0; k < 4; ++k) {
         Camera cam = randomCamera(rng, float(side - 1), 30.0f, 16.0f / 9.0f, 0.8f);
         sbt::ViewParams vp;
         vp.eye = cam.eye;
-        vp.lambda = sbt::projectionLambda(1080.0f, 0.8f);
+        vp.lambda = lambda;
         vp.tau = 1.0f;
         vp.planes = sbt::frustumPlanes(cam.viewProj.data());
         sbt::StripMesh a, b;
@@ -693,11 +697,55 @@ TEST(SbtView, PrepareViewBuildsTheKeysOnce) {
         lazy.refineView(vp, b);
         ASSERT_EQ(a.indices, b.indices) << "camera " << k;
     }
-    EXPECT_EQ(prepared.keyBytes(), 3 * 2 * triangles);
-    EXPECT_EQ(lazy.keyBytes(), 3 * 2 * triangles);
+    EXPECT_EQ(prepared.keyBytes(), 2 * 2 * triangles);
+    EXPECT_EQ(lazy.keyBytes(), 2 * 2 * triangles);
+    EXPECT_EQ(lazy.reachKeyFactor(), double(lambda)) << "made for the first view";
     sbt::StripMesh fixed;
     prepared.refineFixed(0.5f, fixed);
-    EXPECT_EQ(prepared.keyBytes(), 4 * 2 * triangles);
+    EXPECT_EQ(prepared.keyBytes(), 3 * 2 * triangles);
+}
+
+// The view keys hold reaches for one lambda / tau. A view with another
+// factor s times it decides from them with bounds widened by s, exactly as
+// the baseline; the reaches are made again only after kReachRebuildAfter (4)
+// refinements in a row ask for one other factor, so a tau or zoom that
+// changes every frame never pays a rebuild.
+TEST(SbtView, ViewKeysServeOtherFactorsAndFollowOneThatStays) {
+    Heightfield f = sierra::terrain::generateDiamondSquare({.size = 257, .seed = 3, .hurst = 0.6f});
+    auto [lo, hi] = f.range();
+    f.setVerticalScale(0.2f * 256.0f / (hi - lo));
+    auto ve = sbt::computeVertexErrors(f);
+    const float vs = f.verticalScale();
+    for (int threads : {1, 2}) {
+        SCOPED_TRACE(testing::Message() << "threads " << threads);
+        sbt::Refiner refiner(f, ve, {.threads = threads});
+        // tau per refinement, and the factor the keys should have after it
+        // (in units of lambda: 1 / tau)
+        const struct {
+            float tau, keysTau;
+        } steps[] = {{1.0f, 1.0f},  {0.25f, 1.0f}, {6.0f, 1.0f}, {1.0f, 1.0f}, {1.02f, 1.0f},
+                     {0.98f, 1.0f}, {3.0f, 1.0f},  {3.0f, 1.0f}, {3.0f, 1.0f}, {2.0f, 1.0f},
+                     {3.0f, 1.0f},  {3.0f, 1.0f},  {3.0f, 1.0f}, {3.0f, 3.0f}, {3.0f, 3.0f},
+                     {0.5f, 3.0f},  {1.0f, 3.0f},  {0.3f, 3.0f}, {0.3f, 3.0f}, {0.3f, 3.0f},
+                     {0.3f, 0.3f},  {1.0f, 0.3f}};
+        int64_t triangles = 0;
+        int step = 0;
+        for (const auto& s : steps) {
+            SCOPED_TRACE(testing::Message() << "step " << step << ", tau " << s.tau);
+            const float angle = 0.3f * float(step++);
+            const sbt::ViewParams vp = sbt::lookAtView(
+                {128.0f + 200.0f * std::cos(angle), hi * vs + 40.0f,
+                 128.0f + 200.0f * std::sin(angle)},
+                {128.0f, lo * vs, 128.0f}, 0.8f, 16.0f / 9.0f, 1080.0f, 0.5f, 2000.0f, s.tau);
+            sbt::StripMesh fast, reference;
+            refiner.refineView(vp, fast);
+            refiner.refineViewReference(vp, reference);
+            ASSERT_EQ(fast.indices, reference.indices);
+            EXPECT_EQ(refiner.reachKeyFactor(), double(vp.lambda) / double(s.keysTau));
+            triangles += fast.triangleCount;
+        }
+        EXPECT_GT(triangles, 200000) << "the views see real meshes";
+    }
 }
 
 }  // namespace

@@ -24,8 +24,24 @@ SbtBridge::SbtBridge(const terrain::Heightfield& field, int threads)
         std::make_unique<sbt::Refiner>(field, state_->errors, sbt::RefinerDesc{.threads = threads});
 }
 
-void SbtBridge::prepareView() {
-    state_->refiner->prepareView();
+namespace {
+// The refiner's view for a renderer's: geomorphing refines at
+// sbt::refinementTau(tau).
+sbt::ViewParams refinerView(const SbtView& view) {
+    sbt::ViewParams params;
+    params.eye = {view.eye.x, view.eye.y, view.eye.z};
+    params.lambda = view.lambda;
+    params.tau = view.geomorph ? sbt::refinementTau(view.tau) : view.tau;
+    params.cull = view.cull;
+    for (size_t k = 0; k < 6; ++k)
+        params.planes[k] = {view.planes[k].x, view.planes[k].y, view.planes[k].z, view.planes[k].w};
+    return params;
+}
+}  // namespace
+
+void SbtBridge::prepareView(const SbtView& view) {
+    const sbt::ViewParams params = refinerView(view);
+    state_->refiner->prepareView(double(params.lambda) / double(params.tau));
 }
 
 SbtBridge::~SbtBridge() = default;
@@ -49,13 +65,7 @@ void SbtBridge::releaseMorphBase() {
 }
 
 uint64_t SbtBridge::refineView(const SbtView& view, std::vector<uint32_t>& out, int threads) {
-    sbt::ViewParams params;
-    params.eye = {view.eye.x, view.eye.y, view.eye.z};
-    params.lambda = view.lambda;
-    params.tau = view.geomorph ? sbt::refinementTau(view.tau) : view.tau;
-    params.cull = view.cull;
-    for (size_t k = 0; k < 6; ++k)
-        params.planes[k] = {view.planes[k].x, view.planes[k].y, view.planes[k].z, view.planes[k].w};
+    const sbt::ViewParams params = refinerView(view);
     state_->refiner->setThreads(threads);
     // Refine into the bridge's own mesh and swap buffers with the caller, so
     // both vectors keep their capacity from frame to frame.

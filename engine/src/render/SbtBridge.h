@@ -37,8 +37,9 @@ class SbtBridge {
     std::span<const float> morphBase() const;   // world heights, per sample
     // Frees the morph base once it is on the GPU (4 bytes per sample).
     void releaseMorphBase();
-    // Builds the refiner's view keys if not yet built (sbt::Refiner::prepareView).
-    void prepareView();
+    // Builds the refiner's view keys for `view` if not yet built
+    // (sbt::Refiner::prepareView).
+    void prepareView(const SbtView& view);
     // Bytes of the refiner's keys built so far.
     size_t keyBytes() const;
 

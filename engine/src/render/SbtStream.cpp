@@ -44,8 +44,6 @@ MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width
     MeshDraw mesh;
     mesh.vertexArray = vao_.id();
     if (lod.lod == Lod::Sbt) {
-        terrain.prepareSbtView();  // once, not counted in the frame's refinement
-        Stopwatch sw;
         float aspect = float(width) / float(height);
         LodView lv = camera.lodView(height);
         SbtView view;
@@ -55,6 +53,8 @@ MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width
         view.cull = lod.cull;
         view.geomorph = lod.geomorph;
         view.planes = camera.frustumPlanes(aspect);
+        terrain.prepareSbtView(view);  // once, not counted in the frame's refinement
+        Stopwatch sw;
         stats.triangles = terrain.sbt().refineView(view, strip_, lod.threads);
         stats.refineMs = sw.ms();
         sw.restart();

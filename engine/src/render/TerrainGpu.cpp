@@ -260,10 +260,10 @@ glm::vec2 TerrainGpu::spacing() const {
 float TerrainGpu::verticalScale() const {
     return state_->verticalScale;
 }
-void TerrainGpu::prepareSbtView() {
+void TerrainGpu::prepareSbtView(const SbtView& view) {
     if (state_->viewPrepared) return;
     Stopwatch sw;
-    state_->sbt->prepareView();
+    state_->sbt->prepareView(view);
     state_->sbtBuildMs += sw.ms();
     state_->viewPrepared = true;
 }

@@ -54,6 +54,9 @@ constexpr int64_t kStopEvery = 4096;
 // How long a refinement waits for a helper still leaving the last one.
 constexpr double kHelperSettleSeconds = 200e-6;
 constexpr unsigned kCulled = 0x80;
+// Refinements in a row with one lambda / tau other than the view keys' before
+// the reaches are made again for it (Refiner::run).
+constexpr int kReachRebuildAfter = 4;
 
 // Split keys: the top 16 bits of a non-negative float's bit pattern (sign 0,
 // 8 exponent bits, 7 mantissa bits: bfloat16 rounded towards zero). The map is
@@ -121,13 +124,17 @@ struct Walker {
     float fex, fey, fez, fsx, fsz, fkE, fvs;
     float distanceSlack;  // absolute slack on squared distances (world units^2)
     float planeSlack[6];  // absolute slack on plane distances (world units)
-    // view keys (Refiner::viewKeys_), null when there are none: 3 per tree node
+    // view keys (Refiner::viewKeys_), null when there are none: 2 per tree node
     const uint16_t* viewKeys;
-    float keyYBase, keyYStep, keyYError;   // world y = keyYBase + key * keyYStep, +- keyYError
-    uint32_t keyErrorBase, keyRadiusBase;  // lengthKey bases of the errors and of the radii
-    // keyYError + the reach of a vertex whose error and radius are the bases'
-    // floats, rounded up: what the low bound of a reach subtracts (a key 0
-    // stands for any length below the base's float)
+    float keyYBase, keyYStep, keyYError;  // world y = keyYBase + key * keyYStep, +- keyYError
+    uint32_t keyReachBase;                // lengthKey base of the reaches
+    // This view's lambda / tau over the keys' (s): its reach lies between
+    // keyScaleLo = min(1, s) times the low bound of the keys' reach and
+    // keyScaleHi = max(1, s) times the high bound, both rounded outwards.
+    float keyScaleLo, keyScaleHi;
+    // keyYError + keyScaleHi times the base's float, rounded up: what the low
+    // bound of a reach subtracts (a key 0 stands for any reach below the
+    // base's float)
     float keyLowError;
     const float* dxx;  // (i * spacingX - eye x)^2 for every column i, rounded to float
     const float* dzz;  // (j * spacingZ - eye z)^2 for every row j
@@ -444,16 +451,17 @@ struct Walker {
         const uint16_t* const vk = viewKeys;
         const float* const xx = dxx;
         const float* const zz = dzz;
-        const float kE = fkE, yStep = keyYStep, dy0 = keyDy0, yErr = keyYError, loErr = keyLowError,
-                    grow2 = keyGrow, slack = keySlack;
-        const uint32_t errBase = keyErrorBase, radBase = keyRadiusBase;
+        const float yStep = keyYStep, dy0 = keyDy0, yErr = keyYError, loErr = keyLowError,
+                    grow2 = keyGrow, slack = keySlack, scaleLo = keyScaleLo, scaleHi = keyScaleHi;
+        const uint32_t reachBase = keyReachBase;
         const uint32_t sd = side;
-        // The walk names tree node k by kb = 12 (k + 1), where its children's
-        // key pair starts (in bytes): the children's are 2 kb + 12 (left) and
-        // 2 kb + 24 (right). The children of node k can split (have keys) iff
+        // The walk names tree node k by kb = 8 (k + 1), where its children's
+        // key pair starts (in bytes): the children's are 2 kb + 8 (left) and
+        // 2 kb + 16 (right). The children of node k can split (have keys) iff
         // k < 2^finest - 2, i.e. its level l satisfies l + 1 < finest.
-        uint64_t kb = 12 * (node + 1);
-        const uint64_t innerBytes = 12 * ((uint64_t(1) << finest) - 1);
+        constexpr uint64_t kPair = 8;  // bytes of a sibling pair's keys
+        uint64_t kb = kPair * (node + 1);
+        const uint64_t innerBytes = kPair * ((uint64_t(1) << finest) - 1);
         const uintptr_t keyAddress = reinterpret_cast<uintptr_t>(vk);
         uint32_t* o = out;
         uint32_t* c = cap;
@@ -483,13 +491,13 @@ struct Walker {
         // computes the same float operations in the same order as one child's
         // scalar test; the vertices in neither sure band go to activeExact.
 #if SIERRA_SBT_SSE2
-        const __m128 vkE = _mm_set1_ps(kE), vErr = _mm_set1_ps(yErr), vLoErr = _mm_set1_ps(loErr),
+        const __m128 vErr = _mm_set1_ps(yErr), vLoErr = _mm_set1_ps(loErr),
                      vSlack = _mm_set1_ps(slack), vStep = _mm_set1_ps(yStep),
-                     vDy0 = _mm_set1_ps(dy0), vGrow = _mm_set1_ps(grow2);
+                     vDy0 = _mm_set1_ps(dy0), vGrow = _mm_set1_ps(grow2),
+                     vScaleLo = _mm_set1_ps(scaleLo), vScaleHi = _mm_set1_ps(scaleHi);
         __m128 vBand = _mm_set1_ps(0x1.0p-15f);
         const __m128i one = _mm_set1_epi32(1 << kLengthKeyShift);
-        const __m128i vBase =
-            _mm_setr_epi32(int32_t(errBase), int32_t(errBase), int32_t(radBase), int32_t(radBase));
+        const __m128i vBase = _mm_set1_epi32(int32_t(reachBase));
         // Opaque to the compiler: a constant it knows is rebuilt in the loop
         // (a load and a shuffle per pair) instead of kept in a register.
         asm("" : "+x"(vBand));
@@ -497,40 +505,25 @@ struct Walker {
         auto activePair = [&](V vl, V vr, uint64_t kb) -> unsigned {
             const uint16_t* key = reinterpret_cast<const uint16_t*>(keyAddress + kb);
 #if SIERRA_SBT_SSE2
-            __m128i her, rr;  // u16 lanes: y0 y1 e0 e1 | r0 r1
-            {
-                uint64_t w;
-                uint32_t r;
-                std::memcpy(&w, key, 8);
-                std::memcpy(&r, key + 4, 4);
-                her = _mm_cvtsi64_si128(int64_t(w));
-                rr = _mm_cvtsi32_si128(int32_t(r));
-            }
-            const __m128i zero = _mm_setzero_si128();
-            const __m128i low = _mm_unpacklo_epi16(her, zero);  // u32: y0 y1 e0 e1
-            // u32: e0 e1 r0 r1, then the floats' bit patterns (lengthKey)
-            const __m128i er =
-                _mm_unpacklo_epi64(_mm_srli_si128(low, 8), _mm_unpacklo_epi16(rr, zero));
-            const __m128i lengths = _mm_add_epi32(_mm_slli_epi32(er, kLengthKeyShift), vBase);
-            const __m128i ek = lengths;  // lanes 0 and 1
-            const __m128i rk = _mm_shuffle_epi32(lengths, _MM_SHUFFLE(3, 2, 3, 2));
-            const __m128 yk = _mm_cvtepi32_ps(low);
-            const __m128 dy = _mm_add_ps(_mm_mul_ps(yk, vStep), vDy0);
-            // lanes 2 and 3 are never read (the masks keep bits 0 and 1)
+            uint64_t word;  // u16 lanes: y0 y1 R0 R1
+            std::memcpy(&word, key, 8);
+            const __m128i yr = _mm_unpacklo_epi16(_mm_cvtsi64_si128(int64_t(word)),
+                                                  _mm_setzero_si128());  // u32: y0 y1 R0 R1
+            // lanes 0 and 1: the reach keys' floats (lengthKey); 2 and 3 are
+            // never read (the masks keep bits 0 and 1)
+            const __m128i reach =
+                _mm_add_epi32(_mm_slli_epi32(_mm_srli_si128(yr, 8), kLengthKeyShift), vBase);
+            const __m128 dy = _mm_add_ps(_mm_mul_ps(_mm_cvtepi32_ps(yr), vStep), vDy0);
             const __m128 xz = _mm_add_ps(
                 _mm_unpacklo_ps(_mm_load_ss(xx + uint32_t(vl)), _mm_load_ss(xx + uint32_t(vr))),
                 _mm_unpacklo_ps(_mm_load_ss(zz + uint32_t(vl >> 32)),
                                 _mm_load_ss(zz + uint32_t(vr >> 32))));
             const __m128 d2 = _mm_add_ps(xz, _mm_mul_ps(dy, dy));
-            const __m128 lo = _mm_sub_ps(
-                _mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(ek)), _mm_castsi128_ps(rk)), vLoErr);
+            const __m128 lo = _mm_sub_ps(_mm_mul_ps(vScaleLo, _mm_castsi128_ps(reach)), vLoErr);
             const __m128 sureMask =
                 _mm_cmpgt_ps(_mm_mul_ps(lo, lo), _mm_add_ps(_mm_mul_ps(d2, vGrow), vSlack));
-            const __m128i next = _mm_add_epi32(lengths, one);  // the next keys' floats
-            const __m128 hi = _mm_add_ps(
-                _mm_add_ps(_mm_mul_ps(vkE, _mm_castsi128_ps(next)),
-                           _mm_castsi128_ps(_mm_shuffle_epi32(next, _MM_SHUFFLE(3, 2, 3, 2)))),
-                vErr);
+            const __m128i next = _mm_add_epi32(reach, one);  // the next keys' floats
+            const __m128 hi = _mm_add_ps(_mm_mul_ps(vScaleHi, _mm_castsi128_ps(next)), vErr);
             const __m128 hi2 = _mm_mul_ps(hi, hi);
             const __m128 bound =
                 _mm_sub_ps(d2, _mm_add_ps(_mm_mul_ps(vBand, _mm_add_ps(hi2, d2)), vSlack));
@@ -548,15 +541,14 @@ struct Walker {
                 const V v = c ? vr : vl;
                 const float dy = float(int32_t(key[c])) * yStep + dy0;
                 const float d2 = xx[uint32_t(v)] + zz[uint32_t(v >> 32)] + dy * dy;
-                const uint32_t ek = (uint32_t(key[2 + c]) << kLengthKeyShift) + errBase,
-                               rk = (uint32_t(key[4 + c]) << kLengthKeyShift) + radBase;
-                const float lo = kE * std::bit_cast<float>(ek) + std::bit_cast<float>(rk) - loErr;
+                const uint32_t rk = (uint32_t(key[2 + c]) << kLengthKeyShift) + reachBase;
+                const float lo = scaleLo * std::bit_cast<float>(rk) - loErr;
                 if (lo * lo > d2 * grow2 + slack) {
                     sure |= 1u << c;
                     continue;
                 }
-                const float hi = kE * std::bit_cast<float>(ek + (1u << kLengthKeyShift)) +
-                                 std::bit_cast<float>(rk + (1u << kLengthKeyShift)) + yErr;
+                const float hi =
+                    scaleHi * std::bit_cast<float>(rk + (1u << kLengthKeyShift)) + yErr;
                 const float hi2 = hi * hi;
                 if (!(hi2 < d2 - (0x1.0p-15f * (hi2 + d2) + slack))) undecided |= 1u << c;
             }
@@ -576,22 +568,22 @@ struct Walker {
                 // A prefetch never faults: the address past the keys' end
                 // near the finest levels needs no check (integer arithmetic,
                 // no pointer is formed out of range).
-                const uintptr_t p = keyAddress + ((kb + 12) << (kPrefetchDepth - 1)) - 12;
+                const uintptr_t p = keyAddress + ((kb + kPair) << (kPrefetchDepth - 1)) - kPair;
                 __builtin_prefetch(reinterpret_cast<const void*>(p));
                 __builtin_prefetch(
-                    reinterpret_cast<const void*>(p + 6 * (uint64_t(1) << kPrefetchDepth) - 1));
+                    reinterpret_cast<const void*>(p + (kPair << (kPrefetchDepth - 1)) - 1));
                 const V left = (a + q) >> 1, right = (q + b) >> 1;
                 const unsigned act = activePair(left, right, kb);
                 if (act & 1u) {
                     *top++ = Pending{q, m, b, kb, l, (act & 2u) != 0};
-                    b = q, q = m, m = left, kb = 2 * kb + 12, ++l;
+                    b = q, q = m, m = left, kb = 2 * kb + kPair, ++l;
                     continue;
                 }
                 put(idx(m), (l + 1) & 1);
                 ++leafCount;
                 put(idx(q), l & 1);
                 if (act & 2u) {
-                    a = q, q = m, m = right, kb = 2 * kb + 24, ++l;
+                    a = q, q = m, m = right, kb = 2 * kb + 2 * kPair, ++l;
                     continue;
                 }
                 put(idx(m), (l + 1) & 1);
@@ -607,8 +599,8 @@ struct Walker {
                 const Pending& pd = *--top;
                 put(idx(pd.q), pd.l & 1);
                 if (pd.right) {
-                    a = pd.q, q = pd.m, b = pd.b, m = (pd.q + pd.b) >> 1, kb = 2 * pd.kb + 24,
-                    l = pd.l + 1;
+                    a = pd.q, q = pd.m, b = pd.b, m = (pd.q + pd.b) >> 1,
+                    kb = 2 * pd.kb + 2 * kPair, l = pd.l + 1;
                     descended = true;
                     break;
                 }
@@ -1090,21 +1082,19 @@ void Refiner::measureMagnitude() {
 
 // View keys of every triangle of levels 0..2n-1 in tree order (see
 // viewKeys_): the split vertex's world height quantised to 16 bits over the
-// grid's height range, and the top 16 bits of its error and of its radius.
+// grid's height range; the reaches are made by buildReachKeys.
 void Refiner::buildViewKeys() {
     const size_t count = size_t(side_) * side_;
     const float* h = field_->samples().data();
     const float* err = errors_->error.data();
     const float* rad = errors_->radius.data();
-    float lo = h[0], hi = h[0], largestError = 0.0f, largestRadius = 0.0f;
+    float lo = h[0], hi = h[0];
     for (size_t k = 0; k < count; ++k) {
         if (!std::isfinite(h[k]) || !(err[k] >= 0.0f) || !(rad[k] >= 0.0f) ||
             std::signbit(err[k]) || std::signbit(rad[k]) || !std::isfinite(rad[k]) ||
             !std::isfinite(err[k]))
             return;  // keys would not bound the exact values: exact path only
         lo = std::min(lo, h[k]), hi = std::max(hi, h[k]);
-        largestError = std::max(largestError, err[k]);
-        largestRadius = std::max(largestRadius, rad[k]);
     }
     const double vs = field_->verticalScale();
     const float base = float(double(lo) * vs);
@@ -1124,25 +1114,49 @@ void Refiner::buildViewKeys() {
         worst = std::max(worst, std::fabs(double(decoded) - exact));
     }
     keyYBase_ = base, keyYStep_ = step;
-    keyErrorBase_ = lengthKeyBase(largestError);
-    keyRadiusBase_ = lengthKeyBase(largestRadius);
     keyYError_ =
         std::nextafter(float(worst * (1.0 + 0x1.0p-20)), std::numeric_limits<float>::infinity());
     const uint64_t nodes = (uint64_t(2) << (2 * n_)) - 2;
-    viewKeys_.resize(3 * nodes);
+    viewKeys_.assign(2 * nodes, 0);
     uint16_t* keys = viewKeys_.data();
-    forEachNode([&](uint64_t node, uint32_t m) {
-        uint16_t* pair = keys + 6 * (node >> 1) + (node & 1);
-        pair[0] = quantised[m];
-        pair[2] = lengthKey(err[m], keyErrorBase_);
-        pair[4] = lengthKey(rad[m], keyRadiusBase_);
-    });
+    forEachNode(
+        [&](uint64_t node, uint32_t m) { keys[4 * (node >> 1) + (node & 1)] = quantised[m]; });
+    keyReachFactor_ = 0.0;
 }
 
-void Refiner::prepareView() {
-    if (magnitude_ >= 0.0) return;
-    measureMagnitude();
-    buildViewKeys();
+// The reach keys of every triangle (see viewKeys_) for lambda / tau = kE: the
+// reach kE * e + r in double, as the baseline computes it, rounded towards
+// zero to a float, so that a key's float is at most the reach and the next
+// key's float above it.
+void Refiner::buildReachKeys(double kE) {
+    const size_t count = size_t(side_) * side_;
+    const float* err = errors_->error.data();
+    const float* rad = errors_->radius.data();
+    auto reachOf = [&](size_t k) {
+        const double reach = kE * double(err[k]) + double(rad[k]);
+        float f = float(reach);
+        if (double(f) > reach) f = std::nextafter(f, 0.0f);
+        return f;
+    };
+    float largest = 0.0f;
+    for (size_t k = 0; k < count; ++k) largest = std::max(largest, reachOf(k));
+    keyReachBase_ = lengthKeyBase(largest);
+    uint16_t* keys = viewKeys_.data();
+    forEachNode([&](uint64_t node, uint32_t m) {
+        keys[4 * (node >> 1) + (node & 1) + 2] = lengthKey(reachOf(m), keyReachBase_);
+    });
+    keyReachFactor_ = kE;
+    otherReachCount_ = 0;
+}
+
+void Refiner::prepareView(double lambdaOverTau) {
+    if (magnitude_ < 0.0) {
+        measureMagnitude();
+        buildViewKeys();
+    }
+    if (!viewKeys_.empty() && keyReachFactor_ == 0.0 && lambdaOverTau > 0.0 &&
+        std::isfinite(lambdaOverTau))
+        buildReachKeys(lambdaOverTau);
 }
 
 size_t Refiner::keyBytes() const {
@@ -1235,14 +1249,45 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             // keyYError; keyYError is at most M / 65535, so its square is far
             // below distanceSlack and the same slack covers both.
             if (!viewKeys_.empty()) {
+                // The reaches are made for the first view's lambda / tau, and
+                // again once kReachRebuildAfter refinements in a row asked for
+                // one other (a viewport, field of view or tau that changed and
+                // stays): a rebuild costs about ten refinements, and the keys
+                // of another factor still decide most vertices.
+                // A helper of the last refinement may still read the keys
+                // (once they have reaches: the first build has no reader).
+                auto rebuild = [&] {
+                    if (keyReachFactor_ != 0.0 && busyFrame_ >= 0) {
+                        waitParallelHelpers();
+                        busyFrame_ = -1;
+                    }
+                    buildReachKeys(proto.kE);
+                };
+                if (keyReachFactor_ == 0.0) {
+                    rebuild();
+                } else if (proto.kE == keyReachFactor_) {
+                    otherReachCount_ = 0;
+                } else {
+                    otherReachCount_ = proto.kE == otherReachFactor_ ? otherReachCount_ + 1 : 1;
+                    otherReachFactor_ = proto.kE;
+                    if (otherReachCount_ >= kReachRebuildAfter) rebuild();
+                }
                 proto.viewKeys = viewKeys_.data();
-                proto.keyNodes = viewKeys_.size() / 3;
+                proto.keyNodes = viewKeys_.size() / 2;
                 proto.keyYBase = keyYBase_, proto.keyYStep = keyYStep_,
                 proto.keyYError = keyYError_;
-                proto.keyErrorBase = keyErrorBase_, proto.keyRadiusBase = keyRadiusBase_;
+                proto.keyReachBase = keyReachBase_;
+                // s = this factor over the keys': the reach lies between
+                // min(1, s) and max(1, s) times the keys' bounds (see
+                // viewKeys_); the two factors are rounded outwards.
+                const double s = proto.kE / keyReachFactor_;
+                float scaleLo = float(std::min(1.0, s)), scaleHi = float(std::max(1.0, s));
+                if (double(scaleLo) > std::min(1.0, s)) scaleLo = std::nextafter(scaleLo, 0.0f);
+                if (double(scaleHi) < std::max(1.0, s))
+                    scaleHi = std::nextafter(scaleHi, std::numeric_limits<float>::infinity());
+                proto.keyScaleLo = scaleLo, proto.keyScaleHi = scaleHi;
                 const double below = double(keyYError_) +
-                                     proto.kE * double(std::bit_cast<float>(keyErrorBase_)) +
-                                     double(std::bit_cast<float>(keyRadiusBase_));
+                                     double(scaleHi) * double(std::bit_cast<float>(keyReachBase_));
                 proto.keyLowError = std::nextafter(float(below * (1.0 + 0x1.0p-20)),
                                                    std::numeric_limits<float>::infinity());
                 proto.keyDy0 = float(double(keyYBase_) - proto.ey);

@@ -22,6 +22,7 @@
 namespace sierra::render {
 
 class SbtBridge;
+struct SbtView;
 
 struct TerrainGpuDesc {
     // The terrain, (2^n+1)^2 samples (pad with padToPowerOfTwoPlusOne first).
@@ -69,10 +70,10 @@ class TerrainGpu {
     int side() const;             // samples per side
     glm::vec2 spacing() const;    // world units between samples along x and z
     float verticalScale() const;  // stored height -> world height
-    // Builds the refiner's view keys before the first SBT frame (SbtStream),
-    // outside its refinement time, and adds the time to sbtBuildMs(); a
-    // renderer that never draws an SBT frame never builds them.
-    void prepareSbtView();
+    // Builds the refiner's view keys for `view` before the first SBT frame
+    // (SbtStream), outside its refinement time, and adds the time to
+    // sbtBuildMs(); a renderer that never draws an SBT frame never builds them.
+    void prepareSbtView(const SbtView& view);
     double sbtBuildMs() const;           // time spent building errors, radii and the refiner's keys
     size_t refinerKeyBytes() const;      // CPU bytes of the refiner's keys (sbt::Refiner::keyBytes)
     const std::string& summary() const;  // one line: grid, spacing, height range, sea level

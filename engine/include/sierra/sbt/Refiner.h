@@ -152,11 +152,15 @@ class Refiner {
     // benchmarks.
     void refineViewReference(const ViewParams& view, StripMesh& out);
 
-    // Builds what refineView builds on its first call (the view keys, about
-    // 0.1 s on one thread and 12 bytes per sample at 2049^2), so that a
+    // Builds what refineView builds on its first call (the view keys: about
+    // 0.1 s on one thread and 8 bytes per sample at 2049^2), so that a
     // renderer pays it with the terrain's other preprocessing rather than in
-    // its first frame. Does nothing the second time.
-    void prepareView();
+    // its first frame. lambdaOverTau: the lambda / tau the renderer will refine
+    // with (0: not known yet; the first refineView then makes the reach keys).
+    // Does nothing when the keys exist.
+    void prepareView(double lambdaOverTau = 0.0);
+    // The lambda / tau the view keys' reaches were made for (0: none yet).
+    double reachKeyFactor() const { return keyReachFactor_; }
     // Bytes held by the keys built so far (split keys: refineFixed; view keys:
     // refineView or prepareView).
     size_t keyBytes() const;
@@ -188,6 +192,7 @@ class Refiner {
     void run(const ViewParams* view, float epsilon, StripMesh& out);
     void buildSplitKeys();
     void buildViewKeys();
+    void buildReachKeys(double lambdaOverTau);
     template <typename Visit>
     void forEachNode(Visit&& visit);
     void measureMagnitude();
@@ -218,25 +223,33 @@ class Refiner {
     std::vector<uint16_t> splitKeys_;
     bool keysBuilt_ = false;  // built by the first refineFixed() with epsilon >= 0
     // View keys for refineView below spheres fully inside the frustum: per
-    // triangle of levels 0..2n-1, in the tree order of splitKeys_, three 16-bit
+    // triangle of levels 0..2n-1, in the tree order of splitKeys_, two 16-bit
     // keys of its split vertex, stored per pair of siblings (nodes 2p, 2p + 1:
-    // heights, errors, radii, each left then right, 12 bytes) so that both
-    // children of a triangle are tested at once: the world height quantised over the grid's
-    // height range (keyYBase_ + key * keyYStep_, within keyYError_ of the
-    // exact one), and its error and its radius as length keys (lengthKey in
-    // Refiner.cpp: 5 exponent and 11 mantissa bits of the float above a base
-    // 32 binades below the largest value, keyErrorBase_ and keyRadiusBase_;
-    // the value lies between the floats of its key and of the next key). They
-    // decide all but the vertices near the threshold (0.06% on a rough 2049^2
-    // fractal at tau = 1), which read the exact arrays, and a subtree's keys
-    // sit together level by level instead of scattered over three row-major
-    // arrays.
-    // Memory: 6 * (2^(2n+1) - 2) bytes, about 12 bytes per grid sample. Built
+    // heights, then reaches, each left then right, 8 bytes) so that both
+    // children of a triangle are tested at once. The height is quantised over
+    // the grid's height range (keyYBase_ + key * keyYStep_, within keyYError_
+    // of the exact one). The reach is lambda / tau * e + r for the
+    // lambda / tau of keyReachFactor_, computed in double as the baseline does,
+    // as a length key (lengthKey in Refiner.cpp: 5 exponent and 11 mantissa
+    // bits of the float above a base 32 binades below the largest reach,
+    // keyReachBase_; the reach lies between the floats of its key and of the
+    // next key). A view with another lambda / tau, s times the keys', still
+    // has its reach between min(1, s) and max(1, s) times those bounds; after
+    // kReachRebuildAfter refinements in a row with one other factor the reaches
+    // are made again for it (Refiner::run). The keys decide all but the
+    // vertices near the threshold (about 0.06% on a rough 2049^2 fractal at
+    // tau = 1), which read the exact arrays, and a subtree's keys sit together
+    // level by level instead of scattered over three row-major arrays.
+    // Memory: 4 * (2^(2n+1) - 2) bytes, about 8 bytes per grid sample. Built
     // by prepareView() or the first refineView(); empty (exact path only) when a height is not
     // finite or an error or radius is NaN or negative.
     std::vector<uint16_t> viewKeys_;
     float keyYBase_ = 0, keyYStep_ = 0, keyYError_ = 0;  // world units
-    uint32_t keyErrorBase_ = 0, keyRadiusBase_ = 0;      // float bit patterns
+    double keyReachFactor_ = 0.0;  // lambda / tau of the reach keys; 0: not made yet
+    uint32_t keyReachBase_ = 0;    // float bit pattern
+    // The other factor the last refinements asked for, and how many in a row.
+    double otherReachFactor_ = 0.0;
+    int otherReachCount_ = 0;
     // Largest |world coordinate| or radius of the grid (world units), measured
     // by prepareView() or the first refineView(); -1 until then.
     double magnitude_ = -1.0;
