@@ -32,8 +32,12 @@ struct Refiner::Op {
 };
 
 struct Refiner::Chunk {
-    std::vector<uint32_t> buffer;  // strip indices, capacity reused
-    std::vector<uint32_t> starts;  // offset of every strip in buffer
+    std::vector<uint32_t> buffer;  // strip indices from `offset` on, capacity reused
+    std::vector<uint32_t> starts;  // offset of every strip, from buffer.data() + offset
+    size_t offset = 0;             // where the chunk's strips start in buffer
+    // The buffer is the refinement's output (one thread): it grows by a
+    // quarter, not twice its size (see Refiner::run).
+    bool isOutput = false;
     int64_t used = 0;
     int64_t leaves = 0;
     int64_t culled = 0;  // subtrees culled in this chunk (view mode)
@@ -98,6 +102,25 @@ inline int32_t epsilonKey(float eps) {
     return int32_t(floatKey(eps + 0.0f));  // + 0.0f: -0 becomes +0
 }
 
+// Grows a buffer to at least `need` indices: by a quarter of its size, or
+// within its capacity, for the refinement's output (isOutput), which would
+// otherwise double its capacity when resized past it (56 MB more on a full
+// 2049^2 grid, written once over and so faulted in); twice its size for a
+// chunk's own buffer.
+void growBuffer(std::vector<uint32_t>& buf, size_t need, bool isOutput) {
+    if (!isOutput) {
+        buf.resize(std::max(buf.size() * 2, need));
+        return;
+    }
+    const size_t quarter = buf.size() + buf.size() / 4;
+    if (need <= buf.capacity()) {
+        buf.resize(std::min(buf.capacity(), std::max(need, quarter)));
+        return;
+    }
+    buf.reserve(std::max(need, quarter));
+    buf.resize(buf.capacity());
+}
+
 // The recursion state of one chunk. kView selects the vertex representation:
 // a linear index j * side + i in fixed mode (the midpoint of a and b is
 // (a + b) / 2 because both coordinate sums are even), packed (i | j << 32) in
@@ -158,9 +181,9 @@ struct Walker {
         chunk = &c;
         stop = s;
         c.starts.clear();
-        if (c.buffer.size() < 4096) c.buffer.resize(4096);
-        base = out = c.buffer.data();
-        end = base + c.buffer.size();
+        if (c.buffer.size() < c.offset + 4096) growBuffer(c.buffer, c.offset + 4096, c.isOutput);
+        base = out = c.buffer.data() + c.offset;
+        end = c.buffer.data() + c.buffer.size();
         setCap();
     }
     void setCap() { cap = stop && end - out > kStopEvery ? out + kStopEvery : end; }
@@ -173,12 +196,12 @@ struct Walker {
     [[gnu::noinline, gnu::cold]] void grow(size_t need) {
         if (stop && stop->requested()) throw Stopped{};
         if (size_t(end - out) < need) {
-            size_t used = size_t(out - base);
             auto& buf = chunk->buffer;
-            buf.resize(std::max(buf.size() * 2, used + need + 4096));
-            base = buf.data();
-            out = base + used;
-            end = base + buf.size();
+            const size_t at = size_t(out - buf.data());
+            growBuffer(buf, at + need + 4096, chunk->isOutput);
+            base = buf.data() + chunk->offset;
+            out = buf.data() + at;
+            end = buf.data() + buf.size();
         }
         setCap();
     }
@@ -785,7 +808,7 @@ struct StripJoin {
     void place(const Refiner::Chunk& ch, Emit&& emit) {
         leaves += ch.leaves;
         culled += ch.culled;
-        const uint32_t* src = ch.buffer.data();
+        const uint32_t* src = ch.buffer.data() + ch.offset;
         for (size_t s = 0; s < ch.starts.size(); ++s) {
             const int64_t begin = ch.starts[s];
             const int64_t end = s + 1 < ch.starts.size() ? int64_t(ch.starts[s + 1]) - 1 : ch.used;
@@ -814,13 +837,14 @@ struct StripJoin {
             }
             const uint32_t* from = src + begin + drop;
             const int64_t length = end - begin - drop;
-            emit(Refiner::Copy{from, length, pos, restart});
+            // the tail first: emit may move the strip over its source
             if (length >= 3) {
                 tail[0] = from[length - 1], tail[1] = from[length - 2], tail[2] = from[length - 3];
             } else {
                 for (int64_t k = 0; k < length; ++k)
                     tail[2] = tail[1], tail[1] = tail[0], tail[0] = from[k];
             }
+            emit(Refiner::Copy{from, length, pos, restart});
             pos += length;
         }
     }
@@ -1376,38 +1400,40 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     chunkLeaves.resize(size_t(chunkCount));
     bool pooled = false;
     if (threads == 1) {
-        // One thread: the chunks run in order through one buffer, and each is
-        // joined (copied into the output) at once, while its strip is still in
-        // the cache, instead of every chunk's strip being written to a buffer of
-        // its own and read back at the end. The output grows as the strips are
-        // placed: first to what the last refinement in this mode wrote, as far
-        // as the vector holds without reallocating, then by a quarter (or to
-        // that guess) whenever a strip needs it, to exactly that capacity (a
-        // vector doubles its capacity when it grows by resizing: 56 MB more on
-        // a full 2049^2 grid, written once over and so faulted in).
+        // One thread: the chunks write their strips straight into the
+        // output, one after the other, and each is joined where it lies: a
+        // strip moves down by the indices the join drops before it (a
+        // restart between merged strips, an entry vertex dropped for the
+        // winding), within data still in the cache, and not at all when
+        // none are. Each chunk starts one index past the joined output, so
+        // a strip never moves up. The output is first made as large as what
+        // the last refinement in this mode wrote, and a little more, then
+        // grows by a quarter whenever a chunk needs it (growBuffer).
         const int64_t lastIndices = kView ? lastViewIndices_ : lastFixedIndices_;
         const size_t guess = size_t(lastIndices + lastIndices / 32 + 4096);
-        std::vector<uint32_t>& v = out.indices;
-        if (v.size() < guess) v.resize(std::max(v.size(), std::min(guess, v.capacity())));
-        auto grow = [&v, guess](size_t need) {
-            const size_t size = std::max({need, v.size() + v.size() / 4, guess});
-            if (size > v.capacity()) v.reserve(size);
-            v.resize(size);
-        };
+        Chunk& chunk = frame.serialChunk;
+        std::vector<uint32_t>& v = chunk.buffer;
+        v.swap(out.indices);
+        if (v.capacity() < guess) v.reserve(guess);
+        if (v.size() < guess) v.resize(guess);
+        chunk.isOutput = true;
         W w;
         for (int c = 0; c < chunkCount; ++c) {
+            chunk.offset = size_t(join.pos) + 1;
             std::memcpy(&w, frame.walker, sizeof(W));
-            w.bind(frame.serialChunk, nullptr);
+            w.bind(chunk, nullptr);
             w.execute(ops.data() + cuts[size_t(c)], ops.data() + cuts[size_t(c) + 1]);
             w.finish();
-            chunkLeaves[size_t(c)] = frame.serialChunk.leaves;
-            join.place(frame.serialChunk, [&](const Copy& cp) {
-                const size_t need = size_t(cp.dst + cp.length);
-                if (v.size() < need) grow(need);
-                copyStrip(v.data(), cp);
+            chunkLeaves[size_t(c)] = chunk.leaves;
+            uint32_t* const first = v.data();
+            join.place(chunk, [first](const Copy& cp) {
+                if (cp.restart) first[cp.dst - 1] = kRestartIndex;
+                if (cp.src != first + cp.dst)
+                    std::memmove(first + cp.dst, cp.src, size_t(cp.length) * sizeof(uint32_t));
             });
         }
         v.resize(size_t(join.pos));
+        v.swap(out.indices);
     } else {
         for (std::vector<Chunk>& slot : frame.chunks)
             if (slot.size() < size_t(chunkCount)) slot.resize(size_t(chunkCount));
@@ -1465,6 +1491,8 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             chunkLeaves[size_t(c)] = ch.leaves;
             join.place(ch, [&](const Copy& cp) { copies_.push_back(cp); });
         }
+        // room for a refinement on one thread of the same size (see above)
+        out.indices.reserve(size_t(join.pos + join.pos / 32 + 4096));
         out.indices.resize(size_t(join.pos));
         uint32_t* const first = out.indices.data();
         const int64_t copyCount = int64_t(copies_.size());
