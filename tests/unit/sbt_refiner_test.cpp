@@ -748,6 +748,37 @@ TEST(SbtView, ViewKeysServeOtherFactorsAndFollowOneThatStays) {
     }
 }
 
+// A lambda / tau far above the keys' (a billion times: tau 1e-9 px after
+// keys made at 1 px) takes more off the low bound of a reach than a small
+// reach's key holds: the bound must stay at 0, not turn into a large
+// negative number whose square passes for a reach. The eye looks at the
+// edge of a flat plateau, where rough parents (active at any tau) have
+// children of error 0, active only if the eye is inside their sphere.
+// Without the bound held at 0 the strip differs from the baseline's.
+TEST(SbtView, ViewKeysOfAFarSmallerTauStillDecideAsTheBaseline) {
+    const int side = 129;
+    Heightfield f = fractal(side, 4);
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side / 2; ++i) f.at(i, j) = 0.0f;  // error 0 on the west half
+    auto ve = sbt::computeVertexErrors(f);
+    sbt::Refiner refiner(f, ve, {.threads = 1});
+    int64_t triangles = 0;
+    for (float tau : {1.0f, 1e-9f, 1e-9f, 1.0f}) {
+        SCOPED_TRACE(testing::Message() << "tau " << tau);
+        const sbt::ViewParams vp =
+            sbt::lookAtView({90.0f, 15.0f, 30.3f}, {64.0f, 0.0f, 64.0f}, 0.8f, 16.0f / 9.0f,
+                            1080.0f, 0.01f, 1000.0f, tau);
+        sbt::StripMesh fast, reference;
+        refiner.refineView(vp, fast);
+        refiner.refineViewReference(vp, reference);
+        ASSERT_EQ(fast.indices, reference.indices);
+        triangles += fast.triangleCount;
+    }
+    EXPECT_EQ(refiner.reachKeyFactor(), double(sbt::projectionLambda(1080.0f, 0.8f)))
+        << "the keys stay those of tau = 1 px";
+    EXPECT_GT(triangles, 1000);
+}
+
 }  // namespace
 
 // The largest grid is the largest 2^n+1 side whose vertices 32-bit strip

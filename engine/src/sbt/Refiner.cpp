@@ -542,7 +542,11 @@ struct Walker {
                 _mm_unpacklo_ps(_mm_load_ss(zz + uint32_t(vl >> 32)),
                                 _mm_load_ss(zz + uint32_t(vr >> 32))));
             const __m128 d2 = _mm_add_ps(xz, _mm_mul_ps(dy, dy));
-            const __m128 lo = _mm_sub_ps(_mm_mul_ps(vScaleLo, _mm_castsi128_ps(reach)), vLoErr);
+            // the low bound, at least 0: a view whose lambda / tau is far
+            // above the keys' subtracts more than a small reach's key holds
+            const __m128 lo =
+                _mm_max_ps(_mm_sub_ps(_mm_mul_ps(vScaleLo, _mm_castsi128_ps(reach)), vLoErr),
+                           _mm_setzero_ps());
             const __m128 sureMask =
                 _mm_cmpgt_ps(_mm_mul_ps(lo, lo), _mm_add_ps(_mm_mul_ps(d2, vGrow), vSlack));
             const __m128i next = _mm_add_epi32(reach, one);  // the next keys' floats
@@ -565,7 +569,7 @@ struct Walker {
                 const float dy = float(int32_t(key[c])) * yStep + dy0;
                 const float d2 = xx[uint32_t(v)] + zz[uint32_t(v >> 32)] + dy * dy;
                 const uint32_t rk = (uint32_t(key[2 + c]) << kLengthKeyShift) + reachBase;
-                const float lo = scaleLo * std::bit_cast<float>(rk) - loErr;
+                const float lo = std::max(scaleLo * std::bit_cast<float>(rk) - loErr, 0.0f);
                 if (lo * lo > d2 * grow2 + slack) {
                     sure |= 1u << c;
                     continue;
