@@ -1161,19 +1161,41 @@ void Refiner::buildReachKeys(double kE) {
     const size_t count = size_t(side_) * side_;
     const float* err = errors_->error.data();
     const float* rad = errors_->radius.data();
-    auto reachOf = [&](size_t k) {
-        const double reach = kE * double(err[k]) + double(rad[k]);
-        float f = float(reach);
-        if (double(f) > reach) f = std::nextafter(f, 0.0f);
-        return f;
-    };
-    float largest = 0.0f;
-    for (size_t k = 0; k < count; ++k) largest = std::max(largest, reachOf(k));
-    keyReachBase_ = lengthKeyBase(largest);
+    const int threads = threads_ > 0 ? threads_ : defaultThreadCount();
+    // Per sample: the reach as a float no larger than it (the next float
+    // towards zero, a bit pattern one lower, when rounding went up), then its
+    // key; the tree order gathers the keys (2 bytes a sample) rather than the
+    // errors and radii (8).
+    std::vector<float> reach(count);
+    std::vector<float> largest(size_t(side_), 0.0f);
+    parallelChunks(
+        0, side_, std::min(side_, 256),
+        [&](int64_t lo, int64_t hi, int) {
+            for (int64_t j = lo; j < hi; ++j) {
+                float rowLargest = 0.0f;
+                for (size_t k = size_t(j) * side_, e = k + side_; k < e; ++k) {
+                    const double r = kE * double(err[k]) + double(rad[k]);
+                    float f = float(r);
+                    if (double(f) > r) f = std::bit_cast<float>(std::bit_cast<uint32_t>(f) - 1);
+                    reach[k] = f;
+                    rowLargest = std::max(rowLargest, f);
+                }
+                largest[size_t(j)] = rowLargest;
+            }
+        },
+        threads);
+    keyReachBase_ = lengthKeyBase(*std::max_element(largest.begin(), largest.end()));
+    std::vector<uint16_t> sampleKeys(count);
+    parallelChunks(
+        0, int64_t(count), 256,
+        [&](int64_t lo, int64_t hi, int) {
+            for (int64_t k = lo; k < hi; ++k)
+                sampleKeys[size_t(k)] = lengthKey(reach[size_t(k)], keyReachBase_);
+        },
+        threads);
     uint16_t* keys = viewKeys_.data();
-    forEachNode([&](uint64_t node, uint32_t m) {
-        keys[4 * (node >> 1) + (node & 1) + 2] = lengthKey(reachOf(m), keyReachBase_);
-    });
+    forEachNode(
+        [&](uint64_t node, uint32_t m) { keys[4 * (node >> 1) + (node & 1) + 2] = sampleKeys[m]; });
     keyReachFactor_ = kE;
     otherReachCount_ = 0;
 }
