@@ -151,13 +151,18 @@ struct Walker {
     const uint16_t* viewKeys;
     float keyYBase, keyYStep, keyYError;  // world y = keyYBase + key * keyYStep, +- keyYError
     uint32_t keyReachBase;                // lengthKey base of the reaches
-    // This view's lambda / tau over the keys' (s): its reach lies between
-    // keyScaleLo = min(1, s) times the low bound of the keys' reach and
-    // keyScaleHi = max(1, s) times the high bound, both rounded outwards.
-    float keyScaleLo, keyScaleHi;
-    // keyYError + keyScaleHi times the base's float, rounded up: what the low
-    // bound of a reach subtracts (a key 0 stands for any reach below the
-    // base's float)
+    // keyScaled: this view's lambda / tau is s != 1 times the keys'. A vertex
+    // whose radius is at most rho times its reach R for the keys (rho = 2^-12,
+    // 2^-8, 2^-4 or 1 by the ratio class in the low 2 bits of its height
+    // key) then has a reach between (s - max(s - 1, 0) rho) R and
+    // (s + max(1 - s, 0) rho) R: the walk takes s as keyScaleLo and
+    // keyScaleHi, and max(s - 1, 0) and max(1 - s, 0) as keyRatioLo and
+    // keyRatioHi, each rounded outwards.
+    bool keyScaled;
+    float keyScaleLo, keyScaleHi, keyRatioLo, keyRatioHi;
+    // keyYError + the largest high scale times the base's float, rounded up:
+    // what the low bound of a reach subtracts (a key 0 stands for any reach
+    // below the base's float)
     float keyLowError;
     const float* dxx;  // (i * spacingX - eye x)^2 for every column i, rounded to float
     const float* dzz;  // (j * spacingZ - eye z)^2 for every row j
@@ -400,10 +405,14 @@ struct Walker {
             ++leaves;
             return;
         }
-        if (mask == 0 && viewKeys)
-            walkKeyed(a, q, b, l, m, k);
-        else
+        if (mask == 0 && viewKeys) {
+            if (keyScaled)
+                walkKeyed<true>(a, q, b, l, m, k);
+            else
+                walkKeyed<false>(a, q, b, l, m, k);
+        } else {
             split(a, q, b, l, mask, m, k);
+        }
     }
 
     void split(V a, V q, V b, int l, unsigned mask, V m, uint64_t k) {
@@ -462,6 +471,7 @@ struct Walker {
     // SSE2 lanes over the sibling pair's keys, then 12 bytes: 86.4 M instead
     // of 92.2 M instructions per refinement on the orbit case; with the
     // reach keys' 8 bytes 5.7% fewer again).
+    template <bool kScaled>
     void walkKeyed(V a, V q, V b, int l, V m, uint64_t node) {
         struct Pending {
             V q, m, b;
@@ -476,7 +486,8 @@ struct Walker {
         const float* const xx = dxx;
         const float* const zz = dzz;
         const float yStep = keyYStep, dy0 = keyDy0, yErr = keyYError, loErr = keyLowError,
-                    grow2 = keyGrow, slack = keySlack, scaleLo = keyScaleLo, scaleHi = keyScaleHi;
+                    grow2 = keyGrow, slack = keySlack, scaleLo = keyScaleLo, scaleHi = keyScaleHi,
+                    ratioLo = keyRatioLo, ratioHi = keyRatioHi;
         const uint32_t reachBase = keyReachBase;
         const uint32_t sd = side;
         // The walk names tree node k by kb = 8 (k + 1), where its children's
@@ -518,7 +529,9 @@ struct Walker {
         const __m128 vErr = _mm_set1_ps(yErr), vLoErr = _mm_set1_ps(loErr),
                      vSlack = _mm_set1_ps(slack), vStep = _mm_set1_ps(yStep),
                      vDy0 = _mm_set1_ps(dy0), vGrow = _mm_set1_ps(grow2),
-                     vScaleLo = _mm_set1_ps(scaleLo), vScaleHi = _mm_set1_ps(scaleHi);
+                     vScaleLo = _mm_set1_ps(scaleLo), vScaleHi = _mm_set1_ps(scaleHi),
+                     vRatioLo = _mm_set1_ps(ratioLo), vRatioHi = _mm_set1_ps(ratioHi);
+        const __m128i vClass = _mm_set1_epi32(3), vRho = _mm_set1_epi32((127 - 12) << 23);
         __m128 vBand = _mm_set1_ps(0x1.0p-15f);
         const __m128i one = _mm_set1_epi32(1 << kLengthKeyShift);
         const __m128i vBase = _mm_set1_epi32(int32_t(reachBase));
@@ -543,15 +556,21 @@ struct Walker {
                 _mm_unpacklo_ps(_mm_load_ss(zz + uint32_t(vl >> 32)),
                                 _mm_load_ss(zz + uint32_t(vr >> 32))));
             const __m128 d2 = _mm_add_ps(xz, _mm_mul_ps(dy, dy));
+            const __m128i next = _mm_add_epi32(reach, one);  // the next keys' floats
+            __m128 low = _mm_castsi128_ps(reach), high = _mm_castsi128_ps(next);
+            if constexpr (kScaled) {
+                // rho = 2^(-12 + 4 c) for the ratio class c of each lane
+                const __m128 rho = _mm_castsi128_ps(
+                    _mm_add_epi32(_mm_slli_epi32(_mm_and_si128(yr, vClass), 25), vRho));
+                low = _mm_mul_ps(low, _mm_sub_ps(vScaleLo, _mm_mul_ps(vRatioLo, rho)));
+                high = _mm_mul_ps(high, _mm_add_ps(vScaleHi, _mm_mul_ps(vRatioHi, rho)));
+            }
             // the low bound, at least 0: a view whose lambda / tau is far
             // above the keys' subtracts more than a small reach's key holds
-            const __m128 lo =
-                _mm_max_ps(_mm_sub_ps(_mm_mul_ps(vScaleLo, _mm_castsi128_ps(reach)), vLoErr),
-                           _mm_setzero_ps());
+            const __m128 lo = _mm_max_ps(_mm_sub_ps(low, vLoErr), _mm_setzero_ps());
             const __m128 sureMask =
                 _mm_cmpgt_ps(_mm_mul_ps(lo, lo), _mm_add_ps(_mm_mul_ps(d2, vGrow), vSlack));
-            const __m128i next = _mm_add_epi32(reach, one);  // the next keys' floats
-            const __m128 hi = _mm_add_ps(_mm_mul_ps(vScaleHi, _mm_castsi128_ps(next)), vErr);
+            const __m128 hi = _mm_add_ps(high, vErr);
             const __m128 hi2 = _mm_mul_ps(hi, hi);
             const __m128 bound =
                 _mm_sub_ps(d2, _mm_add_ps(_mm_mul_ps(vBand, _mm_add_ps(hi2, d2)), vSlack));
@@ -570,13 +589,20 @@ struct Walker {
                 const float dy = float(int32_t(key[c])) * yStep + dy0;
                 const float d2 = xx[uint32_t(v)] + zz[uint32_t(v >> 32)] + dy * dy;
                 const uint32_t rk = (uint32_t(key[2 + c]) << kLengthKeyShift) + reachBase;
-                const float lo = std::max(scaleLo * std::bit_cast<float>(rk) - loErr, 0.0f);
+                float low = std::bit_cast<float>(rk),
+                      high = std::bit_cast<float>(rk + (1u << kLengthKeyShift));
+                if constexpr (kScaled) {
+                    const float rho = std::bit_cast<float>(((uint32_t(key[c]) & 3u) << 25) +
+                                                           ((127u - 12u) << 23));
+                    low *= scaleLo - ratioLo * rho;
+                    high *= scaleHi + ratioHi * rho;
+                }
+                const float lo = std::max(low - loErr, 0.0f);
                 if (lo * lo > d2 * grow2 + slack) {
                     sure |= 1u << c;
                     continue;
                 }
-                const float hi =
-                    scaleHi * std::bit_cast<float>(rk + (1u << kLengthKeyShift)) + yErr;
+                const float hi = high + yErr;
                 const float hi2 = hi * hi;
                 if (!(hi2 < d2 - (0x1.0p-15f * (hi2 + d2) + slack))) undecided |= 1u << c;
             }
@@ -1109,9 +1135,19 @@ void Refiner::measureMagnitude() {
         {maxAbs, double(side_ - 1) * field_->spacingX(), double(side_ - 1) * field_->spacingZ()});
 }
 
-// View keys of every triangle of levels 0..2n-1 in tree order (see
-// viewKeys_): the split vertex's world height quantised to 16 bits over the
-// grid's height range; the reaches are made by buildReachKeys.
+namespace {
+// The 16-bit height key nearest to q (the height in steps above the base)
+// whose low 2 bits are `ratioClass` (see viewKeys_).
+inline uint16_t heightKey(double q, uint32_t ratioClass) {
+    const double k = std::clamp((q - double(ratioClass)) * 0.25 + 0.5, 0.0, 16383.0);
+    return uint16_t(uint32_t(k) * 4 + ratioClass);  // k >= 0: truncation rounds to the nearest
+}
+}  // namespace
+
+// The height scale of the view keys (see viewKeys_), and the largest distance
+// between a decoded height (in float, as the walker decodes it) and the exact
+// world height (in double, as the baseline computes it) over every sample and
+// every ratio class; the keys themselves are written by buildReachKeys.
 void Refiner::buildViewKeys() {
     const size_t count = size_t(side_) * side_;
     const float* h = field_->samples().data();
@@ -1129,73 +1165,83 @@ void Refiner::buildViewKeys() {
     const float base = float(double(lo) * vs);
     const float step = float((double(hi) - double(lo)) * vs / 65535.0);
     if (!std::isfinite(base) || !std::isfinite(step)) return;
-    // Every sample's key, and the largest distance between a decoded height
-    // (in float, as the walker decodes it) and the exact world height (in
-    // double, as the baseline computes it).
-    std::vector<uint16_t> quantised(count, 0);
     const double inverse = step != 0.0f ? 1.0 / double(step) : 0.0;
     double worst = 0.0;
     for (size_t k = 0; k < count; ++k) {
         const double exact = double(h[k]) * vs;
-        const double q = std::clamp((exact - double(base)) * inverse + 0.5, 0.0, 65535.0);
-        quantised[k] = uint16_t(q);  // rounded to the nearest (q >= 0)
-        const float decoded = base + float(int32_t(quantised[k])) * step;
-        worst = std::max(worst, std::fabs(double(decoded) - exact));
+        const double q = (exact - double(base)) * inverse;
+        for (uint32_t c = 0; c < 4; ++c) {
+            const float decoded = base + float(int32_t(heightKey(q, c))) * step;
+            worst = std::max(worst, std::fabs(double(decoded) - exact));
+        }
     }
     keyYBase_ = base, keyYStep_ = step;
     keyYError_ =
         std::nextafter(float(worst * (1.0 + 0x1.0p-20)), std::numeric_limits<float>::infinity());
     const uint64_t nodes = (uint64_t(2) << (2 * n_)) - 2;
     viewKeys_.assign(2 * nodes, 0);
-    uint16_t* keys = viewKeys_.data();
-    forEachNode(
-        [&](uint64_t node, uint32_t m) { keys[4 * (node >> 1) + (node & 1)] = quantised[m]; });
     keyReachFactor_ = 0.0;
 }
 
-// The reach keys of every triangle (see viewKeys_) for lambda / tau = kE: the
+// The view keys of every triangle (see viewKeys_) for lambda / tau = kE: the
 // reach kE * e + r in double, as the baseline computes it, rounded towards
 // zero to a float, so that a key's float is at most the reach and the next
-// key's float above it.
+// key's float above it; the height with the vertex's ratio class.
 void Refiner::buildReachKeys(double kE) {
     const size_t count = size_t(side_) * side_;
+    const float* h = field_->samples().data();
     const float* err = errors_->error.data();
     const float* rad = errors_->radius.data();
+    const double vs = field_->verticalScale();
+    const double inverse = keyYStep_ != 0.0f ? 1.0 / double(keyYStep_) : 0.0;
     const int threads = threads_ > 0 ? threads_ : defaultThreadCount();
-    // Per sample: the reach as a float no larger than it (the next float
-    // towards zero, a bit pattern one lower, when rounding went up), then its
-    // key; the tree order gathers the keys (2 bytes a sample) rather than the
-    // errors and radii (8).
-    std::vector<float> reach(count);
+    // The reach as a float no larger than it: the next float towards zero (a
+    // bit pattern one lower) when rounding went up.
+    auto reachOf = [&](size_t k, double* exact) {
+        const double r = kE * double(err[k]) + double(rad[k]);
+        const float f = float(r);
+        *exact = r;
+        return std::bit_cast<float>(std::bit_cast<uint32_t>(f) - uint32_t(double(f) > r));
+    };
     std::vector<float> largest(size_t(side_), 0.0f);
-    parallelChunks(
-        0, side_, std::min(side_, 256),
-        [&](int64_t lo, int64_t hi, int) {
-            for (int64_t j = lo; j < hi; ++j) {
-                float rowLargest = 0.0f;
-                for (size_t k = size_t(j) * side_, e = k + side_; k < e; ++k) {
-                    const double r = kE * double(err[k]) + double(rad[k]);
-                    float f = float(r);
-                    if (double(f) > r) f = std::bit_cast<float>(std::bit_cast<uint32_t>(f) - 1);
-                    reach[k] = f;
-                    rowLargest = std::max(rowLargest, f);
-                }
-                largest[size_t(j)] = rowLargest;
-            }
-        },
-        threads);
+    auto rows = [&](auto&& body) {
+        parallelChunks(
+            0, side_, std::min(side_, 256),
+            [&](int64_t lo, int64_t hi, int) {
+                for (int64_t j = lo; j < hi; ++j) body(size_t(j));
+            },
+            threads);
+    };
+    rows([&](size_t j) {
+        float rowLargest = 0.0f;
+        double exact;
+        for (size_t k = j * side_, e = k + side_; k < e; ++k)
+            rowLargest = std::max(rowLargest, reachOf(k, &exact));
+        largest[j] = rowLargest;
+    });
     keyReachBase_ = lengthKeyBase(*std::max_element(largest.begin(), largest.end()));
-    std::vector<uint16_t> sampleKeys(count);
-    parallelChunks(
-        0, int64_t(count), 256,
-        [&](int64_t lo, int64_t hi, int) {
-            for (int64_t k = lo; k < hi; ++k)
-                sampleKeys[size_t(k)] = lengthKey(reach[size_t(k)], keyReachBase_);
-        },
-        threads);
+    // Per sample both keys (height | reach << 16), then gathered in tree
+    // order: 4 bytes a sample rather than the height, error and radius (12).
+    std::vector<uint32_t> sampleKeys(count);
+    rows([&](size_t j) {
+        for (size_t k = j * side_, e = k + side_; k < e; ++k) {
+            double exact;
+            const float f = reachOf(k, &exact);
+            // the ratio class: the smallest c with radius <= 2^(-12 + 4 c) reach
+            const double r = double(rad[k]);
+            const uint32_t c = uint32_t(r > exact * 0x1.0p-12) + uint32_t(r > exact * 0x1.0p-8) +
+                               uint32_t(r > exact * 0x1.0p-4);
+            const double q = (double(h[k]) * vs - double(keyYBase_)) * inverse;
+            sampleKeys[k] = uint32_t(heightKey(q, c)) | uint32_t(lengthKey(f, keyReachBase_)) << 16;
+        }
+    });
     uint16_t* keys = viewKeys_.data();
-    forEachNode(
-        [&](uint64_t node, uint32_t m) { keys[4 * (node >> 1) + (node & 1) + 2] = sampleKeys[m]; });
+    forEachNode([&](uint64_t node, uint32_t m) {
+        uint16_t* pair = keys + 4 * (node >> 1) + (node & 1);
+        const uint32_t both = sampleKeys[m];
+        pair[0] = uint16_t(both);
+        pair[2] = uint16_t(both >> 16);
+    });
     keyReachFactor_ = kE;
     otherReachCount_ = 0;
 }
@@ -1328,17 +1374,27 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
                 proto.keyYBase = keyYBase_, proto.keyYStep = keyYStep_,
                 proto.keyYError = keyYError_;
                 proto.keyReachBase = keyReachBase_;
-                // s = this factor over the keys': the reach lies between
-                // min(1, s) and max(1, s) times the keys' bounds (see
-                // viewKeys_); the two factors are rounded outwards.
-                const double s = proto.kE / keyReachFactor_;
-                float scaleLo = float(std::min(1.0, s)), scaleHi = float(std::max(1.0, s));
-                if (double(scaleLo) > std::min(1.0, s)) scaleLo = std::nextafter(scaleLo, 0.0f);
-                if (double(scaleHi) < std::max(1.0, s))
-                    scaleHi = std::nextafter(scaleHi, std::numeric_limits<float>::infinity());
-                proto.keyScaleLo = scaleLo, proto.keyScaleHi = scaleHi;
-                const double below = double(keyYError_) +
-                                     double(scaleHi) * double(std::bit_cast<float>(keyReachBase_));
+                // s = this factor over the keys' (see Walker::keyScaled), the
+                // four factors rounded outwards
+                const double scale = proto.kE / keyReachFactor_;
+                auto down = [](double x) {
+                    float f = float(x);
+                    return double(f) > x
+                               ? std::nextafter(f, -std::numeric_limits<float>::infinity())
+                               : f;
+                };
+                auto up = [](double x) {
+                    float f = float(x);
+                    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity())
+                                         : f;
+                };
+                proto.keyScaled = scale != 1.0;
+                proto.keyScaleLo = down(scale), proto.keyScaleHi = up(scale);
+                proto.keyRatioLo = up(std::max(scale - 1.0, 0.0));
+                proto.keyRatioHi = up(std::max(1.0 - scale, 0.0));
+                const double below =
+                    double(keyYError_) + (double(proto.keyScaleHi) + double(proto.keyRatioHi)) *
+                                             double(std::bit_cast<float>(keyReachBase_));
                 proto.keyLowError = std::nextafter(float(below * (1.0 + 0x1.0p-20)),
                                                    std::numeric_limits<float>::infinity());
                 proto.keyDy0 = float(double(keyYBase_) - proto.ey);

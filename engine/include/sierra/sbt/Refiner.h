@@ -226,20 +226,25 @@ class Refiner {
     // triangle of levels 0..2n-1, in the tree order of splitKeys_, two 16-bit
     // keys of its split vertex, stored per pair of siblings (nodes 2p, 2p + 1:
     // heights, then reaches, each left then right, 8 bytes) so that both
-    // children of a triangle are tested at once. The height is quantised over
-    // the grid's height range (keyYBase_ + key * keyYStep_, within keyYError_
-    // of the exact one). The reach is lambda / tau * e + r for the
-    // lambda / tau of keyReachFactor_, computed in double as the baseline does,
-    // as a length key (lengthKey in Refiner.cpp: 5 exponent and 11 mantissa
-    // bits of the float above a base 32 binades below the largest reach,
-    // keyReachBase_; the reach lies between the floats of its key and of the
-    // next key). A view with another lambda / tau, s times the keys', still
-    // has its reach between min(1, s) and max(1, s) times those bounds; after
-    // kReachRebuildAfter refinements in a row with one other factor the reaches
-    // are made again for it (Refiner::run). The keys decide all but the
-    // vertices near the threshold (about 0.06% on a rough 2049^2 fractal at
-    // tau = 1), which read the exact arrays, and a subtree's keys sit together
-    // level by level instead of scattered over three row-major arrays.
+    // children of a triangle are tested at once. The reach is
+    // lambda / tau * e + r for the lambda / tau of keyReachFactor_, computed
+    // in double as the baseline does, as a length key (lengthKey in
+    // Refiner.cpp: 5 exponent and 11 mantissa bits of the float above a base
+    // 32 binades below the largest reach, keyReachBase_; the reach lies
+    // between the floats of its key and of the next key). The height key is
+    // the world height in steps of 1/65535 of the grid's height range
+    // (keyYBase_ + key * keyYStep_, within keyYError_ of the exact one) whose
+    // low 2 bits are the vertex's ratio class c: its radius is at most
+    // 2^(-12 + 4 c) times its reach. A view with another lambda / tau, s
+    // times the keys', has a reach between (s - max(s - 1, 0) rho) and
+    // (s + max(1 - s, 0) rho) times the keys' bounds, rho = 2^(-12 + 4 c):
+    // nearly s times them where the error dominates the reach, as it does on
+    // most vertices. After kReachRebuildAfter refinements in a row with one
+    // other factor the keys are made again for it (Refiner::run). The keys
+    // decide all but the vertices near the threshold (about 0.06% on a rough
+    // 2049^2 fractal at tau = 1), which read the exact arrays, and a
+    // subtree's keys sit together level by level instead of scattered over
+    // three row-major arrays.
     // Memory: 4 * (2^(2n+1) - 2) bytes, about 8 bytes per grid sample. Built
     // by prepareView() or the first refineView(); empty (exact path only) when a height is not
     // finite or an error or radius is NaN or negative.
