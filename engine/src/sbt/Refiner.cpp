@@ -1490,15 +1490,15 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
         // winding), within data still in the cache, and not at all when
         // none are. Each chunk starts one index past the joined output, so
         // a strip never moves up. The output is first made as large as what
-        // the last refinement in this mode wrote, and a little more, then
-        // grows by a quarter whenever a chunk needs it (growBuffer).
+        // the last refinement in this mode wrote, and a little more, as far
+        // as it holds without reallocating, then grows by a quarter whenever
+        // a chunk needs it (growBuffer).
         const int64_t lastIndices = kView ? lastViewIndices_ : lastFixedIndices_;
         const size_t guess = size_t(lastIndices + lastIndices / 32 + 4096);
         Chunk& chunk = frame.serialChunk;
         std::vector<uint32_t>& v = chunk.buffer;
         v.swap(out.indices);
-        if (v.capacity() < guess) v.reserve(guess);
-        if (v.size() < guess) v.resize(guess);
+        if (v.size() < guess) v.resize(std::max(v.size(), std::min(guess, v.capacity())));
         chunk.isOutput = true;
         W w;
         for (int c = 0; c < chunkCount; ++c) {
