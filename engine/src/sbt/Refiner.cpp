@@ -436,7 +436,6 @@ struct Walker {
 
     // --- keyed view path: below a sphere fully inside the frustum -----------
     static constexpr int kPrefetchDepth = 3;
-    uint64_t keyNodes;  // tree nodes with view keys
 
     // activeKeyed's exact fallback, out of line: the keyed walk's loop makes
     // no call on its common path, so its constants stay in registers.
@@ -1195,13 +1194,16 @@ void Refiner::buildReachKeys(double kE) {
     const double vs = field_->verticalScale();
     const double inverse = keyYStep_ != 0.0f ? 1.0 / double(keyYStep_) : 0.0;
     const int threads = threads_ > 0 ? threads_ : defaultThreadCount();
-    // The reach as a float no larger than it: the next float towards zero (a
-    // bit pattern one lower) when rounding went up.
-    auto reachOf = [&](size_t k, double* exact) {
+    // A sample's reach, and the float no larger than it: the next float
+    // towards zero (a bit pattern one lower) when rounding went up.
+    struct Reach {
+        double exact;
+        float below;
+    };
+    auto reachOf = [&](size_t k) {
         const double r = kE * double(err[k]) + double(rad[k]);
         const float f = float(r);
-        *exact = r;
-        return std::bit_cast<float>(std::bit_cast<uint32_t>(f) - uint32_t(double(f) > r));
+        return Reach{r, std::bit_cast<float>(std::bit_cast<uint32_t>(f) - uint32_t(double(f) > r))};
     };
     std::vector<float> largest(size_t(side_), 0.0f);
     auto rows = [&](auto&& body) {
@@ -1214,9 +1216,8 @@ void Refiner::buildReachKeys(double kE) {
     };
     rows([&](size_t j) {
         float rowLargest = 0.0f;
-        double exact;
         for (size_t k = j * side_, e = k + side_; k < e; ++k)
-            rowLargest = std::max(rowLargest, reachOf(k, &exact));
+            rowLargest = std::max(rowLargest, reachOf(k).below);
         largest[j] = rowLargest;
     });
     keyReachBase_ = lengthKeyBase(*std::max_element(largest.begin(), largest.end()));
@@ -1224,15 +1225,15 @@ void Refiner::buildReachKeys(double kE) {
     // order: 4 bytes a sample rather than the height, error and radius (12).
     std::vector<uint32_t> sampleKeys(count);
     rows([&](size_t j) {
-        for (size_t k = j * side_, e = k + side_; k < e; ++k) {
-            double exact;
-            const float f = reachOf(k, &exact);
+        for (size_t k = j * side_, rowEnd = k + side_; k < rowEnd; ++k) {
+            const Reach reach = reachOf(k);
             // the ratio class: the smallest c with radius <= 2^(-12 + 4 c) reach
-            const double r = double(rad[k]);
-            const uint32_t c = uint32_t(r > exact * 0x1.0p-12) + uint32_t(r > exact * 0x1.0p-8) +
-                               uint32_t(r > exact * 0x1.0p-4);
+            const double r = double(rad[k]), e = reach.exact;
+            const uint32_t c = uint32_t(r > e * 0x1.0p-12) + uint32_t(r > e * 0x1.0p-8) +
+                               uint32_t(r > e * 0x1.0p-4);
             const double q = (double(h[k]) * vs - double(keyYBase_)) * inverse;
-            sampleKeys[k] = uint32_t(heightKey(q, c)) | uint32_t(lengthKey(f, keyReachBase_)) << 16;
+            sampleKeys[k] =
+                uint32_t(heightKey(q, c)) | uint32_t(lengthKey(reach.below, keyReachBase_)) << 16;
         }
     });
     uint16_t* keys = viewKeys_.data();
@@ -1370,7 +1371,6 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
                     if (otherReachCount_ >= kReachRebuildAfter) rebuild();
                 }
                 proto.viewKeys = viewKeys_.data();
-                proto.keyNodes = viewKeys_.size() / 2;
                 proto.keyYBase = keyYBase_, proto.keyYStep = keyYStep_,
                 proto.keyYError = keyYError_;
                 proto.keyReachBase = keyReachBase_;
@@ -1574,8 +1574,12 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
             chunkLeaves[size_t(c)] = ch.leaves;
             join.place(ch, [&](const Copy& cp) { copies_.push_back(cp); });
         }
-        // room for a refinement on one thread of the same size (see above)
-        out.indices.reserve(size_t(join.pos + join.pos / 32 + 4096));
+        // room for a refinement on one thread of the same size (see above),
+        // growing by a quarter at least
+        const size_t room = size_t(join.pos + join.pos / 32 + 4096);
+        if (out.indices.capacity() < room)
+            out.indices.reserve(
+                std::max(room, out.indices.capacity() + out.indices.capacity() / 4));
         out.indices.resize(size_t(join.pos));
         uint32_t* const first = out.indices.data();
         const int64_t copyCount = int64_t(copies_.size());
