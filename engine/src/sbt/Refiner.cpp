@@ -1,5 +1,7 @@
 #include <sierra/sbt/Refiner.h>
 
+#include "sbt/Rounding.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Parallel.h>
 
@@ -1194,8 +1196,9 @@ void Refiner::buildReachKeys(double kE) {
     const double vs = field_->verticalScale();
     const double inverse = keyYStep_ != 0.0f ? 1.0 / double(keyYStep_) : 0.0;
     const int threads = threads_ > 0 ? threads_ : defaultThreadCount();
-    // A sample's reach, and the float no larger than it: the next float
-    // towards zero (a bit pattern one lower) when rounding went up.
+    // A sample's reach, and the float no larger than it: roundDown for a
+    // reach >= 0, the next float towards zero taken as the bit pattern one
+    // lower rather than by nextafterf (whose call was most of a rebuild).
     struct Reach {
         double exact;
         float below;
@@ -1377,21 +1380,10 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
                 // s = this factor over the keys' (see Walker::keyScaled), the
                 // four factors rounded outwards
                 const double scale = proto.kE / keyReachFactor_;
-                auto down = [](double x) {
-                    float f = float(x);
-                    return double(f) > x
-                               ? std::nextafter(f, -std::numeric_limits<float>::infinity())
-                               : f;
-                };
-                auto up = [](double x) {
-                    float f = float(x);
-                    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity())
-                                         : f;
-                };
                 proto.keyScaled = scale != 1.0;
-                proto.keyScaleLo = down(scale), proto.keyScaleHi = up(scale);
-                proto.keyRatioLo = up(std::max(scale - 1.0, 0.0));
-                proto.keyRatioHi = up(std::max(1.0 - scale, 0.0));
+                proto.keyScaleLo = roundDown(scale), proto.keyScaleHi = roundUp(scale);
+                proto.keyRatioLo = roundUp(std::max(scale - 1.0, 0.0));
+                proto.keyRatioHi = roundUp(std::max(1.0 - scale, 0.0));
                 const double below =
                     double(keyYError_) + (double(proto.keyScaleHi) + double(proto.keyRatioHi)) *
                                              double(std::bit_cast<float>(keyReachBase_));

@@ -1,5 +1,7 @@
 #include <sierra/sbt/VertexErrors.h>
 
+#include "sbt/Rounding.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Parallel.h>
 
@@ -9,13 +11,6 @@
 
 namespace sierra::sbt {
 namespace {
-
-// Smallest float >= x.
-float roundUp(double x) {
-    float f = float(x);
-    if (double(f) < x) f = std::nextafter(f, INFINITY);
-    return f;
-}
 
 int trailingZeros(int v, int n) {
     return v == 0 ? n : std::countr_zero(unsigned(v));
