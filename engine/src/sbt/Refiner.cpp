@@ -1209,36 +1209,36 @@ void Refiner::buildReachKeys(double kE) {
         return Reach{r, std::bit_cast<float>(std::bit_cast<uint32_t>(f) - uint32_t(double(f) > r))};
     };
     std::vector<float> largest(size_t(side_), 0.0f);
-    auto rows = [&](auto&& body) {
-        parallelChunks(
-            0, side_, std::min(side_, 256),
-            [&](int64_t lo, int64_t hi, int) {
-                for (int64_t j = lo; j < hi; ++j) body(size_t(j));
-            },
-            threads);
-    };
-    rows([&](size_t j) {
-        float rowLargest = 0.0f;
-        for (size_t k = j * side_, e = k + side_; k < e; ++k)
-            rowLargest = std::max(rowLargest, reachOf(k).below);
-        largest[j] = rowLargest;
-    });
+    parallelFor(
+        0, side_,
+        [&](int64_t row) {
+            const size_t j = size_t(row);
+            float rowLargest = 0.0f;
+            for (size_t k = j * side_, e = k + side_; k < e; ++k)
+                rowLargest = std::max(rowLargest, reachOf(k).below);
+            largest[j] = rowLargest;
+        },
+        threads);
     keyReachBase_ = lengthKeyBase(*std::max_element(largest.begin(), largest.end()));
     // Per sample both keys (height | reach << 16), then gathered in tree
     // order: 4 bytes a sample rather than the height, error and radius (12).
     std::vector<uint32_t> sampleKeys(count);
-    rows([&](size_t j) {
-        for (size_t k = j * side_, rowEnd = k + side_; k < rowEnd; ++k) {
-            const Reach reach = reachOf(k);
-            // the ratio class: the smallest c with radius <= 2^(-12 + 4 c) reach
-            const double r = double(rad[k]), e = reach.exact;
-            const uint32_t c = uint32_t(r > e * 0x1.0p-12) + uint32_t(r > e * 0x1.0p-8) +
-                               uint32_t(r > e * 0x1.0p-4);
-            const double q = (double(h[k]) * vs - double(keyYBase_)) * inverse;
-            sampleKeys[k] =
-                uint32_t(heightKey(q, c)) | uint32_t(lengthKey(reach.below, keyReachBase_)) << 16;
-        }
-    });
+    parallelFor(
+        0, side_,
+        [&](int64_t row) {
+            const size_t j = size_t(row);
+            for (size_t k = j * side_, rowEnd = k + side_; k < rowEnd; ++k) {
+                const Reach reach = reachOf(k);
+                // the ratio class: the smallest c with radius <= 2^(-12 + 4 c) reach
+                const double r = double(rad[k]), e = reach.exact;
+                const uint32_t c = uint32_t(r > e * 0x1.0p-12) + uint32_t(r > e * 0x1.0p-8) +
+                                   uint32_t(r > e * 0x1.0p-4);
+                const double q = (double(h[k]) * vs - double(keyYBase_)) * inverse;
+                sampleKeys[k] = uint32_t(heightKey(q, c)) |
+                                uint32_t(lengthKey(reach.below, keyReachBase_)) << 16;
+            }
+        },
+        threads);
     uint16_t* keys = viewKeys_.data();
     forEachNode([&](uint64_t node, uint32_t m) {
         uint16_t* pair = keys + 4 * (node >> 1) + (node & 1);
