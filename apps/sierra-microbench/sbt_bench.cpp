@@ -59,58 +59,84 @@ BENCHMARK(BM_ErrorPass)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// Times `refine` (which writes one mesh with `refiner`, in view mode or not)
-// after a first call that grows the buffers, and reports triangles per second.
+// A refiner and its mesh, kept while Google Benchmark runs one benchmark, as a
+// renderer keeps its refiner from frame to frame: Google Benchmark calls a
+// benchmark's function several times (to find an iteration count, then once
+// per repetition), and a refiner made anew each call would grow its buffers
+// and fault their pages in inside the timed loop, where the adaptive default
+// (threads 0) would count those refinements among what it learns. Keyed by
+// the benchmark (`name` and its first `argCount` arguments) and `threads`;
+// those of the benchmark before are freed.
+struct Kept {
+    sbt::Refiner refiner;
+    sbt::StripMesh mesh;
+    int threads;
+    bool fresh = true;  // not refined yet
+    size_t next = 0;    // the next of a benchmark's views
+    Kept(const Terrain& t, int threads)
+        : refiner(t.field, t.errors, {.threads = threads}), threads(threads) {}
+};
+
+Kept& kept(const benchmark::State& state, const char* name, int argCount, const Terrain& t,
+           int threads) {
+    static std::string running;
+    static std::map<int, std::unique_ptr<Kept>> live;
+    std::string key = name;
+    for (int k = 0; k < argCount; ++k) key.append("/").append(std::to_string(state.range(k)));
+    if (key != running) {
+        live.clear();
+        running = key;
+    }
+    std::unique_ptr<Kept>& slot = live[threads];
+    if (!slot) slot = std::make_unique<Kept>(t, threads);
+    return *slot;
+}
+
+// Refines once untimed (a fresh refiner: until the default has grown its
+// buffers both ways), then times `refine` (which writes k's mesh with k's
+// refiner, in view mode or not) and reports triangles per second.
 // Google Benchmark's time is the mean of a repetition's refinements, which a
 // few slow ones (a helper thread preempted on a shared machine) pull up;
 // `median_ms` is the median of the single refinements, timed one by one.
-// What the adaptive default (threads 0) has learned is carried from one run of
-// the benchmark to the next (its repetitions build a refiner each), as a
-// renderer's refiner keeps it from frame to frame.
-// `name` and the benchmark's `argCount` arguments name the benchmark.
 template <typename Refine>
-void measureRefinement(benchmark::State& state, int threads, sbt::Refiner& refiner, bool view,
-                       const char* name, int argCount, Refine refine) {
-    static std::map<std::string, sbt::ThreadChoice> learned;
-    sbt::StripMesh mesh;
-    refine(mesh);
-    std::string key = name;
-    for (int k = 0; k < argCount; ++k) key.append("/").append(std::to_string(state.range(k)));
-    sbt::ThreadChoice& kept = learned[key];
-    refiner.threadChoice(view) = kept;
-    const int64_t serialBefore = kept.samples[0], parallelBefore = kept.samples[1];
+void measureRefinement(benchmark::State& state, Kept& k, bool view, Refine refine) {
+    sbt::StripMesh& mesh = k.mesh;
+    for (int w = 0; w < (k.fresh && k.threads == 0 ? 4 : 1); ++w) refine(mesh);
+    k.fresh = false;
+    const sbt::ThreadChoice& choice = k.refiner.threadChoice(view);
+    const int64_t serialBefore = choice.samples[0], parallelBefore = choice.samples[1];
     std::vector<double> seconds;
     seconds.reserve(size_t(state.max_iterations));
+    int64_t triangles = 0;
     for (auto _ : state) {
         const auto start = std::chrono::steady_clock::now();
         refine(mesh);
         benchmark::DoNotOptimize(mesh.indices.data());
         seconds.push_back(
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        triangles += mesh.triangleCount;
     }
-    if (!seconds.empty()) {
-        auto mid = seconds.begin() + ptrdiff_t(seconds.size() / 2);
-        std::nth_element(seconds.begin(), mid, seconds.end());
-        double median = *mid;
-        if (seconds.size() % 2 == 0)
-            median = 0.5 * (median + *std::max_element(seconds.begin(), mid));
-        state.counters["median_ms"] = 1e3 * median;
-    }
-    kept = refiner.threadChoice(view);
-    if (threads == 0) {
+    if (seconds.empty()) return;
+    auto mid = seconds.begin() + ptrdiff_t(seconds.size() / 2);
+    std::nth_element(seconds.begin(), mid, seconds.end());
+    double median = *mid;
+    if (seconds.size() % 2 == 0) median = 0.5 * (median + *std::max_element(seconds.begin(), mid));
+    state.counters["median_ms"] = 1e3 * median;
+    if (k.threads == 0) {
         // the share of the timed refinements the default ran on one thread
-        const int64_t serial = kept.samples[0] - serialBefore,
-                      parallel = kept.samples[1] - parallelBefore;
+        const int64_t serial = choice.samples[0] - serialBefore,
+                      parallel = choice.samples[1] - parallelBefore;
         state.counters["one_thread"] =
             serial + parallel > 0 ? double(serial) / double(serial + parallel) : 0.0;
-    }
-    state.SetItemsProcessed(state.iterations() * mesh.triangleCount);
-    state.counters["triangles"] = double(mesh.triangleCount);
-    state.counters["idx_per_tri"] = mesh.indicesPerTriangle();
-    state.counters["threads"] = threads;
-    if (threads == 0)
         state.SetLabel("default: adaptive, up to " + std::to_string(sierra::defaultThreadCount()) +
                        " threads");
+    }
+    // a moving view's triangles differ from refinement to refinement: the
+    // mean of the timed ones
+    state.SetItemsProcessed(triangles);
+    state.counters["triangles"] = double(triangles) / double(seconds.size());
+    state.counters["idx_per_tri"] = mesh.indicesPerTriangle();
+    state.counters["threads"] = k.threads;
 }
 
 // Arg 1: epsilon as a fraction of the terrain's relief in ten-thousandths
@@ -123,9 +149,9 @@ void BM_RefineFixed(benchmark::State& state) {
     auto [lo, hi] = t.field.range();
     const float relief = (hi - lo) * t.field.verticalScale();
     const float eps = state.range(1) < 0 ? -1.0f : relief * float(state.range(1)) / 10000.0f;
-    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads, refiner, false, "fixed", 3,
-                      [&](sbt::StripMesh& mesh) { refiner.refineFixed(eps, mesh); });
+    Kept& k = kept(state, "fixed", 3, t, threads);
+    measureRefinement(state, k, false,
+                      [&](sbt::StripMesh& mesh) { k.refiner.refineFixed(eps, mesh); });
 }
 BENCHMARK(BM_RefineFixed)
     ->ArgsProduct({{1025, 2049}, {-1, 0, 5, 10, 20, 50, 100}, {0, 1, 2}})
@@ -162,9 +188,9 @@ void BM_RefineView(benchmark::State& state) {
     // far plane: inside while the distance along the view is below 4 extents
     vp.planes[5] = sbt::Plane{-vp.planes[4].a, -vp.planes[4].b, -vp.planes[4].c,
                               -vp.planes[4].d + 4.0f * extent};
-    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads, refiner, true, "view", 3,
-                      [&](sbt::StripMesh& mesh) { refiner.refineView(vp, mesh); });
+    Kept& k = kept(state, "view", 3, t, threads);
+    measureRefinement(state, k, true,
+                      [&](sbt::StripMesh& mesh) { k.refiner.refineView(vp, mesh); });
 }
 BENCHMARK(BM_RefineView)
     ->ArgsProduct({{2049}, {0, 1, 2}, {0, 1}})
@@ -213,9 +239,9 @@ void BM_RefineOrbit(benchmark::State& state) {
     const Terrain& t = roughTerrain(2049, int(state.range(0)));
     const int threads = int(state.range(1));
     const sbt::ViewParams view = orbitView(t, 1.0f, state.range(2) != 0);
-    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads, refiner, true, "orbit", 3,
-                      [&](sbt::StripMesh& mesh) { refiner.refineView(view, mesh); });
+    Kept& k = kept(state, "orbit", 3, t, threads);
+    measureRefinement(state, k, true,
+                      [&](sbt::StripMesh& mesh) { k.refiner.refineView(view, mesh); });
 }
 BENCHMARK(BM_RefineOrbit)
     ->ArgsProduct({{8}, {0, 1, 2}, {0, 1}})
@@ -236,22 +262,95 @@ void BM_RefineOrbitMoving(benchmark::State& state) {
     std::vector<sbt::ViewParams> views;
     for (int k = 0; k < 48; ++k)
         views.push_back(orbitView(t, 1.0f, true, 135.0f + step * float(k)));
-    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    size_t next = 0;
-    int64_t triangles = 0;
-    measureRefinement(state, threads, refiner, true, "orbit moving", 3, [&](sbt::StripMesh& mesh) {
-        refiner.refineView(views[next], mesh);
-        next = (next + 1) % views.size();
-        triangles += mesh.triangleCount;
+    Kept& k = kept(state, "orbit moving", 3, t, threads);
+    measureRefinement(state, k, true, [&](sbt::StripMesh& mesh) {
+        k.refiner.refineView(views[k.next], mesh);
+        k.next = (k.next + 1) % views.size();
     });
-    // measureRefinement counts the last view's triangles per refinement; the
-    // views differ, so the rate is the mean over those made.
-    const int64_t refinements = int64_t(state.iterations()) + 1;
-    state.SetItemsProcessed(triangles * state.iterations() / refinements);
-    state.counters["triangles"] = double(triangles) / double(refinements);
 }
 BENCHMARK(BM_RefineOrbitMoving)
     ->ArgsProduct({{8}, {0, 1, 2}, {5, 150}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The adaptive default against one thread, refinement by refinement: each
+// iteration refines the same case with a default refiner and a one-thread
+// refiner, in turn (which goes first alternates), so a slow spell of a shared
+// machine, which lasts seconds to minutes, weighs on both alike. Reports
+// default_ms and one_ms (medians of the single refinements), their ratio
+// `default_per_one` (< 1: the default is faster), the ratio of the means
+// (`default_per_one_mean`, which the default's probes of the other way and
+// its preempted helpers raise), and the share of the default's refinements
+// that ran on one thread. Google Benchmark's own time is that of a pair.
+// Args: case (0: fixed 1025^2 full grid, 1: fixed 2049^2 full grid, 2: fixed
+// 1025^2 at 0.05% of the relief, 3: fixed 2049^2 at 0.05%, 4: the rough
+// orbit view, 5: the rough orbit moving 15 degrees per refinement).
+void BM_RefineDefaultAgainstOne(benchmark::State& state) {
+    const int which = int(state.range(0));
+    const bool view = which >= 4;
+    const Terrain& t = view ? roughTerrain(2049, 8) : terrain(which % 2 ? 2049 : 1025);
+    Kept* pair[2] = {&kept(state, "default against one", 1, t, 0),
+                     &kept(state, "default against one", 1, t, 1)};
+    auto [lo, hi] = t.field.range();
+    const float eps = which < 2 ? -1.0f : (hi - lo) * t.field.verticalScale() * 5.0f / 10000.0f;
+    std::vector<sbt::ViewParams> views;
+    for (int k = 0; k < (which == 5 ? 48 : 1); ++k)
+        views.push_back(orbitView(t, 1.0f, true, 135.0f + 15.0f * float(k)));
+    std::vector<double> seconds[2];
+    auto refine = [&](int k) {
+        Kept& one = *pair[k];
+        const auto start = std::chrono::steady_clock::now();
+        if (view) {
+            one.refiner.refineView(views[one.next], one.mesh);
+            one.next = (one.next + 1) % views.size();
+        } else {
+            one.refiner.refineFixed(eps, one.mesh);
+        }
+        benchmark::DoNotOptimize(one.mesh.indices.data());
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    // grows the buffers: the default's first four refinements go both ways
+    for (int k = 0; k < 2; ++k) {
+        const int warm = !pair[k]->fresh ? 0 : k == 0 ? 4 : 1;
+        for (int w = 0; w < warm; ++w) refine(k);
+        pair[k]->fresh = false;
+    }
+    const sbt::ThreadChoice& learned = pair[0]->refiner.threadChoice(view);
+    const int64_t serialBefore = learned.samples[0], parallelBefore = learned.samples[1];
+    int64_t pairs = 0;
+    for (auto _ : state) {
+        const int first = int(pairs++ & 1);
+        seconds[first].push_back(refine(first));
+        seconds[1 - first].push_back(refine(1 - first));
+    }
+    if (pairs == 0) return;
+    double median[2], mean[2];
+    for (int k = 0; k < 2; ++k) {
+        std::vector<double>& s = seconds[k];
+        mean[k] = 0.0;
+        for (double x : s) mean[k] += x / double(s.size());
+        std::sort(s.begin(), s.end());
+        const size_t h = s.size() / 2;
+        median[k] = s.size() % 2 ? s[h] : 0.5 * (s[h - 1] + s[h]);
+    }
+    state.counters["default_ms"] = 1e3 * median[0];
+    state.counters["one_ms"] = 1e3 * median[1];
+    state.counters["default_per_one"] = median[0] / median[1];
+    state.counters["default_per_one_mean"] = mean[0] / mean[1];
+    const int64_t serial = learned.samples[0] - serialBefore,
+                  parallel = learned.samples[1] - parallelBefore;
+    state.counters["one_thread"] =
+        serial + parallel > 0 ? double(serial) / double(serial + parallel) : 0.0;
+    state.counters["triangles"] = double(pair[1]->mesh.triangleCount);
+    // what the default's choice rests on at the end: its medians of the
+    // recent refinements each way, in ms per refinement of this size
+    for (int way = 0; way < 2; ++way)
+        if (learned.samples[way] > 1)
+            state.counters[way ? "learned_several_ms" : "learned_one_ms"] =
+                1e3 * learned.estimate(way) * double(pair[1]->mesh.triangleCount);
+}
+BENCHMARK(BM_RefineDefaultAgainstOne)
+    ->DenseRange(0, 5)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
@@ -260,9 +359,9 @@ void BM_RefineOrbitReference(benchmark::State& state) {
     const Terrain& t = roughTerrain(2049, int(state.range(0)));
     const int threads = int(state.range(1));
     const sbt::ViewParams view = orbitView(t, 1.0f, state.range(2) != 0);
-    sbt::Refiner refiner(t.field, t.errors, {.threads = threads});
-    measureRefinement(state, threads, refiner, true, "orbit reference", 3,
-                      [&](sbt::StripMesh& mesh) { refiner.refineViewReference(view, mesh); });
+    Kept& k = kept(state, "orbit reference", 3, t, threads);
+    measureRefinement(state, k, true,
+                      [&](sbt::StripMesh& mesh) { k.refiner.refineViewReference(view, mesh); });
 }
 BENCHMARK(BM_RefineOrbitReference)
     ->ArgsProduct({{8}, {1}, {1}})
