@@ -6,12 +6,13 @@ cmake_minimum_required(VERSION 3.25)
 # pass that leaves its program current must not break the next one's state
 # restore. One iteration each, JSON out: every selected benchmark reports, none
 # with an error, each with a positive time (and rate, where it counts items),
-# and every refinement with the median of its single refinements.
+# every refinement with the median of its single refinements, and the paired
+# default against one thread with both times and one mesh.
 # Timings are not checked (a test never times; the benchmarks are for that).
-set(filter "BM_ErrorPass/513/1/|BM_RefineFixed/1025/100/[01]/|BM_RefineView/2049/1/1/|BM_RefineOrbit/8/1/1/|BM_RefineOrbitMoving/8/1/150/|BM_RefineOrbitReference/8/1/1/|BM_Curvature/513/|BM_TraceLines/1025/0/|BM_CurvatureGpuWriteFloor/|BM_CurvatureGpu/2049/2/0/0/1/|BM_CurvatureNoData/2049/2/1/1/|BM_GreedyInsertion/1025/10/|BM_ZoneCost/20000/|BM_ZonesVectorise/0|BM_ZonesBorderField/0|BM_ZonesBorderlinesAndField/0")
+set(filter "BM_ErrorPass/513/1/|BM_RefineFixed/1025/100/[01]/|BM_RefineView/2049/1/1/|BM_RefineOrbit/8/1/1/|BM_RefineOrbitMoving/8/1/150/|BM_RefineOrbitReference/8/1/1/|BM_RefineDefaultAgainstOne/2/|BM_Curvature/513/|BM_TraceLines/1025/0/|BM_CurvatureGpuWriteFloor/|BM_CurvatureGpu/2049/2/0/0/1/|BM_CurvatureNoData/2049/2/1/1/|BM_GreedyInsertion/1025/10/|BM_ZoneCost/20000/|BM_ZonesVectorise/0|BM_ZonesBorderField/0|BM_ZonesBorderlinesAndField/0")
 set(expected BM_ErrorPass/513/1/real_time BM_RefineFixed/1025/100/0/real_time BM_RefineFixed/1025/100/1/real_time
     BM_RefineView/2049/1/1/real_time BM_RefineOrbit/8/1/1/real_time BM_RefineOrbitMoving/8/1/150/real_time
-    BM_RefineOrbitReference/8/1/1/real_time BM_Curvature/513/1/2/0/0/real_time BM_TraceLines/1025/0/real_time
+    BM_RefineOrbitReference/8/1/1/real_time BM_RefineDefaultAgainstOne/2/real_time BM_Curvature/513/1/2/0/0/real_time BM_TraceLines/1025/0/real_time
     BM_CurvatureGpuWriteFloor/2049/real_time BM_CurvatureGpu/2049/2/0/0/1/real_time
     BM_CurvatureNoData/2049/2/1/1/real_time BM_GreedyInsertion/1025/10/iterations:1 BM_ZoneCost/20000/iterations:1
     BM_ZonesVectorise/0 BM_ZonesBorderField/0 BM_ZonesBorderlinesAndField/0)
@@ -41,7 +42,15 @@ foreach(k RANGE ${last})
   if(NOT time GREATER 0 OR (noRate STREQUAL "NOTFOUND" AND NOT rate GREATER 0))
     message(FATAL_ERROR "${name}: time ${time}, items_per_second ${rate}")
   endif()
-  if(name MATCHES "^BM_Refine")
+  if(name MATCHES "^BM_RefineDefaultAgainstOne")
+    # both refiners timed, the same mesh (else the benchmark reports an error)
+    foreach(counter default_ms one_ms default_per_one triangles)
+      string(JSON value ERROR_VARIABLE noValue GET "${out}" benchmarks ${k} ${counter})
+      if(NOT noValue STREQUAL "NOTFOUND" OR NOT value GREATER 0)
+        message(FATAL_ERROR "${name}: ${counter} ${value} ${noValue}")
+      endif()
+    endforeach()
+  elseif(name MATCHES "^BM_Refine")
     string(JSON median ERROR_VARIABLE noMedian GET "${out}" benchmarks ${k} median_ms)
     if(NOT noMedian STREQUAL "NOTFOUND" OR NOT median GREATER 0)
       message(FATAL_ERROR "${name}: median_ms ${median} ${noMedian}")
