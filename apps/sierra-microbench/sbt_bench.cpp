@@ -92,6 +92,13 @@ Kept& kept(const benchmark::State& state, const char* name, int argCount, const 
     return *slot;
 }
 
+// The median of a non-empty list (reordered).
+double median(std::vector<double>& v) {
+    auto mid = v.begin() + ptrdiff_t(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return v.size() % 2 ? *mid : 0.5 * (*mid + *std::max_element(v.begin(), mid));
+}
+
 // Refines once untimed (a fresh refiner: until the default has grown its
 // buffers both ways), then times `refine` (which writes k's mesh with k's
 // refiner, in view mode or not) and reports triangles per second.
@@ -117,11 +124,7 @@ void measureRefinement(benchmark::State& state, Kept& k, bool view, Refine refin
         triangles += mesh.triangleCount;
     }
     if (seconds.empty()) return;
-    auto mid = seconds.begin() + ptrdiff_t(seconds.size() / 2);
-    std::nth_element(seconds.begin(), mid, seconds.end());
-    double median = *mid;
-    if (seconds.size() % 2 == 0) median = 0.5 * (median + *std::max_element(seconds.begin(), mid));
-    state.counters["median_ms"] = 1e3 * median;
+    state.counters["median_ms"] = 1e3 * median(seconds);
     if (k.threads == 0) {
         // the share of the timed refinements the default ran on one thread
         const int64_t serial = choice.samples[0] - serialBefore,
@@ -329,18 +332,15 @@ void BM_RefineDefaultAgainstOne(benchmark::State& state) {
         state.SkipWithError("the default and one thread made different meshes");
         return;
     }
-    double median[2], mean[2];
+    double middle[2], mean[2];
     for (int k = 0; k < 2; ++k) {
-        std::vector<double>& s = seconds[k];
         mean[k] = 0.0;
-        for (double x : s) mean[k] += x / double(s.size());
-        std::sort(s.begin(), s.end());
-        const size_t h = s.size() / 2;
-        median[k] = s.size() % 2 ? s[h] : 0.5 * (s[h - 1] + s[h]);
+        for (double x : seconds[k]) mean[k] += x / double(seconds[k].size());
+        middle[k] = median(seconds[k]);
     }
-    state.counters["default_ms"] = 1e3 * median[0];
-    state.counters["one_ms"] = 1e3 * median[1];
-    state.counters["default_per_one"] = median[0] / median[1];
+    state.counters["default_ms"] = 1e3 * middle[0];
+    state.counters["one_ms"] = 1e3 * middle[1];
+    state.counters["default_per_one"] = middle[0] / middle[1];
     state.counters["default_per_one_mean"] = mean[0] / mean[1];
     const int64_t serial = learned.samples[0] - serialBefore,
                   parallel = learned.samples[1] - parallelBefore;
