@@ -75,6 +75,14 @@ struct Kept {
     size_t next = 0;    // the next of a benchmark's views
     Kept(const Terrain& t, int threads)
         : refiner(t.field, t.errors, {.threads = threads}), threads(threads) {}
+    // Refines a fresh refiner untimed (`refine()` writes `mesh`) until it has
+    // grown its buffers: once, or four times for the default, whose first
+    // refinements go both ways.
+    template <typename Refine>
+    void warm(Refine refine) {
+        for (int w = 0; fresh && w < (threads == 0 ? 4 : 1); ++w) refine();
+        fresh = false;
+    }
 };
 
 Kept& kept(const benchmark::State& state, const char* name, int argCount, const Terrain& t,
@@ -99,17 +107,15 @@ double median(std::vector<double>& v) {
     return v.size() % 2 ? *mid : 0.5 * (*mid + *std::max_element(v.begin(), mid));
 }
 
-// Refines once untimed (a fresh refiner: until the default has grown its
-// buffers both ways), then times `refine` (which writes k's mesh with k's
-// refiner, in view mode or not) and reports triangles per second.
+// Warms a fresh refiner (Kept::warm), then times `refine` (which writes k's
+// mesh with k's refiner, in view mode or not) and reports triangles per second.
 // Google Benchmark's time is the mean of a repetition's refinements, which a
 // few slow ones (a helper thread preempted on a shared machine) pull up;
 // `median_ms` is the median of the single refinements, timed one by one.
 template <typename Refine>
 void measureRefinement(benchmark::State& state, Kept& k, bool view, Refine refine) {
     sbt::StripMesh& mesh = k.mesh;
-    for (int w = 0; w < (k.fresh && k.threads == 0 ? 4 : 1); ++w) refine(mesh);
-    k.fresh = false;
+    k.warm([&] { refine(mesh); });
     const sbt::ThreadChoice& choice = k.refiner.threadChoice(view);
     const int64_t serialBefore = choice.samples[0], parallelBefore = choice.samples[1];
     std::vector<double> seconds;
@@ -311,12 +317,7 @@ void BM_RefineDefaultAgainstOne(benchmark::State& state) {
         benchmark::DoNotOptimize(one.mesh.indices.data());
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
-    // grows the buffers: the default's first four refinements go both ways
-    for (int k = 0; k < 2; ++k) {
-        const int warm = !pair[k]->fresh ? 0 : k == 0 ? 4 : 1;
-        for (int w = 0; w < warm; ++w) refine(k);
-        pair[k]->fresh = false;
-    }
+    for (int k = 0; k < 2; ++k) pair[k]->warm([&] { refine(k); });
     const sbt::ThreadChoice& learned = pair[0]->refiner.threadChoice(view);
     const int64_t serialBefore = learned.samples[0], parallelBefore = learned.samples[1];
     int64_t pairs = 0;
