@@ -47,6 +47,7 @@ struct FramesOptions {
 struct FrameRecord {
     double refine = 0, upload = 0, draw = 0, gpu = 0, readBack = 0, total = 0;
     uint64_t triangles = 0, indices = 0, bytes = 0;
+    int threads = 0;                 // threads the refinement ran on (0: none ran)
     double psnr = 0, differing = 0;  // against the full grid (compare mode)
     double fullTotal = 0;            // full-grid frame time (compare mode)
     double bare = 0;                 // frame time without overlay passes (--overlay-costs)
@@ -84,6 +85,7 @@ gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& tar
     record.draw = drawWall;
     record.gpu = s.drawMs;
     record.triangles = s.triangles;
+    record.threads = s.refineThreads;
     record.indices = s.indices;
     record.bytes = s.bytesUploaded;
     return image;
@@ -212,6 +214,13 @@ void runFrames(const FramesOptions& o) {
     for (const FrameRecord& r : records)
         if (r.refine > 0) rates.push_back(double(r.triangles) / (r.refine * 1e-3));
     const double rate = rates.empty() ? 0.0 : median(rates);
+    // Frames whose refinement ran on one thread, of those that refined: what
+    // the default chose, frame by frame.
+    int refined = 0, oneThread = 0;
+    for (const FrameRecord& r : records) {
+        refined += r.threads > 0;
+        oneThread += r.threads == 1;
+    }
     const bool adaptive = sc.lod.threads == 0;
     const std::string threadsText =
         adaptive ? msg("default (1 or ", defaultThreadCount(), ", whichever measures faster)")
@@ -235,6 +244,8 @@ void runFrames(const FramesOptions& o) {
     row("frame", total);
     std::printf("triangles per frame (median): %.0f\n", triangles);
     std::printf("refine + strip rate (median over frames): %.1f M triangles/s\n", rate * 1e-6);
+    if (refined > 0)
+        std::printf("refinements on one thread: %d of %d frames\n", oneThread, refined);
     std::printf("indices per triangle: %.3f\n", triangles > 0 ? indices / triangles : 0.0);
     std::printf("bytes uploaded per frame (median): %.0f (%.2f per triangle)\n", bytes,
                 triangles > 0 ? bytes / triangles : 0.0);
@@ -261,6 +272,7 @@ void runFrames(const FramesOptions& o) {
                {"read_back", toJson(readS)},     {"frame", toJson(total)}};
     j["triangles_median"] = triangles;
     j["refine_triangles_per_second_median"] = rate;
+    j["one_thread_frames"] = oneThread;
     j["indices_per_triangle"] = triangles > 0 ? indices / triangles : 0.0;
     j["bytes_per_frame_median"] = bytes;
     j["bytes_per_triangle"] = triangles > 0 ? bytes / triangles : 0.0;
@@ -333,6 +345,7 @@ void runFrames(const FramesOptions& o) {
              {"read_back", r.readBack},
              {"frame", r.total},
              {"triangles", r.triangles},
+             {"threads", r.threads},
              {"bytes", r.bytes},
              {"psnr", o.compareFull && std::isfinite(r.psnr) ? nlohmann::json(r.psnr)
                                                              : nlohmann::json(nullptr)}});

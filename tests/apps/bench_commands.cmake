@@ -32,6 +32,16 @@ string(JSON adaptive GET "${oneJson}" threads_adaptive)
 if(NOT adaptive STREQUAL "OFF")
   message(FATAL_ERROR "one.json: threads_adaptive ${adaptive} with --threads 1")
 endif()
+# Which frames refined on one thread: all of them with --threads 1, in the
+# summary, the JSON and each frame's record.
+if(NOT LAST_OUTPUT MATCHES "refinements on one thread: 2 of 2 frames")
+  message(FATAL_ERROR "frames --threads 1: no count of one-thread refinements\n${LAST_OUTPUT}")
+endif()
+string(JSON oneFrames GET "${oneJson}" one_thread_frames)
+string(JSON frameThreads GET "${oneJson}" per_frame 1 threads)
+if(NOT oneFrames EQUAL 2 OR NOT frameThreads EQUAL 1)
+  message(FATAL_ERROR "one.json: one_thread_frames ${oneFrames}, threads of frame 1 ${frameThreads}")
+endif()
 # --overlay-costs: each overlay pass timed against the frame without overlays, in one run.
 run_app(overlay_costs EXPECT_OK MESSAGE "overlay costs" COMMAND ${BENCH} frames --generate 65 --size 160x90 --frames 2 --style shaded,lines,hatch,contours --curvature-scale 4 --overlay-costs --json costs.json)
 foreach(pass hatch lines contours)

@@ -79,6 +79,10 @@ int64_t SbtBridge::lastCulledSubtrees() const {
     return state_->mesh.culledSubtrees;
 }
 
+int SbtBridge::lastThreads() const {
+    return state_->mesh.threads;
+}
+
 std::vector<uint32_t> SbtBridge::fullGridTriangles() const {
     sbt::StripMesh full;
     state_->refiner->refineFixed(-1.0f, full);

@@ -48,6 +48,8 @@ class SbtBridge {
     uint64_t refineView(const SbtView& view, std::vector<uint32_t>& out, int threads);
     // Subtrees the last refineView dropped whole at the frustum (0 without culling).
     int64_t lastCulledSubtrees() const;
+    // Threads the last refineView ran on (sbt::StripMesh::threads).
+    int lastThreads() const;
 
     // Every cell of the grid as indexed triangles (3 indices each), with the
     // diagonals of the SBT's finest level.

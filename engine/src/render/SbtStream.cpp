@@ -57,6 +57,7 @@ MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width
         Stopwatch sw;
         stats.triangles = terrain.sbt().refineView(view, strip_, lod.threads);
         stats.refineMs = sw.ms();
+        stats.refineThreads = terrain.sbt().lastThreads();
         sw.restart();
         size_t bytes = strip_.size() * sizeof(uint32_t);
         std::span<std::byte> region = ring_.beginFrame(std::max<size_t>(bytes, 4));

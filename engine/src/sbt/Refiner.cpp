@@ -1101,8 +1101,7 @@ double ThreadChoice::estimate(int way) const {
 }
 
 bool ThreadChoice::serial() {
-    if (samples[1] < 2) return false;
-    if (samples[0] < 2) return true;
+    if (samples[0] <= kLearn || samples[1] <= kLearn) return samples[0] < samples[1];
     const double one = estimate(0), several = estimate(1);
     const bool serialChosen = one <= several * kParallelMargin;
     const double gap = std::max(one, several) / std::max(1e-30, std::min(one, several));
@@ -1589,6 +1588,7 @@ void Refiner::run(const ViewParams* view, float epsilon, StripMesh& out) {
     out.triangleCount = leaves;
     out.stripCount = join.strips;
     out.culledSubtrees = join.culled;
+    out.threads = pooled ? threads : 1;
     lastTriangles = leaves;
     (kView ? lastViewIndices_ : lastFixedIndices_) = join.pos;
     if (adaptive)

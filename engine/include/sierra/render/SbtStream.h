@@ -50,6 +50,7 @@ struct MeshStats {
     uint64_t triangles = 0;  // triangles drawn (strip: non-degenerate)
     uint64_t indices = 0;    // indices drawn, restarts included
     uint64_t bytesUploaded = 0;
+    int refineThreads = 0;  // threads the refinement ran on (0: none ran)
 };
 
 class SbtStream {

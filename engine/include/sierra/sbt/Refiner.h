@@ -49,6 +49,9 @@ struct StripMesh {
     // sphere of their root triangle lies outside a frustum plane (0 without
     // culling and in fixed mode). The same for any thread count.
     int64_t culledSubtrees = 0;
+    // Threads the refinement ran on: 1, or the count it was given (or
+    // sierra::defaultThreadCount()) when it ran its chunks in parallel.
+    int threads = 1;
     double indicesPerTriangle() const {
         return triangleCount ? double(indices.size()) / double(triangleCount) : 0.0;
     }
@@ -106,6 +109,11 @@ struct ThreadChoice {
     // refinement slowed once, by a page fault storm or a preempted helper,
     // does not turn the choice).
     static constexpr int kKept = 5;
+    // Before it chooses, the two ways alternate (several threads first) until
+    // each has run kLearn counted refinements: a choice made from one
+    // refinement each way could follow one slowed refinement for kProbeFar
+    // refinements (a whole short run).
+    static constexpr int kLearn = 3;
     double recent[2][kKept] = {};
     int64_t samples[2] = {0, 0};  // refinements each way so far (the first is not counted)
     int sinceProbe = 0;
