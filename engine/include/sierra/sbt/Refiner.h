@@ -49,8 +49,9 @@ struct StripMesh {
     // sphere of their root triangle lies outside a frustum plane (0 without
     // culling and in fixed mode). The same for any thread count.
     int64_t culledSubtrees = 0;
-    // Threads the refinement ran on: 1, or the count it was given (or
-    // sierra::defaultThreadCount()) when it ran its chunks in parallel.
+    // 1 when the refinement ran on the calling thread alone; else the thread
+    // count it ran with (given, or sierra::defaultThreadCount()): helpers
+    // took part, though with more threads than chunks not every one of them.
     int threads = 1;
     double indicesPerTriangle() const {
         return triangleCount ? double(indices.size()) / double(triangleCount) : 0.0;
