@@ -2,6 +2,7 @@
 // refinement + strip emission, view-dependent refinement. items_per_second is
 // output triangles per second (grid samples per second for the error pass).
 #include <sierra/core/Parallel.h>
+#include <sierra/core/Timer.h>
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
 #include <sierra/terrain/DiamondSquare.h>
@@ -100,13 +101,6 @@ Kept& kept(const benchmark::State& state, const char* name, int argCount, const 
     return *slot;
 }
 
-// The median of a non-empty list (reordered).
-double median(std::vector<double>& v) {
-    auto mid = v.begin() + ptrdiff_t(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    return v.size() % 2 ? *mid : 0.5 * (*mid + *std::max_element(v.begin(), mid));
-}
-
 // Warms a fresh refiner (Kept::warm), then times `refine` (which writes k's
 // mesh with k's refiner, in view mode or not) and reports triangles per second.
 // Google Benchmark's time is the mean of a repetition's refinements, which a
@@ -130,7 +124,7 @@ void measureRefinement(benchmark::State& state, Kept& k, bool view, Refine refin
         triangles += mesh.triangleCount;
     }
     if (seconds.empty()) return;
-    state.counters["median_ms"] = 1e3 * median(seconds);
+    state.counters["median_ms"] = 1e3 * sierra::median(seconds);
     if (k.threads == 0) {
         // the share of the timed refinements the default ran on one thread
         const int64_t serial = choice.samples[0] - serialBefore,
@@ -337,7 +331,7 @@ void BM_RefineDefaultAgainstOne(benchmark::State& state) {
     for (int k = 0; k < 2; ++k) {
         mean[k] = 0.0;
         for (double x : seconds[k]) mean[k] += x / double(seconds[k].size());
-        middle[k] = median(seconds[k]);
+        middle[k] = sierra::median(seconds[k]);
     }
     state.counters["default_ms"] = 1e3 * middle[0];
     state.counters["one_ms"] = 1e3 * middle[1];
