@@ -23,13 +23,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <pthread.h>
+#include <sched.h>
 
 namespace sierra::apps {
 namespace {
@@ -41,6 +47,7 @@ struct FramesOptions {
     bool overlayCosts = false;  // also time each frame without overlays and with each alone
     std::string json;
     std::string saveFrames;  // prefix for PNGs of every frame, empty = none
+    int pinCpu = -1;         // the CPU the refining (main) thread is kept on, -1 = any
 };
 
 // Times of one frame, milliseconds.
@@ -48,6 +55,7 @@ struct FrameRecord {
     double refine = 0, upload = 0, draw = 0, gpu = 0, readBack = 0, total = 0;
     uint64_t triangles = 0, indices = 0, bytes = 0;
     int threads = 0;                 // threads the refinement ran on (0: none ran)
+    int cpu = -1;                    // the CPU the refinement finished on (-1: none ran)
     double psnr = 0, differing = 0;  // against the full grid (compare mode)
     double fullTotal = 0;            // full-grid frame time (compare mode)
     double bare = 0;                 // frame time without overlay passes (--overlay-costs)
@@ -86,13 +94,50 @@ gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& tar
     record.gpu = s.drawMs;
     record.triangles = s.triangles;
     record.threads = s.refineThreads;
+    record.cpu = s.refineCpu;
     record.indices = s.indices;
     record.bytes = s.bytesUploaded;
     return image;
 }
 
+// The CPUs this process may run on, as "0-1,4".
+std::string allowedCpus(const cpu_set_t& set) {
+    std::string text;
+    for (int c = 0; c < CPU_SETSIZE; ++c) {
+        if (!CPU_ISSET(c, &set)) continue;
+        int last = c;
+        while (last + 1 < CPU_SETSIZE && CPU_ISSET(last + 1, &set)) ++last;
+        text += msg(text.empty() ? "" : ",", c, last > c ? msg("-", last) : std::string());
+        c = last;
+    }
+    return text;
+}
+
+// --pin-cpu: the CPU must be one this process may run on.
+void checkPinCpu(int cpu) {
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    if (sched_getaffinity(0, sizeof allowed, &allowed) != 0)
+        throw Error(msg("--pin-cpu: cannot read this process's CPUs: ", std::strerror(errno)));
+    if (cpu >= CPU_SETSIZE || !CPU_ISSET(cpu, &allowed))
+        throw UsageError(
+            msg("--pin-cpu ", cpu, ": this process may run only on CPU ", allowedCpus(allowed)));
+}
+
+// Keeps the calling thread, which refines every frame, on `cpu`. Called after
+// the EGL context starts: the driver's own threads (llvmpipe rasterises on
+// every core) keep every CPU.
+void pinCallingThread(int cpu) {
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(cpu, &one);
+    if (int err = pthread_setaffinity_np(pthread_self(), sizeof one, &one); err != 0)
+        throw Error(msg("--pin-cpu ", cpu, ": ", std::strerror(err)));
+}
+
 void runFrames(const FramesOptions& o) {
     const scene::Scene& sc = o.scene;
+    if (o.pinCpu >= 0) checkPinCpu(o.pinCpu);
     // Outputs are checked before the run, so a bad path fails at once.
     if (!o.saveFrames.empty() && lowerExtension(o.saveFrames) != ".png")
         throw UsageError(
@@ -107,6 +152,7 @@ void runFrames(const FramesOptions& o) {
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(),
                  context.platform().c_str());
+    if (o.pinCpu >= 0) pinCallingThread(o.pinCpu);
     terrain::Heightfield field =
         scene::loadTerrain(sc.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
                            render::TerrainGpu::maxGridSide());
@@ -217,9 +263,11 @@ void runFrames(const FramesOptions& o) {
     // Frames whose refinement ran on one thread, of those that refined: what
     // the default chose, frame by frame.
     int refined = 0, oneThread = 0;
+    std::map<int, int> cpuFrames;  // CPU the refinement finished on: frames
     for (const FrameRecord& r : records) {
         refined += r.threads > 0;
         oneThread += r.threads == 1;
+        if (r.cpu >= 0) ++cpuFrames[r.cpu];
     }
     const bool adaptive = sc.lod.threads == 0;
     const std::string threadsText =
@@ -246,6 +294,14 @@ void runFrames(const FramesOptions& o) {
     std::printf("refine + strip rate (median over frames): %.1f M triangles/s\n", rate * 1e-6);
     if (refined > 0)
         std::printf("refinements on one thread: %d of %d frames\n", oneThread, refined);
+    if (!cpuFrames.empty()) {
+        std::string text;
+        for (const auto& [cpu, frames] : cpuFrames)
+            text += msg(text.empty() ? "" : ", ", "CPU ", cpu, " (", frames,
+                        frames == 1 ? " frame)" : " frames)");
+        std::printf("refinements finished on: %s%s\n", text.c_str(),
+                    o.pinCpu >= 0 ? msg("; pinned to CPU ", o.pinCpu).c_str() : "");
+    }
     std::printf("indices per triangle: %.3f\n", triangles > 0 ? indices / triangles : 0.0);
     std::printf("bytes uploaded per frame (median): %.0f (%.2f per triangle)\n", bytes,
                 triangles > 0 ? bytes / triangles : 0.0);
@@ -273,6 +329,7 @@ void runFrames(const FramesOptions& o) {
     j["triangles_median"] = triangles;
     j["refine_triangles_per_second_median"] = rate;
     j["one_thread_frames"] = oneThread;
+    j["pinned_cpu"] = o.pinCpu >= 0 ? nlohmann::json(o.pinCpu) : nlohmann::json(nullptr);
     j["indices_per_triangle"] = triangles > 0 ? indices / triangles : 0.0;
     j["bytes_per_frame_median"] = bytes;
     j["bytes_per_triangle"] = triangles > 0 ? bytes / triangles : 0.0;
@@ -346,6 +403,7 @@ void runFrames(const FramesOptions& o) {
              {"frame", r.total},
              {"triangles", r.triangles},
              {"threads", r.threads},
+             {"cpu", r.cpu},
              {"bytes", r.bytes},
              {"psnr", o.compareFull && std::isfinite(r.psnr) ? nlohmann::json(r.psnr)
                                                              : nlohmann::json(nullptr)}});
@@ -384,6 +442,11 @@ void addFramesCommand(CLI::App& app) {
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");
     cmd->add_option("--save-frames", o->saveFrames,
                     "Write every frame as PNG (NAME_0000.png, ...)");
+    cmd->add_option("--pin-cpu", o->pinCpu,
+                    "Keep the thread that refines every frame on this CPU (the driver's threads "
+                    "keep every CPU): steadier refinement rates where cores run at different "
+                    "speeds")
+        ->check(CLI::Range(0, CPU_SETSIZE - 1));
     cmd->callback([o] {
         asUsage([&] { o->registrar->apply(); });
         if (o->registrar->printConfigRequested()) return;

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <sched.h>
+
 namespace sierra::render {
 
 Lod parseLod(const std::string& name) {
@@ -58,6 +60,7 @@ MeshDraw SbtStream::prepare(TerrainGpu& terrain, const Camera& camera, int width
         stats.triangles = terrain.sbt().refineView(view, strip_, lod.threads);
         stats.refineMs = sw.ms();
         stats.refineThreads = terrain.sbt().lastThreads();
+        stats.refineCpu = sched_getcpu();
         sw.restart();
         size_t bytes = strip_.size() * sizeof(uint32_t);
         std::span<std::byte> region = ring_.beginFrame(std::max<size_t>(bytes, 4));
