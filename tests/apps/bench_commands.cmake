@@ -44,7 +44,7 @@ if(NOT oneFrames EQUAL 2 OR NOT frameThreads EQUAL 1)
 endif()
 # The CPU each refinement finished on, per frame; --pin-cpu keeps the refining
 # thread on one CPU, which must be one this process may run on (the error
-# names them; the first is the CPU the pinned run uses).
+# names them; runs pinned to the first and to the last of them follow).
 string(JSON frameCpu GET "${framesJson}" per_frame 0 cpu)
 if(frameCpu LESS 0 OR NOT LAST_OUTPUT MATCHES "refinements finished on: CPU [0-9]+ \\([0-9]+ frames?\\)")
   message(FATAL_ERROR "frames --threads 1: no refinement CPU (per_frame 0 cpu ${frameCpu})\n${LAST_OUTPUT}")

@@ -51,8 +51,8 @@ struct MeshStats {
     uint64_t indices = 0;    // indices drawn, restarts included
     uint64_t bytesUploaded = 0;
     int refineThreads = 0;  // threads the refinement ran on (0: none ran)
-    int refineCpu =
-        -1;  // the CPU the calling thread was on when it finished refining (-1: none ran)
+    // The CPU the calling thread was on when it finished refining (-1: none ran).
+    int refineCpu = -1;
 };
 
 class SbtStream {
