@@ -6,6 +6,7 @@
 #include <sierra/core/Parallel.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <cstring>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 // The view keys' paired test uses SSE2 (every x86-64 has it); elsewhere, or
 // with SIERRA_SBT_NO_SIMD defined, a scalar loop makes the same decisions.
@@ -438,14 +440,38 @@ struct Walker {
 
     // --- keyed view path: below a sphere fully inside the frustum -----------
     static constexpr int kPrefetchDepth = 3;
+    // Subtrees of at most this many levels below their node make one room
+    // check for all their appends (fewer than 4 << depth indices).
+    static constexpr int kRoomDepth = 6;
+    // Levels a keyed subtree can have below its node: 2n <= 30 (kMaxSbtSide).
+    static constexpr int kMaxKeyedDepth = 30;
 
-    // activeKeyed's exact fallback, out of line: the keyed walk's loop makes
-    // no call on its common path, so its constants stay in registers.
+    // activePair's exact fallback, out of line: the keyed walk's common path
+    // makes no call but the next level's.
     [[gnu::noinline]] bool activeExact(V m) const {
         const uint32_t i = uint32_t(m), j = uint32_t(m >> 32);
         const uint32_t mi = j * side + i;
         return activeFast(i, j, float(i) * fsx, height[mi] * fvs, float(j) * fsz, err[mi], rad[mi]);
     }
+
+    // The keyed walk's constants, set by walkKeyed for the walk below it.
+    struct KeyedWalk {
+#if SIERRA_SBT_SSE2
+        __m128 yErr, loErr, slack, yStep, dy0, grow, scaleLo, scaleHi, ratioLo, ratioHi, band;
+        __m128i ratioClass, rho, nextKey, reachBase;
+#endif
+        const float* xx;
+        const float* zz;
+        uintptr_t keys;  // viewKeys
+        uint32_t side;
+    };
+    KeyedWalk kw_;
+    // What a keyed subtree hands back: the output pointer, and its leaves
+    // times 4 plus the strip's parity + 1 after it.
+    struct Walked {
+        uint32_t* out;
+        int64_t state;
+    };
 
     // Triangle (a, q, b), tree node k, at level l < finest, whose split vertex
     // m is active and whose sphere lies inside every plane (nothing below is
@@ -461,213 +487,216 @@ struct Walker {
     // differs by at most that) plus the float slack of activeFast; inactive for sure when the
     // largest reach falls short by as much; else activeFast decides from the exact arrays.
     //
-    // The walk is a loop with an explicit stack, not a recursion (6% more
-    // instructions on the orbit case of sierra-microbench, callgrind: 98.4 M
-    // against 92.1 M per refinement): a call makes the callee reload a dozen
-    // constants and the output pointer from memory (every vector register is
-    // caller-saved); here they live in registers for the whole subtree. Per
-    // split node the stack holds what comes after its left subtree: the apex
-    // append and the right child (q, m, b), tree node 2k + 3, with the right
-    // child's decision: both children are decided together (activePair, two
-    // SSE2 lanes over the sibling pair's keys, then 12 bytes: 86.4 M instead
-    // of 92.2 M instructions per refinement on the orbit case; with the
-    // reach keys' 8 bytes 5.7% fewer again).
+    // The walk is a recursion with one function per level (keyedLevel<D>, D
+    // the levels below the node), so the branch predictor sees each level's
+    // decisions at branches of their own: how often a child splits differs
+    // from level to level (at 2049² and tau 1, the left child of a node on
+    // level 14 splits 96% of the time, on level 17 41%, on level 20 7%). It
+    // replaced a loop over an explicit stack, whose one decision branch
+    // served every level, though the loop ran 6% fewer instructions (its
+    // constants lived in registers): the frame loop of sierra-bench frames
+    // refines 4-13% faster (docs/refinement.md). Both children are decided
+    // together (activePair, two SSE2 lanes over the sibling pair's keys).
     template <bool kScaled>
     void walkKeyed(V a, V q, V b, int l, V m, uint64_t node) {
-        struct Pending {
-            V q, m, b;
-            uint64_t kb;  // the node's children's key pair, bytes from the keys' start
-            int l;
-            bool right;  // the right child (q, m, b) splits
-        };
-        constexpr int kMaxPending = 64;  // depth <= 2n <= 30 (kMaxSbtSide)
-        Pending stack[kMaxPending];
-        Pending* top = stack;  // past the last pending entry
-        const uint16_t* const vk = viewKeys;
-        const float* const xx = dxx;
-        const float* const zz = dzz;
-        const float yStep = keyYStep, dy0 = keyDy0, yErr = keyYError, loErr = keyLowError,
-                    grow2 = keyGrow, slack = keySlack, scaleLo = keyScaleLo, scaleHi = keyScaleHi,
-                    ratioLo = keyRatioLo, ratioHi = keyRatioHi;
-        const uint32_t reachBase = keyReachBase;
-        const uint32_t sd = side;
-        // The walk names tree node k by kb = 8 (k + 1), where its children's
-        // key pair starts (in bytes): the children's are 2 kb + 8 (left) and
-        // 2 kb + 16 (right). The children of node k can split (have keys) iff
-        // k < 2^finest - 2, i.e. its level l satisfies l + 1 < finest.
-        constexpr uint64_t kPair = 8;  // bytes of a sibling pair's keys
-        uint64_t kb = kPair * (node + 1);
-        const uint64_t innerBytes = kPair * ((uint64_t(1) << finest) - 1);
-        const uintptr_t keyAddress = reinterpret_cast<uintptr_t>(vk);
-        uint32_t* o = out;
-        uint32_t* c = cap;
-        int par = parity;
-        int64_t leafCount = leaves;
+        (void)m;
+        KeyedWalk& w = kw_;
+#if SIERRA_SBT_SSE2
+        w.yErr = _mm_set1_ps(keyYError);
+        w.loErr = _mm_set1_ps(keyLowError);
+        w.slack = _mm_set1_ps(keySlack);
+        w.yStep = _mm_set1_ps(keyYStep);
+        w.dy0 = _mm_set1_ps(keyDy0);
+        w.grow = _mm_set1_ps(keyGrow);
+        w.scaleLo = _mm_set1_ps(keyScaleLo);
+        w.scaleHi = _mm_set1_ps(keyScaleHi);
+        w.ratioLo = _mm_set1_ps(keyRatioLo);
+        w.ratioHi = _mm_set1_ps(keyRatioHi);
+        w.band = _mm_set1_ps(0x1.0p-15f);
+        w.ratioClass = _mm_set1_epi32(3);
+        w.rho = _mm_set1_epi32((127 - 12) << 23);
+        w.nextKey = _mm_set1_epi32(1 << kLengthKeyShift);
+        w.reachBase = _mm_set1_epi32(int32_t(keyReachBase));
+#endif
+        w.xx = dxx;
+        w.zz = dzz;
+        w.keys = reinterpret_cast<uintptr_t>(viewKeys);
+        w.side = side;
+        // the node's levels below: its subtree reaches the finest level
+        const int depth = finest - l;
+        if (depth < kRoomDepth) ensure(size_t(4) << depth);
+        static constexpr auto kEven = keyedLevels<kScaled, false>(kDepths);
+        static constexpr auto kOdd = keyedLevels<kScaled, true>(kDepths);
+        const auto& levels = finest & 1 ? kOdd : kEven;
+        const Walked r =
+            (this->*levels[depth - 1])(a, q, b, kPair * (node + 1), out, 4 * leaves + (parity + 1));
+        out = r.out;
+        leaves = r.state >> 2;
+        parity = int(r.state & 3) - 1;
+    }
+
+    // A tree node's keys: the pair of its children's keys starts kPair * (k + 1)
+    // bytes into the view keys (its "key offset"); its children's own pairs
+    // then start at 2 kb + kPair (left) and 2 kb + 2 kPair (right).
+    static constexpr uint64_t kPair = 8;  // bytes of a sibling pair's keys
+
+    // Both children of tree node k (key offset kb) at once: bit 0 left (split
+    // vertex vl), bit 1 right (vr). Each lane computes the same float
+    // operations in the same order as one child's scalar test; the vertices
+    // in neither sure band go to activeExact.
+    template <bool kScaled>
+    [[gnu::always_inline]] inline unsigned activePair(V vl, V vr, uint64_t kb) const {
+        const KeyedWalk& w = kw_;
+        const uint16_t* key = reinterpret_cast<const uint16_t*>(w.keys + kb);
+#if SIERRA_SBT_SSE2
+        uint64_t word;  // u16 lanes: y0 y1 R0 R1
+        std::memcpy(&word, key, 8);
+        const __m128i yr = _mm_unpacklo_epi16(_mm_cvtsi64_si128(int64_t(word)),
+                                              _mm_setzero_si128());  // u32: y0 y1 R0 R1
+        // lanes 0 and 1: the reach keys' floats (lengthKey); 2 and 3 are
+        // never read (the masks keep bits 0 and 1)
+        const __m128i reach =
+            _mm_add_epi32(_mm_slli_epi32(_mm_srli_si128(yr, 8), kLengthKeyShift), w.reachBase);
+        const __m128 dy = _mm_add_ps(_mm_mul_ps(_mm_cvtepi32_ps(yr), w.yStep), w.dy0);
+        const __m128 xz = _mm_add_ps(
+            _mm_unpacklo_ps(_mm_load_ss(w.xx + uint32_t(vl)), _mm_load_ss(w.xx + uint32_t(vr))),
+            _mm_unpacklo_ps(_mm_load_ss(w.zz + uint32_t(vl >> 32)),
+                            _mm_load_ss(w.zz + uint32_t(vr >> 32))));
+        const __m128 d2 = _mm_add_ps(xz, _mm_mul_ps(dy, dy));
+        const __m128i next = _mm_add_epi32(reach, w.nextKey);  // the next keys' floats
+        __m128 low = _mm_castsi128_ps(reach), high = _mm_castsi128_ps(next);
+        if constexpr (kScaled) {
+            // rho = 2^(-12 + 4 c) for the ratio class c of each lane
+            const __m128 rho = _mm_castsi128_ps(
+                _mm_add_epi32(_mm_slli_epi32(_mm_and_si128(yr, w.ratioClass), 25), w.rho));
+            low = _mm_mul_ps(low, _mm_sub_ps(w.scaleLo, _mm_mul_ps(w.ratioLo, rho)));
+            high = _mm_mul_ps(high, _mm_add_ps(w.scaleHi, _mm_mul_ps(w.ratioHi, rho)));
+        }
+        // the low bound, at least 0: a view whose lambda / tau is far
+        // above the keys' subtracts more than a small reach's key holds
+        const __m128 lo = _mm_max_ps(_mm_sub_ps(low, w.loErr), _mm_setzero_ps());
+        const __m128 sureMask =
+            _mm_cmpgt_ps(_mm_mul_ps(lo, lo), _mm_add_ps(_mm_mul_ps(d2, w.grow), w.slack));
+        const __m128 hi = _mm_add_ps(high, w.yErr);
+        const __m128 hi2 = _mm_mul_ps(hi, hi);
+        const __m128 bound =
+            _mm_sub_ps(d2, _mm_add_ps(_mm_mul_ps(w.band, _mm_add_ps(hi2, d2)), w.slack));
+        // both bands at once, no branch: in 64% of the pairs on the orbit
+        // case a child is a leaf and needs the second band anyway
+        unsigned sure = unsigned(_mm_movemask_ps(sureMask)) & 3u;
+        const unsigned decided =
+            unsigned(_mm_movemask_ps(_mm_or_ps(sureMask, _mm_cmplt_ps(hi2, bound))));
+        const unsigned undecided = ~decided & 3u;
+        if (undecided == 0) [[likely]]
+            return sure;
+#else
+        unsigned sure = 0, undecided = 0;
+        for (unsigned c = 0; c < 2; ++c) {
+            const V v = c ? vr : vl;
+            const float dy = float(int32_t(key[c])) * keyYStep + keyDy0;
+            const float d2 = w.xx[uint32_t(v)] + w.zz[uint32_t(v >> 32)] + dy * dy;
+            const uint32_t rk = (uint32_t(key[2 + c]) << kLengthKeyShift) + keyReachBase;
+            float low = std::bit_cast<float>(rk),
+                  high = std::bit_cast<float>(rk + (1u << kLengthKeyShift));
+            if constexpr (kScaled) {
+                const float rho =
+                    std::bit_cast<float>(((uint32_t(key[c]) & 3u) << 25) + ((127u - 12u) << 23));
+                low *= keyScaleLo - keyRatioLo * rho;
+                high *= keyScaleHi + keyRatioHi * rho;
+            }
+            const float lo = std::max(low - keyLowError, 0.0f);
+            if (lo * lo > d2 * keyGrow + keySlack) {
+                sure |= 1u << c;
+                continue;
+            }
+            const float hi = high + keyYError;
+            const float hi2 = hi * hi;
+            if (!(hi2 < d2 - (0x1.0p-15f * (hi2 + d2) + keySlack))) undecided |= 1u << c;
+        }
+#endif
+        if (undecided & 1u) sure |= unsigned(activeExact(vl));
+        if (undecided & 2u) sure |= unsigned(activeExact(vr)) << 1;
+        return sure;
+    }
+
+    // Split node (a, q, b) with key offset kb, depth levels above the finest
+    // (kOdd: the finest level is odd, so the node's level has parity
+    // kOdd ^ (depth & 1)): its children decided from their keys, each
+    // that splits walked at the next level, the leaves appended. state: the
+    // leaves so far times 4 plus the strip's parity + 1.
+    template <bool kScaled, bool kOdd, int depth>
+    Walked keyedLevel(V a, V q, V b, uint64_t kb, uint32_t* o, int64_t state) {
+        const V m = (a + b) >> 1;
+        const uint32_t sd = kw_.side;
         auto idx = [sd](V v) { return uint32_t(v >> 32) * sd + uint32_t(v); };
         auto put = [&](uint32_t v, int p) {
             if (v == o[-1] || v == o[-2]) return;
-            if (p == par) {
-                o[0] = o[-2];
+            if (p + 1 == int(state & 3)) {
+                o[0] = o[-2];  // re-send: the strip turns
                 ++o;
             } else {
-                par = p;
+                state = (state & ~int64_t(3)) | (p + 1);
             }
             *o++ = v;
         };
         auto room = [&](size_t need) {
-            if (size_t(c - o) < need) [[unlikely]] {
+            if (size_t(cap - o) < need) [[unlikely]] {
                 out = o;
                 grow(need);
                 o = out;
-                c = cap;
             }
         };
-        // Both children of tree node k (nodes 2k + 2 and 2k + 3, key pair k + 1 at byte kb)
-        // at once: bit 0 left (split vertex vl), bit 1 right (vr). Each lane
-        // computes the same float operations in the same order as one child's
-        // scalar test; the vertices in neither sure band go to activeExact.
-#if SIERRA_SBT_SSE2
-        const __m128 vErr = _mm_set1_ps(yErr), vLoErr = _mm_set1_ps(loErr),
-                     vSlack = _mm_set1_ps(slack), vStep = _mm_set1_ps(yStep),
-                     vDy0 = _mm_set1_ps(dy0), vGrow = _mm_set1_ps(grow2),
-                     vScaleLo = _mm_set1_ps(scaleLo), vScaleHi = _mm_set1_ps(scaleHi),
-                     vRatioLo = _mm_set1_ps(ratioLo), vRatioHi = _mm_set1_ps(ratioHi);
-        const __m128i vClass = _mm_set1_epi32(3), vRho = _mm_set1_epi32((127 - 12) << 23);
-        __m128 vBand = _mm_set1_ps(0x1.0p-15f);
-        const __m128i one = _mm_set1_epi32(1 << kLengthKeyShift);
-        const __m128i vBase = _mm_set1_epi32(int32_t(reachBase));
-        // Opaque to the compiler: a constant it knows is rebuilt in the loop
-        // (a load and a shuffle per pair) instead of kept in a register.
-        asm("" : "+x"(vBand));
-#endif
-        auto activePair = [&](V vl, V vr, uint64_t kb) -> unsigned {
-            const uint16_t* key = reinterpret_cast<const uint16_t*>(keyAddress + kb);
-#if SIERRA_SBT_SSE2
-            uint64_t word;  // u16 lanes: y0 y1 R0 R1
-            std::memcpy(&word, key, 8);
-            const __m128i yr = _mm_unpacklo_epi16(_mm_cvtsi64_si128(int64_t(word)),
-                                                  _mm_setzero_si128());  // u32: y0 y1 R0 R1
-            // lanes 0 and 1: the reach keys' floats (lengthKey); 2 and 3 are
-            // never read (the masks keep bits 0 and 1)
-            const __m128i reach =
-                _mm_add_epi32(_mm_slli_epi32(_mm_srli_si128(yr, 8), kLengthKeyShift), vBase);
-            const __m128 dy = _mm_add_ps(_mm_mul_ps(_mm_cvtepi32_ps(yr), vStep), vDy0);
-            const __m128 xz = _mm_add_ps(
-                _mm_unpacklo_ps(_mm_load_ss(xx + uint32_t(vl)), _mm_load_ss(xx + uint32_t(vr))),
-                _mm_unpacklo_ps(_mm_load_ss(zz + uint32_t(vl >> 32)),
-                                _mm_load_ss(zz + uint32_t(vr >> 32))));
-            const __m128 d2 = _mm_add_ps(xz, _mm_mul_ps(dy, dy));
-            const __m128i next = _mm_add_epi32(reach, one);  // the next keys' floats
-            __m128 low = _mm_castsi128_ps(reach), high = _mm_castsi128_ps(next);
-            if constexpr (kScaled) {
-                // rho = 2^(-12 + 4 c) for the ratio class c of each lane
-                const __m128 rho = _mm_castsi128_ps(
-                    _mm_add_epi32(_mm_slli_epi32(_mm_and_si128(yr, vClass), 25), vRho));
-                low = _mm_mul_ps(low, _mm_sub_ps(vScaleLo, _mm_mul_ps(vRatioLo, rho)));
-                high = _mm_mul_ps(high, _mm_add_ps(vScaleHi, _mm_mul_ps(vRatioHi, rho)));
-            }
-            // the low bound, at least 0: a view whose lambda / tau is far
-            // above the keys' subtracts more than a small reach's key holds
-            const __m128 lo = _mm_max_ps(_mm_sub_ps(low, vLoErr), _mm_setzero_ps());
-            const __m128 sureMask =
-                _mm_cmpgt_ps(_mm_mul_ps(lo, lo), _mm_add_ps(_mm_mul_ps(d2, vGrow), vSlack));
-            const __m128 hi = _mm_add_ps(high, vErr);
-            const __m128 hi2 = _mm_mul_ps(hi, hi);
-            const __m128 bound =
-                _mm_sub_ps(d2, _mm_add_ps(_mm_mul_ps(vBand, _mm_add_ps(hi2, d2)), vSlack));
-            // both bands at once, no branch: in 64% of the pairs on the orbit
-            // case a child is a leaf and needs the second band anyway
-            unsigned sure = unsigned(_mm_movemask_ps(sureMask)) & 3u;
-            const unsigned decided =
-                unsigned(_mm_movemask_ps(_mm_or_ps(sureMask, _mm_cmplt_ps(hi2, bound))));
-            const unsigned undecided = ~decided & 3u;
-            if (undecided == 0) [[likely]]
-                return sure;
-#else
-            unsigned sure = 0, undecided = 0;
-            for (unsigned c = 0; c < 2; ++c) {
-                const V v = c ? vr : vl;
-                const float dy = float(int32_t(key[c])) * yStep + dy0;
-                const float d2 = xx[uint32_t(v)] + zz[uint32_t(v >> 32)] + dy * dy;
-                const uint32_t rk = (uint32_t(key[2 + c]) << kLengthKeyShift) + reachBase;
-                float low = std::bit_cast<float>(rk),
-                      high = std::bit_cast<float>(rk + (1u << kLengthKeyShift));
-                if constexpr (kScaled) {
-                    const float rho = std::bit_cast<float>(((uint32_t(key[c]) & 3u) << 25) +
-                                                           ((127u - 12u) << 23));
-                    low *= scaleLo - ratioLo * rho;
-                    high *= scaleHi + ratioHi * rho;
-                }
-                const float lo = std::max(low - loErr, 0.0f);
-                if (lo * lo > d2 * grow2 + slack) {
-                    sure |= 1u << c;
-                    continue;
-                }
-                const float hi = high + yErr;
-                const float hi2 = hi * hi;
-                if (!(hi2 < d2 - (0x1.0p-15f * (hi2 + d2) + slack))) undecided |= 1u << c;
-            }
-#endif
-            if (undecided & 1u) sure |= unsigned(activeExact(vl));
-            if (undecided & 2u) sure |= unsigned(activeExact(vr)) << 1;
-            return sure;
-        };
-        for (;;) {
-            // split node (a, q, b) at level l, split vertex m, tree node k (kb)
-            // room for this node's appends (6 at most) and for those of every
-            // pending entry the loop below may pop before it comes back (4
-            // each): the pop loop makes no check of its own
-            room(6 + 4 * kMaxPending);
-            bool descended = false;
-            if (kb < innerBytes) {
-                // A prefetch never faults: the address past the keys' end
-                // near the finest levels needs no check (integer arithmetic,
-                // no pointer is formed out of range).
-                const uintptr_t p = keyAddress + ((kb + kPair) << (kPrefetchDepth - 1)) - kPair;
+        if constexpr (depth > kRoomDepth)
+            room(6);  // this node's own appends
+        else if constexpr (depth == kRoomDepth)
+            room(size_t(4) << depth);  // the whole subtree's
+        constexpr int parity = int(kOdd) ^ (depth & 1), childParity = parity ^ 1;
+        if constexpr (depth >= 2) {
+            if constexpr (depth - 1 > kPrefetchDepth) {
+                // A prefetch never faults: no pointer is formed out of range.
+                const uintptr_t p = kw_.keys + ((kb + kPair) << (kPrefetchDepth - 1)) - kPair;
                 __builtin_prefetch(reinterpret_cast<const void*>(p));
                 __builtin_prefetch(
                     reinterpret_cast<const void*>(p + (kPair << (kPrefetchDepth - 1)) - 1));
-                const V left = (a + q) >> 1, right = (q + b) >> 1;
-                const unsigned act = activePair(left, right, kb);
-                if (act & 1u) {
-                    *top++ = Pending{q, m, b, kb, l, (act & 2u) != 0};
-                    b = q, q = m, m = left, kb = 2 * kb + kPair, ++l;
-                    continue;
-                }
-                put(idx(m), (l + 1) & 1);
-                ++leafCount;
-                put(idx(q), l & 1);
-                if (act & 2u) {
-                    a = q, q = m, m = right, kb = 2 * kb + 2 * kPair, ++l;
-                    continue;
-                }
-                put(idx(m), (l + 1) & 1);
-                ++leafCount;
+            }
+            const unsigned act = activePair<kScaled>((a + q) >> 1, (q + b) >> 1, kb);
+            if (act & 1u) {
+                const Walked r =
+                    keyedLevel<kScaled, kOdd, depth - 1>(a, m, q, 2 * kb + kPair, o, state);
+                o = r.out;
+                state = r.state;
+                if constexpr (depth > kRoomDepth) room(4);
             } else {
-                put(idx(m), (l + 1) & 1);
-                put(idx(q), l & 1);
-                put(idx(m), (l + 1) & 1);
-                leafCount += 2;
+                put(idx(m), childParity);
+                state += 4;
             }
-            // the subtree is done: the pending apexes and right children
-            while (top != stack) {
-                const Pending& pd = *--top;
-                put(idx(pd.q), pd.l & 1);
-                if (pd.right) {
-                    a = pd.q, q = pd.m, b = pd.b, m = (pd.q + pd.b) >> 1,
-                    kb = 2 * pd.kb + 2 * kPair, l = pd.l + 1;
-                    descended = true;
-                    break;
-                }
-                put(idx(pd.m), (pd.l + 1) & 1);
-                ++leafCount;
+            put(idx(q), parity);
+            if (act & 2u) {
+                const Walked r =
+                    keyedLevel<kScaled, kOdd, depth - 1>(q, m, b, 2 * kb + 2 * kPair, o, state);
+                o = r.out;
+                state = r.state;
+            } else {
+                put(idx(m), childParity);
+                state += 4;
             }
-            if (!descended) break;
+        } else {  // both children lie on the finest level: leaves
+            put(idx(m), childParity);
+            put(idx(q), parity);
+            put(idx(m), childParity);
+            state += 8;
         }
-        out = o;
-        parity = par;
-        leaves = leafCount;
+        return {o, state};
     }
+
+    using KeyedLevel = Walked (Walker::*)(V, V, V, uint64_t, uint32_t*, int64_t);
+    template <bool kScaled, bool kOdd, size_t... depthLess1>
+    static constexpr std::array<KeyedLevel, sizeof...(depthLess1)> keyedLevels(
+        std::index_sequence<depthLess1...>) {
+        return {&Walker::keyedLevel<kScaled, kOdd, int(depthLess1) + 1>...};
+    }
+    // keyedLevels(kDepths): keyedLevel for depth 1..kMaxKeyedDepth, at index depth - 1
+    static constexpr std::make_index_sequence<kMaxKeyedDepth> kDepths{};
 
     // Fixed mode on the split keys: does triangle `node` (tree index, see
     // Refiner::splitKeys_) with hypotenuse (a, b) split? The exact float is read
