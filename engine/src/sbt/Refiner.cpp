@@ -409,7 +409,7 @@ struct Walker {
             ++leaves;
             return;
         }
-        if (mask == 0 && viewKeys) {
+        if (mask == 0 && viewKeys && finest - l <= kMaxKeyedDepth) {
             if (keyScaled)
                 walkKeyed<true>(a, q, b, l, m, k);
             else
@@ -443,8 +443,11 @@ struct Walker {
     // Subtrees of at most this many levels below their node make one room
     // check for all their appends (fewer than 4 << depth indices).
     static constexpr int kRoomDepth = 6;
-    // Levels a keyed subtree can have below its node: 2n <= 30 (kMaxSbtSide).
-    static constexpr int kMaxKeyedDepth = 30;
+    // The most levels a keyed subtree has below its node: one keyedLevel per
+    // depth, for either parity of the finest level and either keyScaled. A
+    // node higher up (only on grids above 2049², whose chunks start at level
+    // 6) takes the exact path, node(), down to that depth.
+    static constexpr int kMaxKeyedDepth = 16;
 
     // activePair's exact fallback, out of line: the keyed walk's common path
     // makes no call but the next level's.
