@@ -411,9 +411,9 @@ struct Walker {
         }
         if (mask == 0 && viewKeys && finest - l <= kMaxKeyedDepth) {
             if (keyScaled)
-                walkKeyed<true>(a, q, b, l, m, k);
+                walkKeyed<true>(a, q, b, l, k);
             else
-                walkKeyed<false>(a, q, b, l, m, k);
+                walkKeyed<false>(a, q, b, l, k);
         } else {
             split(a, q, b, l, mask, m, k);
         }
@@ -498,11 +498,10 @@ struct Walker {
     // replaced a loop over an explicit stack, whose one decision branch
     // served every level, though the loop ran 6% fewer instructions (its
     // constants lived in registers): the frame loop of sierra-bench frames
-    // refines 4-13% faster (docs/refinement.md). Both children are decided
+    // refines 8-11% faster (docs/refinement.md). Both children are decided
     // together (activePair, two SSE2 lanes over the sibling pair's keys).
     template <bool kScaled>
-    void walkKeyed(V a, V q, V b, int l, V m, uint64_t node) {
-        (void)m;
+    void walkKeyed(V a, V q, V b, int l, uint64_t node) {
         KeyedWalk& w = kw_;
 #if SIERRA_SBT_SSE2
         w.yErr = _mm_set1_ps(keyYError);
@@ -528,9 +527,9 @@ struct Walker {
         // the node's levels below: its subtree reaches the finest level
         const int depth = finest - l;
         if (depth < kRoomDepth) ensure(size_t(4) << depth);
-        static constexpr auto kEven = keyedLevels<kScaled, false>(kDepths);
-        static constexpr auto kOdd = keyedLevels<kScaled, true>(kDepths);
-        const auto& levels = finest & 1 ? kOdd : kEven;
+        static constexpr auto evenFinest = keyedLevels<kScaled, false>(kDepths);
+        static constexpr auto oddFinest = keyedLevels<kScaled, true>(kDepths);
+        const auto& levels = finest & 1 ? oddFinest : evenFinest;
         const Walked r =
             (this->*levels[depth - 1])(a, q, b, kPair * (node + 1), out, 4 * leaves + (parity + 1));
         out = r.out;
