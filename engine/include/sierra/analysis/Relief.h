@@ -1,0 +1,88 @@
+#pragma once
+// Relief lighting fields of a heightfield (no GL): horizon angles in D
+// azimuths, the sun's visibility (soft cast shadows), the sky-view factor, the
+// cosine-weighted sky light the terrain pass uses as its ambient term, and
+// openness. All in world units (the heightfield's spacing and vertical scale).
+//
+// Azimuths are compass bearings in degrees, clockwise from north; north is
+// -z (row 0 of the grid), east +x. Fields are row-major like the heightfield
+// (index j * width + i). No-data samples neither cast nor receive: their
+// values are NaN and they are skipped as occluders.
+
+#include <sierra/terrain/Heightfield.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace sierra::analysis {
+
+struct HorizonOptions {
+    // Azimuths: `directions` evenly spaced bearings starting at `firstAzimuth`
+    // (degrees clockwise from north). Default 16, from north.
+    int directions = 16;
+    float firstAzimuth = 0.0f;
+    // Search radius in world units; 0 (the default) searches the whole grid.
+    float radius = 0.0f;
+    // Columns and rows of real data (the rest is padding, which never casts);
+    // 0 = the whole grid.
+    int validWidth = 0;
+    int validHeight = 0;
+    // Worker threads (0 = sierra::defaultThreadCount()).
+    int threads = 0;
+};
+
+// Horizon elevation angles in radians: angle[d * samples + j * width + i] is
+// the elevation of the horizon seen from sample (i, j) towards azimuth d
+// (>= -pi/2; negative where everything in that direction lies below the
+// sample; -pi/2 at the grid's edge looking out). NaN at no-data samples.
+struct Horizons {
+    int width = 0;
+    int height = 0;
+    int directions = 0;
+    float firstAzimuth = 0.0f;  // degrees
+    std::vector<float> angle;
+    float at(int d, int i, int j) const {
+        return angle[size_t(d) * size_t(width) * size_t(height) + size_t(j) * size_t(width) +
+                     size_t(i)];
+    }
+    float azimuthDegrees(int d) const {
+        return firstAzimuth + 360.0f * float(d) / float(directions);
+    }
+};
+
+Horizons computeHorizons(const terrain::Heightfield& field, const HorizonOptions& options);
+
+// The sun as a disc: bearing and altitude of its centre in degrees, and its
+// angular diameter (default 0.53, the sun seen from the Earth; > 0).
+struct SunDisc {
+    float azimuth = 315.0f;
+    float altitude = 45.0f;
+    float diameter = 0.53f;
+};
+
+// Fraction 0..1 of the sun's disc above the horizon in the sun's azimuth, per
+// sample (NaN at no-data). The disc's vertical extent gives the penumbra.
+// Throws sierra::Error for a diameter <= 0 or a non-finite sun.
+std::vector<float> sunVisibility(const terrain::Heightfield& field, const SunDisc& sun,
+                                 const HorizonOptions& options = {});
+
+// Sky-view factor (Zaksek, Ostir and Kokalj, "Sky-View Factor as a Relief
+// Visualization Technique", 2011): SVF = 1 - (1/D) sum_i sin(max(gamma_i, 0)).
+std::vector<float> skyViewFactor(const Horizons& horizons);
+
+// The ambient term of the terrain pass: the cosine-weighted fraction of a
+// uniform sky that a sample's surface (its normal from the heightfield)
+// sees past its horizons; 1 on a flat plane. The formula is in docs/relief.md.
+std::vector<float> skyLight(const terrain::Heightfield& field, const Horizons& horizons);
+
+// Openness (Yokoyama, Shirasawa and Pike, "Visualizing Topography by
+// Openness", 2002), in degrees: positive is the mean zenith angle of the
+// horizon over the D azimuths (90 - elevation), negative the mean nadir angle
+// of the terrain seen from below (the positive openness of the inverted
+// surface). Both use options.radius as Yokoyama's L.
+std::vector<float> opennessPositive(const terrain::Heightfield& field,
+                                    const HorizonOptions& options = {});
+std::vector<float> opennessNegative(const terrain::Heightfield& field,
+                                    const HorizonOptions& options = {});
+
+}  // namespace sierra::analysis
