@@ -1,30 +1,84 @@
-# Enforces the module table of DESIGN.md on #include lines: every module shares
-# one include root, so a wrong include would still compile; this script fails
-# instead. Run as a CTest test:
-#   cmake -DENGINE_DIR=<engine/> -P CheckModuleIncludes.cmake
+# Enforces the module table of docs/architecture.md on #include lines: every
+# module shares one include root, so a wrong include would still compile; this
+# script fails instead. Run as a CTest test:
+#   cmake -DENGINE_DIR=<engine/> [-DARCHITECTURE=<architecture.md>] -P CheckModuleIncludes.cmake
+# ARCHITECTURE defaults to docs/architecture.md beside this script's cmake/.
 # It scans ENGINE_DIR/src/<module>/ and ENGINE_DIR/include/sierra/<module>/ and
 # prints one line per forbidden include: "FILE:LINE: module M may not include
 # <H> (H belongs to D; M may use: ...)". Exit status non-zero on any.
 
+cmake_policy(SET CMP0057 NEW)  # if(... IN_LIST ...)
+
 if(NOT ENGINE_DIR OR NOT IS_DIRECTORY "${ENGINE_DIR}")
   message(FATAL_ERROR "CheckModuleIncludes: set -DENGINE_DIR to the engine/ directory")
 endif()
+if(NOT ARCHITECTURE)
+  get_filename_component(ARCHITECTURE "${CMAKE_CURRENT_LIST_DIR}/../docs/architecture.md" ABSOLUTE)
+endif()
+if(NOT EXISTS "${ARCHITECTURE}")
+  # Plain messages are not wrapped (a FATAL_ERROR's text is), so tests can match them.
+  message("${ARCHITECTURE} not found (it holds the module table)")
+  message(FATAL_ERROR "CheckModuleIncludes: no module table")
+endif()
 
-# What each module may include besides itself and the standard/POSIX headers.
-# "gl": OpenGL headers (GL/, KHR/); "egl": EGL headers, further limited to the
-# files in EGL_FILES. The render module sees everything below it.
-set(allowed_core "")
-set(allowed_terrain core stb spng gdal zlib)
-set(allowed_sbt terrain core)
-set(allowed_analysis terrain core nlohmann)
-set(allowed_zones terrain core nlohmann stb)
-set(allowed_tin zones terrain core)
-set(allowed_scene analysis terrain core nlohmann CLI)
-set(allowed_gpu core gl egl)
-set(allowed_render core terrain sbt analysis zones tin scene gpu gl stb spng zlib glm imgui)
-set(known_modules core terrain sbt analysis zones tin scene gpu render)
-# Only the EGL context's own file sees EGL (relative to ENGINE_DIR).
-set(EGL_FILES src/gpu/EglContext.cpp)
+# The tables of docs/architecture.md, found by their header lines:
+#   | module | owns | may include |          one row per module; the last column
+#                                            lists in backticks what the module may
+#                                            include besides itself and the standard
+#                                            library ("gl", "egl", "stb", ...: the
+#                                            names classify() gives headers below)
+#   | dependency | only in |                 a dependency that only the files
+#                                            listed in backticks may include
+# A table ends at the first line that does not start with "|".
+# Read as text and split on newlines: semicolons and brackets in the prose
+# would otherwise cut or join list elements.
+file(READ "${ARCHITECTURE}" doc_text)
+string(REPLACE ";" "," doc_text "${doc_text}")
+string(REPLACE "[" "(" doc_text "${doc_text}")
+string(REPLACE "]" ")" doc_text "${doc_text}")
+string(REPLACE "\r" "" doc_text "${doc_text}")
+string(REPLACE "\n" ";" doc_lines "${doc_text}")
+set(known_modules "")
+set(confined "")
+set(table "")
+set(doc_line 0)
+foreach(line IN LISTS doc_lines)
+  math(EXPR doc_line "${doc_line} + 1")
+  if(line MATCHES "^\\| *module *\\| *owns *\\| *may include *\\| *$")
+    set(table modules)
+    continue()
+  elseif(line MATCHES "^\\| *dependency *\\| *only in *\\| *$")
+    set(table confined)
+    continue()
+  endif()
+  if(table STREQUAL "" OR line MATCHES "^\\|[-| :]+$")
+    continue()
+  endif()
+  if(NOT line MATCHES "^\\|")
+    set(table "")
+    continue()
+  endif()
+  if(NOT line MATCHES "^\\| *`([a-z0-9_]+)` *\\|(.*\\|)?([^|]*)\\| *$")
+    message("${ARCHITECTURE}:${doc_line}: a row of the ${table} table must start "
+            "with a `name` cell and end with a cell of `names`: ${line}")
+    message(FATAL_ERROR "CheckModuleIncludes: the module table could not be read")
+  endif()
+  set(name "${CMAKE_MATCH_1}")
+  string(REGEX MATCHALL "`[^`]+`" tokens "${CMAKE_MATCH_3}")
+  string(REPLACE "`" "" tokens "${tokens}")
+  if(table STREQUAL "modules")
+    list(APPEND known_modules ${name})
+    set(allowed_${name} ${tokens})
+  else()
+    list(APPEND confined ${name})
+    set(only_in_${name} ${tokens})
+  endif()
+endforeach()
+if(NOT known_modules)
+  message("${ARCHITECTURE} has no module table "
+          "(a table headed \"| module | owns | may include |\")")
+  message(FATAL_ERROR "CheckModuleIncludes: no module table")
+endif()
 
 # C and POSIX headers, and the compiler's SIMD intrinsics, counted as the
 # standard library.
@@ -79,8 +133,8 @@ foreach(dir ${module_dirs})
     list(FIND known_modules ${name} at)
     if(at EQUAL -1)
       file(RELATIVE_PATH rel "${ENGINE_DIR}" "${dir}")
-      message("${rel}: module ${name} is not in the table of cmake/CheckModuleIncludes.cmake; "
-              "add it with the modules it may use")
+      message("${rel}: module ${name} is not in the table of ${ARCHITECTURE}; "
+              "add it with what it may include")
       math(EXPR violations "${violations} + 1")
     endif()
   endif()
@@ -119,11 +173,12 @@ foreach(module ${known_modules})
       if(at GREATER -1)
         set(ok TRUE)
       endif()
-      if(ok AND kind STREQUAL "egl")
-        list(FIND EGL_FILES "${rel}" at)
+      if(ok AND kind IN_LIST confined)
+        list(FIND only_in_${kind} "${rel}" at)
         if(at EQUAL -1)
           set(ok FALSE)
-          set(kind "egl, which only ${EGL_FILES} may include")
+          string(REPLACE ";" " " only "${only_in_${kind}}")
+          set(kind "${kind}, which only ${only} may include")
         endif()
       endif()
       if(NOT ok)
@@ -140,6 +195,6 @@ foreach(module ${known_modules})
 endforeach()
 
 if(violations GREATER 0)
-  message(FATAL_ERROR "${violations} include(s) cross the module boundaries of DESIGN.md")
+  message(FATAL_ERROR "${violations} include(s) cross the module boundaries of ${ARCHITECTURE}")
 endif()
 message(STATUS "module boundaries: every include allowed")

@@ -1,6 +1,7 @@
 # Shows that cmake/CheckModuleIncludes.cmake catches wrong includes: each case
 # writes a small engine tree under WORK_DIR, runs the checker on it and expects
-# success, or failure with the given text.
+# success, or failure with the given text. The module table comes from
+# docs/architecture.md unless a case sets case_architecture to a table of its own.
 #   cmake -DCHECKER=<CheckModuleIncludes.cmake> -DWORK_DIR=<dir> -P checker_fixture.cmake
 
 function(run_case name file content expected)
@@ -17,7 +18,11 @@ function(run_case name file content expected)
   if(file)
     file(WRITE "${root}/${file}" "${content}")
   endif()
-  execute_process(COMMAND ${CMAKE_COMMAND} -DENGINE_DIR=${root} -P ${CHECKER}
+  set(architecture_arg "")
+  if(case_architecture)
+    set(architecture_arg "-DARCHITECTURE=${case_architecture}")
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} -DENGINE_DIR=${root} ${architecture_arg} -P ${CHECKER}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   string(APPEND out "${err}")
   if(expected STREQUAL "")
@@ -55,3 +60,23 @@ run_case(quoted_cross_module src/sbt/Bridge.cpp "#include \"render/SbtBridge.h\"
          "module sbt may not include <render/SbtBridge.h>")
 run_case(unknown_module src/physics/Body.cpp "#include <string>\n"
          "module physics is not in the table")
+
+# The table is read from the document: one that lets terrain use render passes the
+# include the real table refuses; one without a table, or with a malformed row, is refused.
+set(table_head "| module | owns | may include |\n|---|---|---|\n")
+set(table_rows "| `core` | errors | the standard library only |\n| `gpu` | GL | `core` `gl` `egl` |\n| `render` | frames | `core` `terrain` `gpu` `gl` `glm` `imgui` `spng` |\n")
+set(table_confined "\n| dependency | only in |\n|---|---|\n| `egl` | `src/gpu/EglContext.cpp` |\n")
+file(WRITE "${WORK_DIR}/terrain_uses_render.md"
+     "# Modules\n\n${table_head}${table_rows}| `terrain` | grids; loaders | `core` `spng` `render` |\n${table_confined}")
+set(case_architecture "${WORK_DIR}/terrain_uses_render.md")
+run_case(table_from_document src/terrain/Bad.cpp "#include <sierra/render/Camera.h>\n" "")
+run_case(table_from_document_refuses src/terrain/Bad.cpp "#include <glm/glm.hpp>\n"
+         "module terrain may not include <glm/glm.hpp> (it belongs to glm; terrain may use: core spng render)")
+file(WRITE "${WORK_DIR}/no_table.md" "# Modules\n\nNo table here.\n")
+set(case_architecture "${WORK_DIR}/no_table.md")
+run_case(document_without_table "" "" "has no module table")
+file(WRITE "${WORK_DIR}/bad_row.md" "${table_head}${table_rows}| terrain | grids |\n")
+set(case_architecture "${WORK_DIR}/bad_row.md")
+run_case(document_bad_row "" "" "bad_row.md:6: a row of the modules table must start with a `name` cell")
+set(case_architecture "${WORK_DIR}/missing.md")
+run_case(document_missing "" "" "missing.md not found")
