@@ -1,0 +1,369 @@
+#!/usr/bin/env python3
+"""The figures of docs/performance.md: what to run, and how its JSON becomes a table.
+
+    perf_tables.py runs                 one line per run: NAME<TAB>OPTIONAL<TAB>COMMAND
+                                        (OPTIONAL 1 or 0; COMMAND in shell words, {json}
+                                        where the JSON file goes, {out} the output folder)
+    perf_tables.py tables DIR [OUT.md]  DIR/NAME.json of every run (and DIR/machine.json)
+                                        into Markdown, to OUT.md or stdout
+
+scripts/measure.sh runs the commands and calls `tables`. Adding a figure is one
+Figure(...) entry in FIGURES: its runs and a function from their parsed JSON to the
+table's rows. A figure marked optional is left out (with a line saying so) when its
+benchmarks do not exist in this build.
+"""
+
+import json
+import os
+import re
+import shlex
+import sys
+from dataclasses import dataclass, field
+from typing import Callable
+
+# Google Benchmark runs: medians of 3 repetitions, aggregates only, JSON to {json}.
+MICRO = ["sierra-microbench", "--benchmark_repetitions=3", "--benchmark_report_aggregates_only=true",
+         "--benchmark_out={json}", "--benchmark_out_format=json"]
+# The frame loop at 1080p, tau 1 px, no MSAA (sierra-bench frames' defaults) along the orbit.
+FRAMES = ["sierra-bench", "frames", "--size", "1920x1080", "--tau", "1", "--path", "orbit"]
+ROUGH = ["--generate", "2049", "--hurst", "0.8"]
+
+
+@dataclass
+class Figure:
+    name: str
+    title: str
+    note: str
+    runs: dict  # run name -> command (list of words)
+    table: Callable  # dict run name -> parsed JSON  =>  (header, rows)
+    optional: bool = False
+    after: str = ""  # a sentence below the table
+
+
+# ---------------------------------------------------------------- helpers
+
+def micro_medians(report):
+    """run_name -> the median aggregate of a Google Benchmark JSON report (the single
+    run where a benchmark has no aggregates)."""
+    out = {}
+    for b in report.get("benchmarks", []):
+        if b.get("run_type") == "aggregate":
+            if b.get("aggregate_name") == "median":
+                out[b["run_name"]] = b
+        else:
+            out.setdefault(b["run_name"], b)
+    return out
+
+
+def ms(b):
+    """A benchmark's real time in milliseconds."""
+    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b.get("time_unit", "ns")]
+    return b["real_time"] * scale
+
+
+def f(x, digits=3):
+    """A number with `digits` significant digits; from 1000 up a whole number, thousands
+    spaced."""
+    if x is None:
+        return "n/a"
+    if abs(x) >= 1000 or (isinstance(x, int) and not isinstance(x, bool)):
+        return f"{int(round(x)):,}".replace(",", " ")
+    if x == 0:
+        return "0"
+    return f"{x:.{digits}g}"
+
+
+def threads_label(t):
+    return {0: "default", 1: "1", 2: "2"}.get(int(t), str(t))
+
+
+# ---------------------------------------------------------------- tables
+
+def refinement_table(data):
+    cases = [
+        (r"BM_RefineFixed/2049/-1/(\d)/", "fixed error, 2049² full grid"),
+        (r"BM_RefineFixed/2049/5/(\d)/", "fixed error, 2049², ε 0.05% of the relief"),
+        (r"BM_RefineOrbit/8/(\d)/1/", "view-dependent, rough 2049² (H 0.8), orbit view, τ 1, culling"),
+        (r"BM_RefineOrbitMoving/8/(\d)/150/", "the same camera, 48 views 15° apart"),
+    ]
+    rows = []
+    for run, b in micro_medians(data["refine"]).items():
+        for pattern, label in cases:
+            m = re.match(pattern, run)
+            if not m:
+                continue
+            t = b.get("median_ms", ms(b))
+            tri = b.get("triangles")
+            rate = tri / t / 1e3 if tri and t else None
+            rows.append([label, threads_label(m.group(1)), f(tri), f(t), f(rate)])
+    order = {label: k for k, (_, label) in enumerate(cases)}
+    rows.sort(key=lambda r: (order[r[0]], {"1": 0, "2": 1, "default": 2}.get(r[1], 3)))
+    return (["case", "threads", "triangles", "ms per refinement", "M triangles/s"], rows)
+
+
+def frame_loop_table(data):
+    rows = []
+    for run, threads in (("loop_1", "1"), ("loop_default", "default")):
+        d = data[run]
+        rows.append([threads, f(d["triangles_median"]), f(d["ms"]["refine_strip"]["median"]),
+                     f(d["refine_triangles_per_second_median"] / 1e6), f(d["ms"]["frame"]["median"]),
+                     f(100 * d["cpu_share"], 2) + "%"])
+    return (["threads", "triangles", "refine + strip, ms", "M triangles/s", "frame, ms",
+             "refine + strip + upload, share of the frame"], rows)
+
+
+def full_grid_table(data):
+    d = data["full"]
+    psnr = d.get("psnr") or {}
+    rows = [
+        ["SBT frame, median", f(d["ms"]["frame"]["median"]) + " ms"],
+        ["full-grid frame, median", f(d["full_frame"]["median"]) + " ms"],
+        ["frame time ratio SBT / full", f(d["frame_ratio"])],
+        ["PSNR of the SBT frames against the full grid, median (min)",
+         f"{f(psnr.get('median'))} dB ({f(psnr.get('min'))} dB)"],
+        ["pixels differing by more than 8/255, median", f(100 * d["differing_share_median"], 2) + "%"],
+        ["triangles per SBT frame", f(d["triangles_median"])],
+        ["indices per triangle, bytes uploaded per triangle",
+         f"{f(d['indices_per_triangle'], 4)}, {f(d['bytes_per_triangle'])}"],
+    ]
+    return (["", "value"], rows)
+
+
+def indices_table(data):
+    rows = []
+    for run, label in (("static_full", "full 1025² grid"), ("static_fine", "fixed error 0.002 (1025²)"),
+                       ("static_coarse", "fixed error 0.01 (1025²)")):
+        d = data[run]
+        rows.append([label, f(d["triangles"]), f(d["strip_indices"]), f(d["indices_per_triangle"], 4)])
+    for run, label in (("loop_1", "view-dependent frames, rough 2049², τ 1"),
+                       ("full", "view-dependent frames, 2049², τ 1")):
+        d = data[run]
+        rows.append([label + " (median frame)", f(d["triangles_median"]), "",
+                     f(d["indices_per_triangle"], 4)])
+    return (["mesh", "triangles", "strip indices", "indices per triangle"], rows)
+
+
+def zones_table(data):
+    base = data["plain"]["ms"]["frame"]["median"]
+    rows = []
+    for run, label in (("plain", "hypsometric (default)"), ("zones_auto", "`--zones auto`"),
+                       ("zones_map", "the sample zone map, 4-pixel bands")):
+        d = data[run]
+        t = d["ms"]["frame"]["median"]
+        rows.append([label, f(t), f(d["ms"]["draw"]["median"]), f(t / base)])
+    return (["surface", "frame, ms", "draw, ms", "frame / hypsometric"], rows)
+
+
+def overlays_table(data):
+    o = data["overlays"]["overlay_costs"]
+    rows = [["all four (shaded, lines, hatch, contours)", f(o["all_ratio"])]]
+    for name, v in sorted(o.get("alone", {}).items()):
+        rows.append([f"{name} alone", f(v["ratio"])])
+    return (["overlays", "frame / frame without overlays"], rows)
+
+
+def tin_table(data):
+    rows = []
+    for run, label in (("tin", "1025² fractal, max error 0.1% of the relief"),
+                       ("tin_zones", "1025² default scene with the sample zone map, 0.5%")):
+        d = data[run]
+        t = d["time_ms"]
+        rows.append([label, f(d["triangles"]), f(d["max_error"]), f(d["rms_error"]),
+                     f(t["insert"]), f(t.get("borderlines", 0.0)), f(t["total"])])
+    return (["case", "triangles", "max error", "RMS error", "insertion, ms", "borderlines, ms",
+             "total, ms"], rows)
+
+
+def curvature_table(data):
+    methods = ["two-normal", "three-normal", "three-vertex", "edge-angle"]
+    cpu1, cpuN, gpu = {}, {}, {}
+    for run, b in micro_medians(data["curvature"]).items():
+        m = re.match(r"BM_Curvature/2049/(\d)/1/(\d)/0/", run)
+        if m:
+            (cpu1 if m.group(2) == "1" else cpuN)[int(m.group(1))] = ms(b)
+        m = re.match(r"BM_CurvatureGpu/2049/(\d)/0/0/1/", run)
+        if m:
+            gpu[int(m.group(1))] = ms(b)
+    rows = []
+    for k, name in enumerate(methods):
+        g, c = gpu.get(k), cpuN.get(k)
+        rows.append([name, f(cpu1.get(k)), f(c), f(g), f(g / c) if g and c else "n/a"])
+    return (["method", "CPU, 1 thread, ms", "CPU, all threads, ms", "GPU, ms", "GPU / CPU all threads"],
+            rows)
+
+
+def generic_micro_table(run):
+    """Every benchmark of a run with its median time and counters."""
+    def table(data):
+        benches = micro_medians(data[run])
+        counters = sorted({k for b in benches.values() for k in b
+                           if k not in GB_KEYS and isinstance(b[k], (int, float))})
+        rows = [[f"`{name}`", f(ms(b))] + [f(b.get(c)) for c in counters] for name, b in benches.items()]
+        return (["benchmark", "median, ms"] + counters, rows)
+    return table
+
+
+GB_KEYS = {"real_time", "cpu_time", "iterations", "repetitions", "repetition_index", "threads",
+           "family_index", "per_family_instance_index", "aggregate_unit"}
+
+
+FIGURES = [
+    Figure("refinement", "Refinement and strip emission",
+           "Milliseconds per refinement (the median of single refinements) and the triangles it "
+           "emits per second, by thread count; `default` measures one thread against all and keeps "
+           "the faster.",
+           {"refine": MICRO + ["--benchmark_filter=^BM_Refine(Fixed/2049/(-1|5)/[012]|Orbit/8/[012]/1"
+                               "|OrbitMoving/8/1/150)/real_time$"]},
+           refinement_table),
+    Figure("frame-loop", "The frame loop",
+           "Refinement inside the frame loop, where the driver's threads compete for the cores: "
+           "24 frames of the orbit over a rough 2049² fractal at 1920x1080, medians over the frames.",
+           {"loop_1": FRAMES + ROUGH + ["--frames", "24", "--threads", "1", "--json", "{json}"],
+            "loop_default": FRAMES + ROUGH + ["--frames", "24", "--json", "{json}"]},
+           frame_loop_table),
+    Figure("full-grid", "View-dependent SBT against the full grid",
+           "Each camera of the orbit drawn as the SBT at τ = 1 px and as the full 2049² grid "
+           "(8 388 608 triangles).",
+           {"full": FRAMES + ["--generate", "2049", "--frames", "6", "--compare-full", "--json", "{json}"]},
+           full_grid_table,
+           after="On llvmpipe the frame is fill-bound: the 1080p fragment work dominates whatever "
+                 "the mesh."),
+    Figure("indices", "Indices per triangle",
+           "Generalized strips in Sierpinski order: exactly 5/3 on a full grid, less on adaptive "
+           "meshes (a triangle list needs 3).",
+           {"static_full": ["sierra-bench", "static", "--max-error", "-1", "--repeat", "3", "--json", "{json}"],
+            "static_fine": ["sierra-bench", "static", "--max-error", "0.002", "--repeat", "3", "--json", "{json}"],
+            "static_coarse": ["sierra-bench", "static", "--max-error", "0.01", "--repeat", "3", "--json", "{json}"]},
+           indices_table,
+           after="The view-dependent rows come from the runs of the two figures above."),
+    Figure("zones", "Frame cost of zone tiles",
+           "The default scene at 1920x1080, τ = 1 px, 24 frames of the orbit, medians over the frames.",
+           {"plain": FRAMES + ["--frames", "24", "--json", "{json}"],
+            "zones_auto": FRAMES + ["--frames", "24", "--zones", "auto", "--json", "{json}"],
+            "zones_map": FRAMES + ["--frames", "24", "--zones", "assets/zones/default_zones.png",
+                                   "--band", "4", "--json", "{json}"]},
+           zones_table),
+    Figure("overlays", "Frame cost of the overlays",
+           "Each camera drawn with all overlay passes, without them and with each alone, in turn "
+           "(ratios of medians taken in one run), on the 257² terrain of the preset images with "
+           "the line settings of fig3a; 6 frames.",
+           {"overlays": FRAMES + ["--generate", "257", "--seed", "4", "--vertical-scale", "150",
+                                  "--sea-level", "none", "--frames", "6",
+                                  "--style", "shaded,lines,hatch,contours", "--curvature-distance", "2",
+                                  "--curvature-scale", "6", "--min-length", "6", "--overlay-costs",
+                                  "--json", "{json}"]},
+           overlays_table),
+    Figure("tin", "TIN build",
+           "Greedy insertion until the largest vertical error falls below the target (relative to "
+           "the height range), Delaunay flips, zone borderlines as constrained edges in the second row.",
+           {"tin": ["sierra-tin", "--generate", "1025", "--max-error-rel", "0.001", "--out", "{out}/tin.obj",
+                    "--json", "{json}"],
+            "tin_zones": ["sierra-tin", "--zones", "assets/zones/default_zones.png", "--max-error-rel", "0.005",
+                          "--out", "{out}/tin_zones.obj", "--json", "{json}"]},
+           tin_table),
+    Figure("curvature", "Curvature field: GPU against CPU",
+           "The field along 4 directions of a 2049² grid, reinforcement distance 1, by method; the GPU "
+           "path is the one the driver gets by default (fragment runs on llvmpipe, a compute shader "
+           "elsewhere).",
+           {"curvature": MICRO + ["--benchmark_filter=^BM_Curvature/2049/[0-3]/1/[01]/0/real_time$"
+                                  "|^BM_CurvatureGpu/2049/[0-3]/0/0/1/real_time$"]},
+           curvature_table),
+    Figure("horizons", "Horizons",
+           "Horizon angles of a heightfield (`BM_Horizons`).",
+           {"horizons": MICRO + ["--benchmark_filter=^BM_Horizons"]},
+           generic_micro_table("horizons"), optional=True),
+]
+
+
+# ---------------------------------------------------------------- output
+
+def shown(command, folder):
+    """The command as a reader would type it: program names without the build folder,
+    the JSON path relative to the output folder."""
+    words = [w.replace("{json}", "FILE.json").replace("{out}/", "") for w in command]
+    return shlex.join(words)
+
+
+def markdown_table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def present(figure, data):
+    """Whether every run of the figure produced data (benchmarks included)."""
+    for run in figure.runs:
+        d = data.get(run)
+        if d is None or ("benchmarks" in d and not d["benchmarks"]):
+            return False
+    return True
+
+
+def tables(folder):
+    data = {}
+    for figure in FIGURES:
+        for run in figure.runs:
+            path = os.path.join(folder, run + ".json")
+            if os.path.exists(path) and os.path.getsize(path) > 0:
+                with open(path) as fh:
+                    data[run] = json.load(fh)
+    machine = {}
+    path = os.path.join(folder, "machine.json")
+    if os.path.exists(path):
+        with open(path) as fh:
+            machine = json.load(fh)
+    renderer = next((d["renderer"] for d in data.values() if isinstance(d, dict) and "renderer" in d), "unknown")
+
+    out = ["# Performance", "",
+           "<!-- Generated by scripts/measure.sh (scripts/perf_tables.py): edit those, not this file. -->",
+           "",
+           "Measured by `scripts/measure.sh`, which builds the programs, runs each command below and "
+           "writes its JSON report to `build/perf/`; `scripts/perf_tables.py` turns the reports into "
+           "this page. Programs are in `build/apps/`; `FILE.json` is the run's report.",
+           "",
+           f"**Machine:** {machine.get('cpu', 'unknown CPU')}, {machine.get('cores', '?')} cores, "
+           f"GL renderer {renderer}.",
+           "",
+           "Figures from a shared machine scatter from run to run by several percent, both ways: compare "
+           "ratios taken in one run, and medians.", ""]
+    missing = []
+    for figure in FIGURES:
+        if not present(figure, data):
+            if figure.optional:
+                missing.append(figure.title)
+                continue
+            raise SystemExit(f"perf_tables: no data for figure '{figure.name}' "
+                             f"(runs: {', '.join(figure.runs)}) in {folder}")
+        header, rows = figure.table(data)
+        out += [f"## {figure.title}", "", figure.note, "", "```"]
+        out += [shown(command, folder) for command in figure.runs.values()]
+        out += ["```", "", markdown_table(header, rows), ""]
+        if figure.after:
+            out += [figure.after, ""]
+    if missing:
+        out += ["Not measured in this build (its benchmarks are missing): " + ", ".join(missing) + ".", ""]
+    return "\n".join(out)
+
+
+def main(argv):
+    if len(argv) >= 2 and argv[1] == "runs":
+        for figure in FIGURES:
+            for run, command in figure.runs.items():
+                print(f"{run}\t{'1' if figure.optional else '0'}\t{shlex.join(command)}")
+        return 0
+    if len(argv) in (3, 4) and argv[1] == "tables":
+        text = tables(argv[2])
+        if len(argv) == 4:
+            tmp = argv[3] + ".tmp"
+            with open(tmp, "w") as fh:
+                fh.write(text)
+            os.replace(tmp, argv[3])
+        else:
+            sys.stdout.write(text)
+        return 0
+    sys.stderr.write(__doc__)
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
