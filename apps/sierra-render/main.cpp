@@ -35,13 +35,20 @@ using namespace sierra;
 
 namespace {
 
+// One line per EGL device: index, kind, vendor, renderer, CUDA ordinal (the
+// physical one; cuda:N counts after CUDA_VISIBLE_DEVICES) and DRM node.
 void listDevices() {
-    auto devices = gpu::EglContext::listDevices();
+    auto devices = gpu::EglContext::listDevices(true);
     if (devices.empty())
         std::printf("no EGL devices enumerated (EGL_EXT_device_enumeration missing)\n");
-    for (const auto& d : devices)
-        std::printf("%d: %s%s\n   %s\n", d.index, d.software ? "software" : "hardware",
-                    d.drmFile.empty() ? "" : (" " + d.drmFile).c_str(), d.extensions.c_str());
+    for (const auto& d : devices) {
+        auto orNone = [](const std::string& s) { return s.empty() ? std::string("-") : s; };
+        std::printf("%d: %s, vendor %s, renderer %s, CUDA device %s, DRM %s%s\n", d.index,
+                    d.software ? "software" : "hardware", orNone(d.vendor).c_str(),
+                    orNone(d.renderer).c_str(),
+                    d.cudaDevice >= 0 ? std::to_string(d.cudaDevice).c_str() : "-",
+                    orNone(d.drmFile).c_str(), d.uuid.empty() ? "" : (", " + d.uuid).c_str());
+    }
 }
 
 std::string describe(const glm::vec3& v) {

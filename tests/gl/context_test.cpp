@@ -166,6 +166,105 @@ TEST(GlContextErrors, BadDeviceIndexIsReported) {
     }
 }
 
+TEST(GlDeviceChoice, ParsesTheThreeForms) {
+    EXPECT_EQ(gpu::parseDeviceChoice("").kind, gpu::DeviceChoice::Kind::Automatic);
+    EXPECT_EQ(gpu::parseDeviceChoice("auto").kind, gpu::DeviceChoice::Kind::Automatic);
+    gpu::DeviceChoice index = gpu::parseDeviceChoice("3");
+    EXPECT_EQ(index.kind, gpu::DeviceChoice::Kind::EglIndex);
+    EXPECT_EQ(index.value, 3);
+    gpu::DeviceChoice cuda = gpu::parseDeviceChoice("cuda:12");
+    EXPECT_EQ(cuda.kind, gpu::DeviceChoice::Kind::CudaOrdinal);
+    EXPECT_EQ(cuda.value, 12);
+    for (const char* bad : {"cuda:x", "cuda:", "cuda:-1", "-1", "2a", "gpu0", "cuda:1.5"}) {
+        try {
+            gpu::parseDeviceChoice(bad);
+            ADD_FAILURE() << "'" << bad << "' accepted";
+        } catch (const Error& e) {
+            EXPECT_THAT(e.what(), HasSubstr(bad));
+        }
+    }
+}
+
+TEST(GlDeviceChoice, ReadsCudaVisibleDevicesAsCudaDoes) {
+    using V = std::vector<std::string>;
+    EXPECT_EQ(gpu::cudaVisibleDevices(nullptr), V{});
+    EXPECT_EQ(gpu::cudaVisibleDevices("2,3"), (V{"2", "3"}));
+    EXPECT_EQ(gpu::cudaVisibleDevices(" 1, 0 "), (V{"1", "0"}));
+    // The list ends at the first entry CUDA cannot read.
+    EXPECT_EQ(gpu::cudaVisibleDevices("3,-1,0"), (V{"3"}));
+    EXPECT_EQ(gpu::cudaVisibleDevices(""), V{});
+    EXPECT_EQ(gpu::cudaVisibleDevices("GPU-8f2a,1"), (V{"GPU-8f2a", "1"}));
+}
+
+// Sets an environment variable for one scope.
+struct ScopedEnv {
+    ScopedEnv(const char* name, const char* value) : name_(name) {
+        if (const char* old = std::getenv(name)) old_ = old;
+        ::setenv(name, value, 1);
+    }
+    ~ScopedEnv() {
+        if (old_.empty())
+            ::unsetenv(name_);
+        else
+            ::setenv(name_, old_.c_str(), 1);
+    }
+    const char* name_;
+    std::string old_;
+};
+
+TEST(GlContextErrors, BadDeviceChoicesAreReported) {
+    {
+        ScopedEnv env("SIERRA_EGL_DEVICE", "cuda:x");
+        try {
+            gpu::EglContext::create({});
+            FAIL() << "cuda:x accepted";
+        } catch (const Error& e) {
+            EXPECT_THAT(e.what(), HasSubstr("SIERRA_EGL_DEVICE"));
+            EXPECT_THAT(e.what(), HasSubstr("cuda:x"));
+        }
+    }
+    bool cudaDevices = false;
+    for (const auto& d : gpu::EglContext::listDevices()) cudaDevices |= d.cudaDevice >= 0;
+    {
+        ScopedEnv env("SIERRA_EGL_DEVICE", "cuda:99");
+        try {
+            gpu::EglContext::create({});
+            FAIL() << "cuda:99 accepted";
+        } catch (const Error& e) {
+            EXPECT_THAT(e.what(), HasSubstr("cuda:99"));
+        }
+    }
+    {
+        // Past the end of the visible list, whatever the machine has.
+        ScopedEnv visible("CUDA_VISIBLE_DEVICES", "0");
+        try {
+            gpu::EglContext::create({.choice = gpu::parseDeviceChoice("cuda:1")});
+            FAIL() << "cuda:1 accepted with one visible device";
+        } catch (const Error& e) {
+            EXPECT_THAT(e.what(), HasSubstr("CUDA_VISIBLE_DEVICES='0'"));
+        }
+    }
+    if (!cudaDevices) {
+        // Mesa: no device has a CUDA ordinal, and cuda:0 says so.
+        try {
+            gpu::EglContext::create({.choice = gpu::parseDeviceChoice("cuda:0")});
+            FAIL() << "cuda:0 accepted without a CUDA device";
+        } catch (const Error& e) {
+            EXPECT_THAT(e.what(), HasSubstr("none of the"));
+            EXPECT_THAT(e.what(), HasSubstr("CUDA device"));
+        }
+    }
+}
+
+TEST(GlContextErrors, ListedDevicesNameTheirRenderer) {
+    for (const auto& d : gpu::EglContext::listDevices(true)) {
+        // Every device this machine's contexts run on makes a context.
+        if (d.software) {
+            EXPECT_FALSE(d.renderer.empty()) << "device " << d.index;
+        }
+    }
+}
+
 TEST(GlContextErrors, BadFrameSizeIsReported) {
     EXPECT_THROW(gpu::EglContext::create({.width = 0, .height = 10}), Error);
 }

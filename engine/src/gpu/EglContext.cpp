@@ -9,6 +9,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 
@@ -80,6 +81,8 @@ Fn eglProc(const char* name) {
 struct DeviceApi {
     PFNEGLQUERYDEVICESEXTPROC queryDevices = nullptr;
     PFNEGLQUERYDEVICESTRINGEXTPROC queryDeviceString = nullptr;
+    PFNEGLQUERYDEVICEATTRIBEXTPROC queryDeviceAttrib = nullptr;
+    PFNEGLQUERYDEVICEBINARYEXTPROC queryDeviceBinary = nullptr;
     PFNEGLGETPLATFORMDISPLAYEXTPROC getPlatformDisplay = nullptr;
 
     static DeviceApi load() {
@@ -92,6 +95,10 @@ struct DeviceApi {
             api.queryDevices = eglProc<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
             api.queryDeviceString =
                 eglProc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
+            api.queryDeviceAttrib =
+                eglProc<PFNEGLQUERYDEVICEATTRIBEXTPROC>("eglQueryDeviceAttribEXT");
+            api.queryDeviceBinary =
+                eglProc<PFNEGLQUERYDEVICEBINARYEXTPROC>("eglQueryDeviceBinaryEXT");
         }
         if (hasExtension(clientExtensions, "EGL_EXT_platform_base"))
             api.getPlatformDisplay =
@@ -120,7 +127,61 @@ EglDeviceInfo describe(const DeviceApi& api, EGLDeviceEXT device, int index) {
                 info.drmFile = file;
     }
     info.software = hasExtension(info.extensions.c_str(), "EGL_MESA_device_software");
+    EGLAttrib cuda = -1;
+    if (api.queryDeviceAttrib && hasExtension(info.extensions.c_str(), "EGL_NV_device_cuda") &&
+        api.queryDeviceAttrib(device, EGL_CUDA_DEVICE_NV, &cuda))
+        info.cudaDevice = int(cuda);
+    unsigned char uuid[16];
+    EGLint size = 0;
+    if (api.queryDeviceBinary &&
+        hasExtension(info.extensions.c_str(), "EGL_EXT_device_persistent_id") &&
+        api.queryDeviceBinary(device, EGL_DEVICE_UUID_EXT, 16, uuid, &size) && size == 16) {
+        // CUDA's spelling: GPU-8-4-4-4-12 hex digits.
+        static const char* hex = "0123456789abcdef";
+        info.uuid = "GPU-";
+        for (int k = 0; k < 16; ++k) {
+            if (k == 4 || k == 6 || k == 8 || k == 10) info.uuid += '-';
+            info.uuid += hex[uuid[k] >> 4];
+            info.uuid += hex[uuid[k] & 15];
+        }
+    }
     return info;
+}
+
+// A non-negative decimal integer, the whole of `text`; -1 otherwise.
+int parseIndex(const std::string& text) {
+    if (text.empty() || text.size() > 6) return -1;
+    for (char c : text)
+        if (!std::isdigit(static_cast<unsigned char>(c))) return -1;
+    return std::atoi(text.c_str());
+}
+
+// The EGL device index of visible CUDA ordinal `ordinal` (see the header).
+int cudaToEgl(const std::vector<EglDeviceInfo>& infos, int ordinal) {
+    const char* env = std::getenv("CUDA_VISIBLE_DEVICES");
+    std::vector<std::string> visible = cudaVisibleDevices(env);
+    std::string physical = std::to_string(ordinal);
+    if (env) {
+        if (ordinal >= int(visible.size()))
+            throw Error(msg("cuda:", ordinal, " requested but CUDA_VISIBLE_DEVICES='", env,
+                            "' makes ", visible.size(), " CUDA device(s) visible"));
+        physical = visible[size_t(ordinal)];
+    }
+    bool anyCuda = false;
+    for (const auto& d : infos) {
+        anyCuda = anyCuda || d.cudaDevice >= 0 || !d.uuid.empty();
+        bool uuidMatch =
+            physical.rfind("GPU-", 0) == 0 && !d.uuid.empty() && d.uuid.rfind(physical, 0) == 0;
+        if (uuidMatch || (d.cudaDevice >= 0 && std::to_string(d.cudaDevice) == physical))
+            return d.index;
+    }
+    if (!anyCuda)
+        throw Error(
+            msg("cuda:", ordinal, " requested but none of the ", infos.size(),
+                " EGL device(s) is a CUDA device (EGL_NV_device_cuda is NVIDIA's; Mesa "
+                "and llvmpipe have no CUDA ordinal): use an EGL index, see --list-devices"));
+    throw Error(msg("cuda:", ordinal, " (physical device ", physical,
+                    ") matches none of the EGL devices; see --list-devices"));
 }
 
 }  // namespace
@@ -159,17 +220,26 @@ void APIENTRY debugCallback(GLenum, GLenum type, GLuint id, GLenum severity, GLs
 
 // Opens a display: the chosen or first hardware device, else the software
 // device, else Mesa's surfaceless platform, else the default display.
-EGLDisplay openDisplay(const DeviceApi& api, int requested, std::string& platform) {
+EGLDisplay openDisplay(const DeviceApi& api, int requested, DeviceChoice choice,
+                       std::string& platform) {
     std::vector<EGLDeviceEXT> devices = queryDevices(api);
-    if (requested < 0)
+    std::string source = "the device choice";
+    if (requested < 0 && choice.kind == DeviceChoice::Kind::Automatic)
         if (const char* env = std::getenv("SIERRA_EGL_DEVICE")) {
-            char* end = nullptr;
-            long v = std::strtol(env, &end, 10);
-            if (end == env || *end != '\0' || v < 0)
-                throw Error(msg("SIERRA_EGL_DEVICE='", env, "' is not a device index (0..",
-                                int(devices.size()) - 1, ")"));
-            requested = int(v);
+            try {
+                choice = parseDeviceChoice(env);
+            } catch (const Error& e) {
+                throw Error(msg("SIERRA_EGL_DEVICE: ", e.what()));
+            }
+            source = "SIERRA_EGL_DEVICE";
         }
+    if (requested < 0 && choice.kind == DeviceChoice::Kind::EglIndex) requested = choice.value;
+    if (requested < 0 && choice.kind == DeviceChoice::Kind::CudaOrdinal) {
+        std::vector<EglDeviceInfo> infos;
+        for (int k = 0; k < int(devices.size()); ++k)
+            infos.push_back(describe(api, devices[size_t(k)], k));
+        requested = cudaToEgl(infos, choice.value);
+    }
     auto tryDevice = [&](int index) -> EGLDisplay {
         if (!api.getPlatformDisplay) return EGL_NO_DISPLAY;
         EGLDisplay d =
@@ -184,7 +254,7 @@ EGLDisplay openDisplay(const DeviceApi& api, int requested, std::string& platfor
     };
     if (requested >= 0) {
         if (requested >= int(devices.size()))
-            throw Error(msg("EGL device ", requested, " requested (SIERRA_EGL_DEVICE) but ",
+            throw Error(msg("EGL device ", requested, " requested (", source, ") but ",
                             devices.size(), " device(s) found"));
         EGLDisplay d = tryDevice(requested);
         if (d == EGL_NO_DISPLAY) failEgl(msg("eglInitialize on EGL device ", requested));
@@ -225,7 +295,7 @@ EglContext EglContext::create(const ContextDesc& desc) {
                  "frame size ", desc.width, "x", desc.height, " is outside 1..16384");
     auto state = std::make_unique<State>();
     DeviceApi api = DeviceApi::load();
-    state->display = openDisplay(api, desc.device, state->platform);
+    state->display = openDisplay(api, desc.device, desc.choice, state->platform);
 
     if (!eglBindAPI(EGL_OPENGL_API))
         failEgl("eglBindAPI(EGL_OPENGL_API)", "this EGL has no desktop OpenGL");
@@ -304,13 +374,59 @@ EglContext EglContext::create(const ContextDesc& desc) {
     return EglContext(std::move(state));
 }
 
-std::vector<EglDeviceInfo> EglContext::listDevices() {
+std::vector<EglDeviceInfo> EglContext::listDevices(bool probe) {
     DeviceApi api = DeviceApi::load();
     std::vector<EglDeviceInfo> result;
     std::vector<EGLDeviceEXT> devices = queryDevices(api);
-    for (int k = 0; k < int(devices.size()); ++k)
-        result.push_back(describe(api, devices[size_t(k)], k));
+    for (int k = 0; k < int(devices.size()); ++k) {
+        EglDeviceInfo info = describe(api, devices[size_t(k)], k);
+        if (probe && api.getPlatformDisplay) {
+            // Opening a device display is reference-counted by EGL; the
+            // context below terminates it again.
+            try {
+                EglContext context = create({.width = 1, .height = 1, .device = k});
+                info.renderer = context.renderer();
+                info.vendor = eglQueryString(context.state_->display, EGL_VENDOR);
+            } catch (const Error& e) {
+                log::debug("EGL device ", k, ": ", e.what());
+            }
+        }
+        result.push_back(std::move(info));
+    }
     return result;
+}
+
+DeviceChoice parseDeviceChoice(const std::string& text) {
+    const char* forms = "an EGL device index (0, 1, ...), cuda:N (a CUDA ordinal) or auto";
+    if (text.empty() || text == "auto") return {};
+    if (text.rfind("cuda:", 0) == 0) {
+        int v = parseIndex(text.substr(5));
+        if (v < 0)
+            throw Error(msg("'", text, "' is not a CUDA ordinal: write cuda:0, cuda:1, ..."));
+        return {DeviceChoice::Kind::CudaOrdinal, v};
+    }
+    int v = parseIndex(text);
+    if (v < 0) throw Error(msg("'", text, "' is not a device: give ", forms));
+    return {DeviceChoice::Kind::EglIndex, v};
+}
+
+std::vector<std::string> cudaVisibleDevices(const char* value) {
+    std::vector<std::string> entries;
+    if (!value) return entries;
+    std::string text;
+    for (const char* p = value; *p; ++p)
+        if (*p != ' ') text += *p;
+    size_t start = 0;
+    while (start <= text.size()) {
+        size_t comma = text.find(',', start);
+        std::string entry = text.substr(start, comma == std::string::npos ? comma : comma - start);
+        bool uuid = entry.rfind("GPU-", 0) == 0 || entry.rfind("MIG-", 0) == 0;
+        if (!uuid && parseIndex(entry) < 0) break;
+        entries.push_back(entry);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return entries;
 }
 
 EglContext::EglContext(std::unique_ptr<State> state) : state_(std::move(state)) {}

@@ -1,7 +1,10 @@
 #pragma once
-// Where Sierra's own data lives (assets/: tiles, palettes, zone maps, presets):
-// the source tree's assets/ folder the build was configured from, or the
-// folder named by SIERRA_ASSETS.
+// Where Sierra's own data lives (assets/: tiles, palettes, zone maps, presets),
+// the first of:
+//   - the folder named by SIERRA_ASSETS;
+//   - PREFIX/share/sierra/assets when the running program sits in PREFIX/bin
+//     (an installed Sierra, wherever the prefix was moved);
+//   - the source tree's assets/ folder the build was configured from.
 
 #include <string>
 

@@ -1,0 +1,71 @@
+#pragma once
+// One object that turns a Scene (sierra/scene) into what a program needs:
+// frames, depth images and their timings. It owns the whole set-up every
+// renderer of a scene does (the EGL context, the terrain loaded and padded,
+// the terrain's GPU data, its surface, TIN and overlays, the frame target and
+// the scene's cameras), so an embedding program writes none of it:
+//
+//   sierra::scene::Scene scene;
+//   scene.terrain.heightmap = "dem.tif";
+//   auto renderer = sierra::render::SceneRenderer::create(scene);
+//   sierra::render::writePng("frame.png", renderer.frame());
+//
+// All GL work happens on the thread that created the renderer (the context is
+// current there); one call at a time.
+
+#include <sierra/gpu/EglContext.h>
+#include <sierra/gpu/ReadBack.h>
+#include <sierra/render/Camera.h>
+#include <sierra/render/FrameTarget.h>
+#include <sierra/render/TerrainRenderer.h>
+#include <sierra/scene/Scene.h>
+#include <sierra/terrain/Heightfield.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sierra::render {
+
+class SceneRenderer {
+  public:
+    // Creates the context (on the device SIERRA_EGL_DEVICE picks) and loads
+    // and uploads the scene's terrain. Throws sierra::Error for a bad terrain,
+    // surface or mesh, and when no GL 4.5 context can be made.
+    static SceneRenderer create(const scene::Scene& scene);
+
+    // Frame k of the scene's sequence (0 .. frameCount() - 1), RGBA8, top row
+    // first. Blocks until the frame is read back.
+    gpu::Image frame(int k = 0);
+    // Linear eye-space depth of frame k (world units, NaN where no terrain).
+    DepthImage depth(int k = 0);
+
+    int frameCount() const { return int(cameras_.size()); }
+    const Camera& camera(int k) const { return cameras_.at(size_t(k)); }
+    // The statistics of the last frame drawn (triangles, stage times).
+    const DrawStats& lastStats() const { return stats_; }
+    // One line on what was loaded and built (terrain, surface, mesh).
+    const std::string& description() const { return description_; }
+
+    const scene::Scene& scene() const { return scene_; }
+    const terrain::Heightfield& field() const { return field_; }
+    TerrainRenderer& terrain() { return *terrain_; }
+    gpu::EglContext& context() { return context_; }
+    const DrawOptions& drawOptions() const { return draw_; }
+    FrameTarget& target() { return target_; }
+
+  private:
+    SceneRenderer(scene::Scene scene, gpu::EglContext context);
+
+    scene::Scene scene_;
+    gpu::EglContext context_;
+    terrain::Heightfield field_;
+    std::unique_ptr<TerrainRenderer> terrain_;
+    FrameTarget target_;
+    std::vector<Camera> cameras_;
+    DrawOptions draw_;
+    DrawStats stats_;
+    std::string description_;
+};
+
+}  // namespace sierra::render

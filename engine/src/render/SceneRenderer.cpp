@@ -1,0 +1,56 @@
+#include <sierra/render/SceneRenderer.h>
+
+#include <sierra/core/Log.h>
+#include <sierra/render/SceneView.h>
+#include <sierra/render/TerrainGpu.h>
+#include <sierra/scene/Terrain.h>
+
+namespace sierra::render {
+
+SceneRenderer::SceneRenderer(scene::Scene scene, gpu::EglContext context)
+    : scene_(std::move(scene)),
+      context_(std::move(context)),
+      target_(FrameTarget::create({.width = scene_.output.width,
+                                   .height = scene_.output.height,
+                                   .samples = scene_.output.msaa})) {}
+
+SceneRenderer SceneRenderer::create(const scene::Scene& scene) {
+    // The context comes first: its texture limit bounds the grid the loader takes.
+    gpu::EglContext context =
+        gpu::EglContext::create({.width = scene.output.width, .height = scene.output.height});
+    SceneRenderer r(scene, std::move(context));
+    std::string loaded;
+    r.field_ = scene::loadTerrain(scene.terrain, &loaded, scene::Padding::PowerOfTwoPlusOne,
+                                  TerrainGpu::maxGridSide());
+    const float seaLevel = scene::resolveSeaLevel(scene.terrain, r.field_);
+    r.terrain_ = std::make_unique<TerrainRenderer>(
+        TerrainRenderer::create(sceneTerrainDesc(scene, r.field_, seaLevel)));
+    r.description_ = "terrain: " + loaded;
+    for (const std::string& line : {applySceneSurface(*r.terrain_, scene, r.field_, seaLevel),
+                                    applySceneMesh(*r.terrain_, scene, r.field_)})
+        if (!line.empty()) r.description_ += "; " + line;
+    addOverlayPasses(*r.terrain_, scene);
+    r.cameras_ = sceneCameras(scene, r.terrain_->bounds());
+    r.draw_ = sceneDrawOptions(scene);
+    return r;
+}
+
+gpu::Image SceneRenderer::frame(int k) {
+    SIERRA_CHECK(k >= 0 && k < frameCount(), "frame ", k, " is outside the scene's 0..",
+                 frameCount() - 1);
+    context_.makeCurrent();
+    target_.begin(TerrainRenderer::clearColour(draw_.lighting));
+    stats_ = terrain_->draw(cameras_[size_t(k)], target_.width(), target_.height(), draw_);
+    gpu::Image image = target_.read();
+    terrain_->collectGpuTime(stats_);
+    return image;
+}
+
+DepthImage SceneRenderer::depth(int k) {
+    SIERRA_CHECK(k >= 0 && k < frameCount(), "frame ", k, " is outside the scene's 0..",
+                 frameCount() - 1);
+    context_.makeCurrent();
+    return terrain_->renderDepth(cameras_[size_t(k)], target_.width(), target_.height(), draw_);
+}
+
+}  // namespace sierra::render
