@@ -115,10 +115,11 @@ Lines makeLines(double degrees, const Surface& s) {
     return l;
 }
 
-// The major indices [begin, end) where line o lies inside the region.
-std::pair<int, int> lineSpan(const Lines& l, int o) {
+// The major indices [begin, end) where any of lines [o, o + count) lies
+// inside the region.
+std::pair<int, int> lineSpan(const Lines& l, int o, int count = 1) {
     // r is monotone: non-decreasing for slope >= 0, non-increasing otherwise.
-    const int lo = -o, hi = l.minorCount - 1 - o;  // r(m) must lie in [lo, hi]
+    const int lo = -(o + count - 1), hi = l.minorCount - 1 - o;  // r(m) must lie in [lo, hi]
     auto inside = [&](int m) { return l.r[m] >= lo && l.r[m] <= hi; };
     int begin, end;
     if (l.slope >= 0.0) {
@@ -188,23 +189,6 @@ void finishSlopes(Profile& P) {
         }
         const double dt = P.t[q] - P.t[k], dw = P.w[q] - P.w[k];
         P.slope[k] = float((double(P.h[q]) - double(P.h[k])) / std::sqrt(dt * dt + dw * dw));
-    }
-}
-
-// Stewart's sweep without a radius: the stack holds the upper convex hull, in
-// (t, h), of the casting points behind the current one (nearest on top). The
-// current point's tangent point is the hull vertex where the tangent from it
-// touches; the vertices above that one lie under the new hull and are popped
-// for good, so every point is pushed and popped at most once.
-void sweepWhole(Profile& P) {
-    int top = 0;
-    int* stack = P.stack.data();
-    for (int k = 0; k < P.n; ++k) {
-        const uint8_t f = P.flags[k];
-        if (!f) continue;
-        while (top >= 2 && notAbove(P, k, stack[top - 1], stack[top - 2])) --top;
-        P.best[k] = top ? stack[top - 1] : -1;
-        if (f & kCast) stack[top++] = k;
     }
 }
 
@@ -324,10 +308,139 @@ void gatherLine(const Surface& s, const Lines& l, int o, Profile& P) {
     }
 }
 
+// Lines swept together by the fast path. At each major step their samples
+// are neighbours across the azimuth: one row segment (j-major azimuths) or
+// one column segment whose rows the next steps reuse (i-major), so a step
+// touches a cache line or a few instead of one per line, and the pages in
+// use stay few. 16 floats are one cache line.
+constexpr int kGroup = 16;
+
+// A hull vertex of the fast sweep, by value so that the pop test reads one
+// entry: `up` is the projected slope from it to the vertex below it (-inf for
+// the bottom one, which is then never popped). With t_p < t_b < t_c, b lies on
+// or under the line from p to c exactly when slope(p, b) <= slope(b, c), so
+// the pop test is h_b - h_p <= up_b (t_b - t_p): one product, no division.
+struct Vertex {
+    double t, w, h, up;
+};
+
+// Per-chunk scratch of the fast sweep: one hull per line of a group, and one
+// step's results (tan of the horizon, output index) for the finisher.
+struct GroupScratch {
+    size_t capacity = 0;
+    std::vector<Vertex> hulls;  // line e's hull at [e * capacity, (e + 1) * capacity)
+    float slope[kGroup];
+    int64_t index[kGroup];
+    int top[kGroup];
+    explicit GroupScratch(size_t perLine) : capacity(perLine), hulls(perLine * kGroup) {}
+};
+
+// Pushes (t, w, h) onto a hull after popping the vertices on or under the
+// line from it to the vertex below, and returns tan of its horizon (-inf with
+// no vertex) at the tangent vertex's true distance. kOnRay: every vertex lies
+// on the azimuth's ray through the sample (a grid-aligned azimuth), so that
+// distance is dt.
+template <bool kOnRay>
+inline float addToHull(Vertex* hull, int& top, double t, double w, double h) {
+    if (top == 0) {
+        hull[top++] = {t, w, h, -std::numeric_limits<double>::infinity()};
+        return kNoOccluder;
+    }
+    while (hull[top - 1].h - h <= hull[top - 1].up * (hull[top - 1].t - t)) --top;
+    const Vertex& q = hull[top - 1];
+    const double dt = q.t - t, dw = q.w - w, dh = q.h - h;
+    const double up = dh / dt;
+    hull[top] = {t, w, h, up};
+    ++top;
+    if constexpr (kOnRay) return float(up);
+    return float(dh / std::sqrt(dt * dt + dw * dw));
+}
+
+// Lines [o0, o0 + count) (count <= kGroup) without a radius, step by step in
+// sweep order; the same definition as gatherLine, sweepWhole and
+// finishSlopes. finish(slope, index, g0, g1) gets each step's samples: lanes
+// [g0, g1) of the kGroup-long arrays (the others hold stale values, so a
+// finisher may transform all kGroup lanes in one fixed-length loop that
+// vectorises).
+template <bool kDiagonal, bool kAligned, bool kMask, typename Finish>
+void sweepGroup(const Surface& s, const Lines& l, int o0, int count, GroupScratch& g,
+                const Finish& finish) {
+    auto [mBegin, mEnd] = lineSpan(l, o0, count);
+    if (mBegin >= mEnd) return;
+    // t = major * tM + minor * tN, w likewise, k = major * kM + minor * kN
+    const double tI = s.sx * l.ux, tJ = s.sz * l.uz, wI = -s.sx * l.uz, wJ = s.sz * l.ux;
+    const double tM = l.iMajor ? tI : tJ, tN = l.iMajor ? tJ : tI;
+    const double wM = l.iMajor ? wI : wJ, wN = l.iMajor ? wJ : wI;
+    const int64_t kM = l.iMajor ? 1 : s.width, kN = l.iMajor ? s.width : 1;
+    const int* r = l.r.data();
+    const float* raw = s.raw;
+    const uint8_t* mask = s.mask;
+    const float scale = s.scale;
+    const int N = l.minorCount;
+    for (int e = 0; e < count; ++e) g.top[e] = 0;
+    Vertex* hulls = g.hulls.data();
+    const size_t capacity = g.capacity;
+    int pg0 = 0, pg1 = 0, pBase = 0;  // the previous step's active lines
+    const int steps = mEnd - mBegin;
+    for (int c = 0; c < steps; ++c) {
+        const int m = l.look > 0 ? mEnd - 1 - c : mBegin + c;
+        const int base = o0 + r[m];
+        const int g0 = std::max(0, -base), g1 = std::min(count, N - base);
+        const double tm = double(m) * tM, wm = double(m) * wM;
+        const int64_t km = int64_t(m) * kM;
+        for (int e = g0; e < g1; ++e) {
+            const int n = base + e;
+            const int64_t k = km + int64_t(n) * kN;
+            const double t = tm + double(n) * tN, w = wm + double(n) * wN;
+            Vertex* hull = hulls + size_t(e) * capacity;
+            int top = g.top[e];
+            if constexpr (kDiagonal) {
+                // The centre of the cell from this line's previous sample
+                // (major m + look, minor pBase + e).
+                if (e >= pg0 && e < pg1) {
+                    const int pm = m + l.look, pn = pBase + e;
+                    const int i = l.iMajor ? m : n, j = l.iMajor ? n : m;
+                    const int pi = l.iMajor ? pm : pn, pj = l.iMajor ? pn : pm;
+                    const int ci = std::min(i, pi), cj = std::min(j, pj);
+                    const bool even = ((ci + cj) & 1) == 0;
+                    const int64_t ka = int64_t(cj) * s.width + (even ? ci : ci + 1);
+                    const int64_t kb = int64_t(cj + 1) * s.width + (even ? ci + 1 : ci);
+                    // A drawn diagonal along the line puts the centre on the
+                    // segment between this sample and the previous one, where it
+                    // cannot change the hull: only crossing diagonals are added.
+                    const bool crossing = even != (l.slope > 0.0);
+                    if (crossing && (!kMask || (mask[ka] && mask[kb]))) {
+                        const double pt = double(pm) * tM + double(pn) * tN;
+                        const double pw = double(pm) * wM + double(pn) * wN;
+                        addToHull<kAligned>(hull, top, 0.5 * (t + pt), 0.5 * (w + pw),
+                                            double(0.5f * (raw[ka] * scale + raw[kb] * scale)));
+                    }
+                }
+            }
+            g.index[e] = k;
+            if (kMask && !mask[k]) {
+                g.slope[e] = kNaN;
+                g.top[e] = top;
+                continue;
+            }
+            g.slope[e] = addToHull<kAligned>(hull, top, t, w, double(raw[k] * scale));
+            g.top[e] = top;
+        }
+        if (g1 > g0) finish(g.slope, g.index, g0, g1);
+        pg0 = g0;
+        pg1 = g1;
+        pBase = base;
+    }
+}
+
 // The horizon slope (tan of its elevation) of every sample of the region in
-// azimuth `degrees` into out[j * width + i]: -inf where nothing casts ahead,
-// NaN at no-data samples. Padding is left as it is.
-void sweepAzimuth(const Surface& s, double degrees, double radius, int threads, float* out) {
+// azimuth `degrees`, -inf where nothing casts ahead and NaN at no-data
+// samples, handed over in steps of up to kGroup to finish(slope, index, g0,
+// g1) (see sweepGroup): index[e] is the output index j * width + i of
+// slope[e]. The padding is never visited.
+template <typename Finish>
+void sweepAzimuth(const Surface& s, double degrees, double radius, int threads,
+                  const Finish& finish) {
     const Lines l = makeLines(degrees, s);
     const int lines = l.lineEnd - l.lineBegin;
     const size_t capacity = size_t(l.diagonal ? 2 * l.majorCount : l.majorCount);
@@ -337,22 +450,57 @@ void sweepAzimuth(const Surface& s, double degrees, double radius, int threads, 
     const bool limited = radius > 0.0 && radius < extent;
     if (threads <= 0) threads = defaultThreadCount();
     if (s.samples() < size_t(kParallelMinSamples)) threads = 1;
-    const int chunks = std::max(1, std::min(lines, threads * 16));
+    // Without a radius the chunks hold groups of kGroup lines, else lines.
+    const int units = limited ? lines : (lines + kGroup - 1) / kGroup;
+    const int chunks = std::max(1, std::min(units, threads * 16));
     parallelChunks(
-        l.lineBegin, l.lineEnd, chunks,
+        0, units, chunks,
         [&](int64_t lo, int64_t hi, int) {
-            Profile P;
-            P.reserve(capacity);
-            for (int64_t o = lo; o < hi; ++o) {
-                gatherLine(s, l, int(o), P);
-                if (limited)
+            if (limited) {
+                Profile P;
+                P.reserve(capacity);
+                std::vector<float> slope(capacity);
+                std::vector<int64_t> index(capacity);
+                for (int64_t q = lo; q < hi; ++q) {
+                    gatherLine(s, l, l.lineBegin + int(q), P);
                     sweepRadius(P, radius);
-                else
-                    sweepWhole(P);
-                finishSlopes(P);
-                for (int k = 0; k < P.n; ++k)
-                    if (P.sample[k] >= 0) out[P.sample[k]] = P.slope[k];
+                    finishSlopes(P);
+                    int count = 0;
+                    for (int k = 0; k < P.n; ++k)
+                        if (P.sample[k] >= 0) {
+                            slope[count] = P.slope[k];
+                            index[count++] = P.sample[k];
+                        }
+                    for (int c0 = 0; c0 < count; c0 += kGroup) {
+                        float laneSlope[kGroup];
+                        int64_t laneIndex[kGroup];
+                        const int lanes = std::min(kGroup, count - c0);
+                        for (int e = 0; e < kGroup; ++e) {
+                            laneSlope[e] = e < lanes ? slope[c0 + e] : 0.0f;
+                            laneIndex[e] = e < lanes ? index[c0 + e] : 0;
+                        }
+                        finish(laneSlope, laneIndex, 0, lanes);
+                    }
+                }
+                return;
             }
+            GroupScratch scratch(capacity);
+            auto run = [&]<bool kDiagonal, bool kAligned, bool kMask>() {
+                for (int64_t q = lo; q < hi; ++q) {
+                    const int o0 = l.lineBegin + int(q) * kGroup;
+                    sweepGroup<kDiagonal, kAligned, kMask>(
+                        s, l, o0, std::min(kGroup, l.lineEnd - o0), scratch, finish);
+                }
+            };
+            if (l.diagonal)
+                s.mask ? run.template operator()<true, true, true>()
+                       : run.template operator()<true, true, false>();
+            else if (l.slope == 0.0)
+                s.mask ? run.template operator()<false, true, true>()
+                       : run.template operator()<false, true, false>();
+            else
+                s.mask ? run.template operator()<false, false, true>()
+                       : run.template operator()<false, false, false>();
         },
         threads);
 }
@@ -383,25 +531,26 @@ void forRange(size_t count, int threads, const Body& body) {
 }
 
 // atan in float for slopes (any float, +-inf and NaN included), absolute
-// error below 2e-7 rad: Cephes's single-precision reduction to |x| <=
-// tan(pi/8) and its minimax polynomial (S. L. Moshier, "Methods and Programs
-// for Mathematical Functions", 1989), written without branches so that loops
-// over it vectorise.
+// error below 2e-7 rad: atan(z) on [0, 1] by the degree-17 polynomial of
+// Abramowitz and Stegun, "Handbook of Mathematical Functions" (1964), 4.4.49
+// (error 2e-8), and atan(x) = pi/2 - atan(1/x) beyond. Written with min and
+// a 0/1 factor instead of branches so that loops over it vectorise without
+// -fno-trapping-math.
 inline float fastAtan(float x) {
     const float ax = std::fabs(x);
-    const bool big = ax > 2.414213562373095f;   // tan(3 pi / 8)
-    const bool mid = ax > 0.4142135623730950f;  // tan(pi / 8)
-    const float base = big ? 1.5707963267948966f : (mid ? 0.7853981633974483f : 0.0f);
-    const float num = big ? -1.0f : (mid ? ax - 1.0f : ax);
-    const float den = big ? ax : (mid ? ax + 1.0f : 1.0f);
-    const float z = num / den;
+    const float z = std::min(ax, 1.0f / ax);
     const float z2 = z * z;
-    const float p = (((8.05374449538e-2f * z2 - 1.38776856032e-1f) * z2 + 1.99777106478e-1f) * z2 -
-                     3.33329491539e-1f) *
-                        z2 * z +
-                    z;
-    const float r = base + p;
-    return std::copysign(r, x);
+    const float p =
+        z * (1.0f +
+             z2 * (-0.3333314528f +
+                   z2 * (0.1999355085f +
+                         z2 * (-0.1420889944f +
+                               z2 * (0.1065626393f +
+                                     z2 * (-0.0752896400f +
+                                           z2 * (0.0429096138f +
+                                                 z2 * (-0.0161657367f + z2 * 0.0028662257f))))))));
+    const float flip = ax > 1.0f ? 1.0f : 0.0f;
+    return std::copysign(p + flip * (1.5707963267948966f - 2.0f * p), x);
 }
 
 }  // namespace
@@ -420,10 +569,11 @@ Horizons computeHorizons(const terrain::Heightfield& field, const HorizonOptions
     for (int d = 0; d < options.directions; ++d) {
         float* a = out.angle.data() + size_t(d) * n;
         fillPadding(s, a, kNaN);
-        sweepAzimuth(s, out.azimuthDegrees(d), options.radius, options.threads, a);
-        forRange(n, options.threads, [&](size_t lo, size_t hi) {
-            for (size_t k = lo; k < hi; ++k) a[k] = fastAtan(a[k]);
-        });
+        sweepAzimuth(s, out.azimuthDegrees(d), options.radius, options.threads,
+                     [a](float* slope, const int64_t* index, int g0, int g1) {
+                         for (int e = 0; e < kGroup; ++e) slope[e] = fastAtan(slope[e]);
+                         for (int e = g0; e < g1; ++e) a[index[e]] = slope[e];
+                     });
     }
     return out;
 }
@@ -451,27 +601,30 @@ std::vector<float> sunVisibility(const terrain::Heightfield& field, const SunDis
             for (int i = 0; i < s.validW; ++i) out[s.index(i, j)] = s.ok(i, j) ? 0.0f : kNaN;
         return out;
     }
-    sweepAzimuth(s, sun.azimuth, options.radius, options.threads, out.data());
-    forRange(n, options.threads, [&](size_t lo, size_t hi) {
-        for (size_t k = lo; k < hi; ++k) {
-            const float g = fastAtan(out[k]);
-            // The horizon's height over the disc's centre in disc radii; the
-            // disc's area above it is the circular segment
-            // (acos y - y sqrt(1 - y^2)) / pi.
-            const float y = (g - alt) / rho;
-            float v;
-            if (std::isnan(g))
-                v = kNaN;
-            else if (y <= -1.0f)
-                v = 1.0f;
-            else if (y >= 1.0f)
-                v = 0.0f;
-            else
-                v = float((std::acos(double(y)) - double(y) * std::sqrt(1.0 - double(y) * y)) /
-                          kPi);
-            out[k] = v;
-        }
-    });
+    float* o = out.data();
+    sweepAzimuth(
+        s, sun.azimuth, options.radius, options.threads,
+        [&](float* slope, const int64_t* index, int g0, int g1) {
+            for (int e = 0; e < kGroup; ++e) slope[e] = fastAtan(slope[e]);
+            for (int c = g0; c < g1; ++c) {
+                const float g = slope[c];
+                // The horizon's height over the disc's centre in disc radii; the
+                // disc's area above it is the circular segment
+                // (acos y - y sqrt(1 - y^2)) / pi.
+                const float y = (g - alt) / rho;
+                float v;
+                if (std::isnan(g))
+                    v = kNaN;
+                else if (y <= -1.0f)
+                    v = 1.0f;
+                else if (y >= 1.0f)
+                    v = 0.0f;
+                else
+                    v = float((std::acos(double(y)) - double(y) * std::sqrt(1.0 - double(y) * y)) /
+                              kPi);
+                o[index[c]] = v;
+            }
+        });
     return out;
 }
 
@@ -546,18 +699,20 @@ std::vector<float> openness(const terrain::Heightfield& field, const HorizonOpti
     validateDirections(options, caller);
     const Surface s = makeSurface(field, options, inverted);
     const size_t n = s.samples();
-    std::vector<float> slope(n, kNaN), sum(n, 0.0f), count(n, 0.0f);
+    std::vector<float> sum(n, kNaN), count(n, 0.0f);
+    // NaN stays in the padding; the region starts at 0.
+    for (int j = 0; j < s.validH; ++j) std::fill_n(sum.begin() + s.index(0, j), s.validW, 0.0f);
     for (int d = 0; d < options.directions; ++d) {
         const double deg = options.firstAzimuth + 360.0 * double(d) / double(options.directions);
-        sweepAzimuth(s, deg, options.radius, options.threads, slope.data());
-        forRange(n, options.threads, [&](size_t lo, size_t hi) {
-            for (size_t k = lo; k < hi; ++k) {
-                const float x = slope[k];
-                if (x == kNoOccluder) continue;  // nothing in this direction
-                sum[k] += 90.0f - fastAtan(x) * float(180.0 / kPi);
-                count[k] += 1.0f;
-            }
-        });
+        sweepAzimuth(s, deg, options.radius, options.threads,
+                     [&](float* x, const int64_t* index, int g0, int g1) {
+                         for (int c = g0; c < g1; ++c) {
+                             const int64_t k = index[c];
+                             if (x[c] == kNoOccluder) continue;  // nothing in this direction
+                             sum[k] += 90.0f - fastAtan(x[c]) * float(180.0 / kPi);
+                             count[k] += 1.0f;
+                         }
+                     });
     }
     std::vector<float> out(n);
     forRange(n, options.threads, [&](size_t lo, size_t hi) {
