@@ -141,8 +141,10 @@ inline float addToHull(Vertex* hull, int& top, double t, double w, double h) {
         hull[top++] = {t, w, h, -std::numeric_limits<double>::infinity()};
         return kNoOccluder;
     }
-    while (hull[top - 1].h - h <= hull[top - 1].up * (hull[top - 1].t - t)) --top;
-    const Vertex& q = hull[top - 1];
+    const Vertex* v = hull + top - 1;
+    while (v->h - h <= v->up * (v->t - t)) --v;
+    top = int(v - hull) + 1;
+    const Vertex& q = *v;
     const double dt = q.t - t, dw = q.w - w, dh = q.h - h;
     const double up = dh / dt;
     hull[top] = {t, w, h, up};
