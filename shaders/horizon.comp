@@ -32,7 +32,7 @@ struct Direction {
     vec4 steps;   // dt/dmajor, dt/dminor, dw/dmajor, dw/dminor
     ivec4 lines;  // i is the major axis (1/0), look (+1: the azimuth points to increasing
                   // major index), diagonal (1/0: cell centres join the profile), major count
-    ivec4 more;   // minor count, offset of r(0) in offsets[], output layer, unused
+    ivec4 more;   // minor count, offset of r(0) in offsets[], output layer, slope > 0 (1/0)
     vec4 limit;   // search radius along the azimuth in world units (0 = the whole line)
 };
 layout(std430, binding = 0) readonly buffer Directions { Direction directions[]; };
@@ -116,10 +116,13 @@ int majorOfStep(int c) {
 // the midpoint of the cell's drawn diagonal (the 4-8 mesh splits cell
 // (ci, cj) by its main diagonal when ci + cj is even, else by the other one),
 // which casts when both its ends have data.
-Point cellCentre(int m, int n, int pm, int pn, out bool casts) {
+// `crossing`: the drawn diagonal crosses the line (else it joins the two
+// samples, and the centre lies on the segment between them).
+Point cellCentre(int m, int n, int pm, int pn, out bool casts, out bool crossing) {
     const ivec2 ij = sampleAt(m, n), pij = sampleAt(pm, pn);
     const ivec2 c = min(ij, pij);
     const bool even = ((c.x + c.y) & 1) == 0;
+    crossing = even != (gDir.more.w != 0);
     const ivec2 a = even ? c : ivec2(c.x + 1, c.y);
     const ivec2 b = even ? c + 1 : ivec2(c.x, c.y + 1);
     casts = hasData(a) && hasData(b);
@@ -196,8 +199,11 @@ void sweepWhole() {
             bool casts;
             Point p;
             if (part == 0) {
-                p = cellCentre(m, n, pm, pn, casts);
-                if (!casts) continue;
+                // A centre on the segment between two samples cannot change
+                // the hull (the CPU leaves it out too): crossing ones only.
+                bool crossing;
+                p = cellCentre(m, n, pm, pn, casts, crossing);
+                if (!casts || !crossing) continue;
             } else {
                 const ivec2 ij = sampleAt(m, n);
                 casts = hasData(ij);
@@ -232,7 +238,8 @@ Point profilePoint(int k, out bool casts, out bool receives) {
     if (diagonal && (k & 1) == 1) {
         const int pm = m + gDir.lines.y;
         receives = false;
-        return cellCentre(m, n, pm, minorOf(pm), casts);
+        bool crossing;
+        return cellCentre(m, n, pm, minorOf(pm), casts, crossing);
     }
     const ivec2 ij = sampleAt(m, n);
     casts = hasData(ij);

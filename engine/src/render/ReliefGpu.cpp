@@ -275,6 +275,7 @@ void ReliefGpu::sweep(const std::vector<double>& azimuths, const analysis::Horiz
         g.more[0] = l.minorCount;
         g.more[1] = int32_t(offsets.size());
         g.more[2] = int32_t(d);
+        g.more[3] = l.slope > 0.0 ? 1 : 0;
         g.limit[0] = limited ? o.radius : 0.0f;
         directions.push_back(g);
         offsets.insert(offsets.end(), l.r.begin(), l.r.end());
