@@ -1,5 +1,5 @@
 #version 450 core
-// Horizon angles (or, with HORIZON_SUN, the sun's visibility) by the sweep of
+// Horizon angles and the sun's visibility by the sweep of
 // analysis/Relief.cpp (Stewart, "Fast Horizon Computation at All Points of a
 // Terrain With Visibility and Shading Applications", 1998): one invocation
 // per digital line of an azimuth, walking it farthest point first and keeping
@@ -49,13 +49,12 @@ uniform uint uFirstGroup;  // this dispatch's first group
 layout(std430, binding = 2) readonly buffer Offsets { int offsets[]; };  // r(m) per direction
 layout(std430, binding = 3) buffer Scratch { uvec2 scratch[]; };
 
-#ifdef HORIZON_SUN
-layout(r32f, binding = 0) uniform writeonly image2D uOut;
+// Angles in layer `more.z` of uHorizons; a direction with layer -1 is the
+// sun's, whose visibility goes to uSunVisibility (one dispatch may hold both).
+layout(r32f, binding = 0) uniform writeonly image2DArray uHorizons;
+layout(r32f, binding = 1) uniform writeonly image2D uSunVisibility;
 uniform vec2 uSun;    // the disc centre's altitude and the disc's radius, radians
 uniform bool uNight;  // the whole disc below the horizontal: 0 wherever there is data
-#else
-layout(r32f, binding = 0) uniform writeonly image2DArray uOut;
-#endif
 
 const float kHalfPi = 1.5707963267948966;
 
@@ -159,7 +158,10 @@ float fastAtan(float x) {
 void finish(Point p, bool any, Point q) {
     const float angle = any ? fastAtan(slopeTo(p, q)) : -kHalfPi;
     const ivec2 ij = sampleAt(p.m2 >> 1, p.n2 >> 1);
-#ifdef HORIZON_SUN
+    if (gLayer >= 0) {
+        imageStore(uHorizons, ivec3(ij, gLayer), vec4(angle));
+        return;
+    }
     // The area of the disc above a horizontal line at the horizon's height y
     // (in disc radii over its centre): the circular segment
     // (acos y - y sqrt(1 - y^2)) / pi.
@@ -169,10 +171,7 @@ void finish(Point p, bool any, Point q) {
     const float arc = kHalfPi - fastAtan(y / s);
     float v = y <= -1.0 ? 1.0 : (y >= 1.0 ? 0.0 : (arc - y * s) / 3.14159265358979);
     if (uNight) v = 0.0;
-    imageStore(uOut, ij, vec4(v));
-#else
-    imageStore(uOut, ivec3(ij, gLayer), vec4(angle));
-#endif
+    imageStore(uSunVisibility, ij, vec4(v));
 }
 
 uint entry(int region, int s) {

@@ -49,8 +49,7 @@ void BM_HorizonsGpu(benchmark::State& state) {
     sierra::render::ReliefGpu gpu = sierra::render::ReliefGpu::create(s.field);
     auto run = [&] {
         gpu.upload(s.field);
-        gpu.computeHorizons(options);
-        gpu.computeSunVisibility(sun, options);
+        gpu.computeHorizonsAndSun(options, sun);
         auto v = gpu.readSunVisibility();
         benchmark::DoNotOptimize(v.data());
         if (read >= 1) {

@@ -120,6 +120,15 @@ void checkAll(const terrain::Heightfield& f, const HorizonOptions& o, const std:
                                     std::to_string(sun.altitude)),
                   kTolerance);
     }
+    // The horizons and the sun in one dispatch: the same fields.
+    const SunDisc sun{.azimuth = 233.7f, .altitude = 10.0f, .diameter = 1.0f};
+    gpu.computeHorizonsAndSun(o, sun);
+    EXPECT_LE(maxDifference(gpu.readHorizons().angle, cpu.angle, f.width(), f.height(),
+                            what + " horizons beside the sun"),
+              kTolerance);
+    EXPECT_LE(maxDifference(gpu.readSunVisibility(), analysis::sunVisibility(f, sun, o), f.width(),
+                            f.height(), what + " sun beside the horizons"),
+              kTolerance);
 }
 
 TEST_F(ReliefGpuTest, RoughSquareGridMatchesCpu) {
@@ -164,6 +173,7 @@ TEST_F(ReliefGpuTest, LeavesGlStateAsFound) {
     gpu.computeHorizons({});
     gpu.computeSky();
     gpu.computeSunVisibility({});
+    gpu.computeHorizonsAndSun({.directions = 4}, {});
     EXPECT_EQ(gpu::GlState::capture().differences(before), "");
 }
 

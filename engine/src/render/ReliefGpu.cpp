@@ -198,6 +198,17 @@ std::vector<float> readTexture(const gpu::Texture& t, size_t floats) {
     return out;
 }
 
+void validateSun(const analysis::SunDisc& sun) {
+    SIERRA_CHECK(std::isfinite(sun.diameter) && sun.diameter > 0.0f && sun.diameter < 180.0f,
+                 "sunVisibility: the sun's diameter must be in (0, 180) degrees, got ",
+                 sun.diameter);
+    SIERRA_CHECK(std::isfinite(sun.azimuth),
+                 "sunVisibility: the sun's azimuth must be finite, got ", sun.azimuth);
+    SIERRA_CHECK(std::isfinite(sun.altitude) && sun.altitude >= -90.0f && sun.altitude <= 90.0f,
+                 "sunVisibility: the sun's altitude must be in [-90, 90] degrees, got ",
+                 sun.altitude);
+}
+
 }  // namespace
 
 ReliefGpu ReliefGpu::create(const terrain::Heightfield& field) {
@@ -247,15 +258,17 @@ void ReliefGpu::upload(const terrain::Heightfield& field) {
 }
 
 void ReliefGpu::sweep(const std::vector<double>& azimuths, const analysis::HorizonOptions& o,
-                      bool sun, glm::vec2 sunDisc, bool night) {
+                      const analysis::SunDisc* sun) {
+    std::vector<double> all = azimuths;
+    if (sun) all.push_back(double(sun->azimuth));
     const int validW = o.validWidth > 0 ? o.validWidth : width_;
     const int validH = o.validHeight > 0 ? o.validHeight : height_;
     std::vector<DirectionGpu> directions;
     std::vector<int32_t> offsets;
     std::vector<GroupGpu> groups;
     std::vector<size_t> entries;  // scratch entries per group
-    for (size_t d = 0; d < azimuths.size(); ++d) {
-        const Lines l = makeLines(azimuths[d], spacingX_, spacingZ_, validW, validH);
+    for (size_t d = 0; d < all.size(); ++d) {
+        const Lines l = makeLines(all[d], spacingX_, spacingZ_, validW, validH);
         // A radius at least the region's extent along the azimuth changes nothing.
         const double extent = std::fabs(double(validW) * spacingX_ * l.ux) +
                               std::fabs(double(validH) * spacingZ_ * l.uz);
@@ -274,7 +287,7 @@ void ReliefGpu::sweep(const std::vector<double>& azimuths, const analysis::Horiz
         g.lines[3] = l.majorCount;
         g.more[0] = l.minorCount;
         g.more[1] = int32_t(offsets.size());
-        g.more[2] = int32_t(d);
+        g.more[2] = d < azimuths.size() ? int32_t(d) : -1;  // -1: the sun
         g.more[3] = l.slope > 0.0 ? 1 : 0;
         g.limit[0] = limited ? o.radius : 0.0f;
         directions.push_back(g);
@@ -324,22 +337,24 @@ void ReliefGpu::sweep(const std::vector<double>& azimuths, const analysis::Horiz
     gpu::Buffer groupBuffer =
         gpu::Buffer::create({.size = groups.size() * sizeof(GroupGpu), .data = groups.data()});
 
-    gpu::Program& program = sun ? sunProgram_ : horizonProgram_;
-    if (!program)
-        program = gpu::Program::create(
-            {.compute = "horizon.comp", .defines = sun ? "#define HORIZON_SUN 1\n" : ""});
+    if (!horizonProgram_) horizonProgram_ = gpu::Program::create({.compute = "horizon.comp"});
+    const gpu::Program& program = horizonProgram_;
     gpu::GlStateScope scope;
     BindingScope bindings;
     glUseProgram(program.id());
     glUniform1f(program.uniform("uScale"), scale_);
     glUniform1i(program.uniform("uHasMask"), masked_ ? 1 : 0);
     if (sun) {
-        glUniform2f(program.uniform("uSun"), sunDisc.x, sunDisc.y);
-        glUniform1i(program.uniform("uNight"), night ? 1 : 0);
-        glBindImageTexture(0, sun_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    } else {
-        glBindImageTexture(0, horizons_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        const float rho = float(double(sun->diameter) * kPi / 360.0);  // the disc's radius, rad
+        const float alt = float(double(sun->altitude) * kPi / 180.0);
+        glUniform2f(program.uniform("uSun"), alt, rho);
+        glUniform1i(program.uniform("uNight"), sun->altitude < -0.5f * sun->diameter ? 1 : 0);
     }
+    // An image unit without a texture ignores stores (only the sun, or no
+    // sun, in this dispatch).
+    glBindImageTexture(0, azimuths.empty() ? 0 : horizons_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                       GL_R32F);
+    glBindImageTexture(1, sun ? sun_.id() : 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glBindTextureUnit(0, heights_.id());
     glBindTextureUnit(1, mask_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, directionBuffer.id());
@@ -358,40 +373,46 @@ void ReliefGpu::sweep(const std::vector<double>& azimuths, const analysis::Horiz
 }
 
 void ReliefGpu::computeHorizons(const analysis::HorizonOptions& options) {
+    computeHorizons(options, nullptr);
+}
+
+void ReliefGpu::computeHorizonsAndSun(const analysis::HorizonOptions& options,
+                                      const analysis::SunDisc& sun) {
+    computeHorizons(options, &sun);
+}
+
+void ReliefGpu::computeSunVisibility(const analysis::SunDisc& sun,
+                                     const analysis::HorizonOptions& options) {
+    validate(width_, height_, options, "sunVisibility");
+    validateSun(sun);
+    prepareSun();
+    sweep({}, options, &sun);
+}
+
+void ReliefGpu::computeHorizons(const analysis::HorizonOptions& options,
+                                const analysis::SunDisc* sun) {
     validate(width_, height_, options, "computeHorizons");
     validateDirections(options, "computeHorizons");
+    if (sun) validateSun(*sun);
     if (!horizons_ || directions_ != options.directions)
         horizons_ = floatTexture(width_, height_, options.directions);
     else
         clearToNaN(horizons_);
+    if (sun) prepareSun();
     directions_ = options.directions;
     firstAzimuth_ = options.firstAzimuth;
     // The azimuths as analysis::Horizons::azimuthDegrees rounds them (float).
     const analysis::Horizons layout{.directions = directions_, .firstAzimuth = firstAzimuth_};
     std::vector<double> azimuths(static_cast<size_t>(directions_));
     for (int d = 0; d < directions_; ++d) azimuths[size_t(d)] = double(layout.azimuthDegrees(d));
-    sweep(azimuths, options, false, {}, false);
+    sweep(azimuths, options, sun);
 }
 
-void ReliefGpu::computeSunVisibility(const analysis::SunDisc& sun,
-                                     const analysis::HorizonOptions& options) {
-    validate(width_, height_, options, "sunVisibility");
-    SIERRA_CHECK(std::isfinite(sun.diameter) && sun.diameter > 0.0f && sun.diameter < 180.0f,
-                 "sunVisibility: the sun's diameter must be in (0, 180) degrees, got ",
-                 sun.diameter);
-    SIERRA_CHECK(std::isfinite(sun.azimuth),
-                 "sunVisibility: the sun's azimuth must be finite, got ", sun.azimuth);
-    SIERRA_CHECK(std::isfinite(sun.altitude) && sun.altitude >= -90.0f && sun.altitude <= 90.0f,
-                 "sunVisibility: the sun's altitude must be in [-90, 90] degrees, got ",
-                 sun.altitude);
+void ReliefGpu::prepareSun() {
     if (!sun_)
         sun_ = floatTexture(width_, height_, 0);
     else
         clearToNaN(sun_);
-    const float rho = float(double(sun.diameter) * kPi / 360.0);  // the disc's radius, rad
-    const float alt = float(double(sun.altitude) * kPi / 180.0);
-    const bool night = sun.altitude < -0.5f * sun.diameter;
-    sweep({double(sun.azimuth)}, options, true, {alt, rho}, night);
 }
 
 void ReliefGpu::computeSky() {

@@ -19,8 +19,6 @@
 #include <sierra/gpu/Program.h>
 #include <sierra/terrain/Heightfield.h>
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
 #include <vector>
 
@@ -43,6 +41,11 @@ class ReliefGpu {
     // The sun's visibility into sunVisibility(); as analysis::sunVisibility.
     void computeSunVisibility(const analysis::SunDisc& sun,
                               const analysis::HorizonOptions& options = {});
+    // Both in one dispatch, the sun's azimuth beside the others: the GPU is
+    // far from full with one azimuth's lines (a few thousand invocations),
+    // and a dispatch lasts as long as its longest line.
+    void computeHorizonsAndSun(const analysis::HorizonOptions& options,
+                               const analysis::SunDisc& sun);
     // The sky-view factor and the sky light of the last computeHorizons()
     // into skyViewFactor() and skyLight(). Throws sierra::Error before any.
     void computeSky();
@@ -73,13 +76,15 @@ class ReliefGpu {
     // dispatches. 8 bytes per hull entry, entries per line its length (twice
     // on a diagonal, three times that with a radius): at 4097^2 about 135 MB
     // per azimuth, 270 MB per diagonal.
-    static constexpr size_t kScratchBytes = size_t(1) << 30;
+    static constexpr size_t kScratchBytes = size_t(2) << 30;
 
   private:
-    // Sweeps `azimuths` (degrees) into layers 0... of `target` (sun: the sun
-    // texture, its visibility instead of angles).
+    void computeHorizons(const analysis::HorizonOptions& options, const analysis::SunDisc* sun);
+    void prepareSun();  // sun_ allocated and NaN
+    // Sweeps `azimuths` (degrees) into layers 0... of horizons_ and, unless
+    // null, the sun's azimuth into sun_.
     void sweep(const std::vector<double>& azimuths, const analysis::HorizonOptions& options,
-               bool sun, glm::vec2 sunDisc, bool night);
+               const analysis::SunDisc* sun);
 
     int width_ = 0, height_ = 0;
     float spacingX_ = 1.0f, spacingZ_ = 1.0f, scale_ = 1.0f;
@@ -89,7 +94,7 @@ class ReliefGpu {
     gpu::Texture heights_, mask_;  // R32F stored heights; R8UI, 0 = no data (1x1 without)
     gpu::Texture horizons_, sun_, skyView_, skyLight_;
     gpu::Buffer scratch_;
-    gpu::Program horizonProgram_, sunProgram_, skyProgram_;  // built on first use
+    gpu::Program horizonProgram_, skyProgram_;  // built on first use
 };
 
 // One-call forms of the CPU's functions, in a current GL 4.5 context: the
