@@ -133,23 +133,23 @@ Point cellCentre(int m, int n, int pm, int pn, out bool casts, out bool crossing
 }
 
 // atan for any float (+-inf included), absolute error below 2e-7 rad: the
-// CPU's (Cephes's single-precision reduction and minimax polynomial, S. L.
-// Moshier, "Methods and Programs for Mathematical Functions", 1989), so that
-// both round alike.
+// CPU's fastAtan (analysis/Relief.cpp), so that both round alike: atan(z) on
+// [0, 1] by the degree-17 polynomial of Abramowitz and Stegun, "Handbook of
+// Mathematical Functions" (1964), 4.4.49, and pi/2 - atan(1/x) beyond.
 float fastAtan(float x) {
     const float ax = abs(x);
-    const bool big = ax > 2.414213562373095;   // tan(3 pi / 8)
-    const bool mid = ax > 0.4142135623730950;  // tan(pi / 8)
-    const float base = big ? 1.5707963267948966 : (mid ? 0.7853981633974483 : 0.0);
-    const float num = big ? -1.0 : (mid ? ax - 1.0 : ax);
-    const float den = big ? ax : (mid ? ax + 1.0 : 1.0);
-    const float z = num / den;
+    const float z = min(ax, 1.0 / ax);
     const float z2 = z * z;
-    const float p = (((8.05374449538e-2 * z2 - 1.38776856032e-1) * z2 + 1.99777106478e-1) * z2 -
-                     3.33329491539e-1) *
-                        z2 * z +
-                    z;
-    const float r = base + p;
+    const float p =
+        z * (1.0 +
+             z2 * (-0.3333314528 +
+                   z2 * (0.1999355085 +
+                         z2 * (-0.1420889944 +
+                               z2 * (0.1065626393 +
+                                     z2 * (-0.0752896400 +
+                                           z2 * (0.0429096138 +
+                                                 z2 * (-0.0161657367 + z2 * 0.0028662257))))))));
+    const float r = ax > 1.0 ? 1.5707963267948966 - p : p;
     return x < 0.0 ? -r : r;
 }
 
