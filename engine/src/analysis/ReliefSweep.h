@@ -130,9 +130,14 @@ struct GroupScratch {
         : capacity(perLine), hulls(std::make_unique_for_overwrite<Vertex[]>(perLine * kGroup)) {}
 };
 
-// Pushes (t, w, h) onto a hull after popping the vertices on or under the
-// line from it to the vertex below, and returns tan of its horizon (-inf with
-// no vertex) at the tangent vertex's true distance. kOnRay: every vertex lies
+// One step of Stewart's sweep: the hull is the upper convex hull, in (t, h),
+// of the casting points behind the new one (nearest on top). Pops the
+// vertices on or under the line from (t, h) to the vertex below them: they
+// lie under the new hull and can hide nothing from any later point, so every
+// point is pushed and popped at most once. The top vertex left is where the
+// tangent from (t, h) touches the hull, the occluder. Pushes (t, w, h) and
+// returns tan of its horizon (-inf with no vertex) at the occluder's true
+// distance. kOnRay: every vertex lies
 // on the azimuth's ray through the sample (a grid-aligned azimuth), so that
 // distance is dt.
 template <bool kOnRay>
@@ -141,8 +146,10 @@ inline float addToHull(Vertex* hull, int& top, double t, double w, double h) {
         hull[top++] = {t, w, h, -std::numeric_limits<double>::infinity()};
         return kNoOccluder;
     }
-    while (hull[top - 1].h - h <= hull[top - 1].up * (hull[top - 1].t - t)) --top;
-    const Vertex& q = hull[top - 1];
+    const Vertex* v = hull + top - 1;
+    while (v->h - h <= v->up * (v->t - t)) --v;
+    top = int(v - hull) + 1;
+    const Vertex& q = *v;
     const double dt = q.t - t, dw = q.w - w, dh = q.h - h;
     const double up = dh / dt;
     hull[top] = {t, w, h, up};
@@ -152,11 +159,11 @@ inline float addToHull(Vertex* hull, int& top, double t, double w, double h) {
 }
 
 // Lines [o0, o0 + count) (count <= kGroup) without a radius, step by step in
-// sweep order; the same definition as gatherLine, sweepWhole and
-// finishSlopes. finish(slope, index, g0, g1) gets each step's samples: lanes
-// [g0, g1) of the kGroup-long arrays (the others hold stale values, so a
-// finisher may transform all kGroup lanes in one fixed-length loop that
-// vectorises).
+// sweep order: Stewart's sweep (docs/relief.md), one hull per line, on the
+// points gatherLine would gather (a diagonal's centres only where the drawn
+// diagonal crosses it; the others lie on the profile and change nothing). finish(slope, index, g0,
+// g1) gets each step's samples: lanes [g0, g1) of the kGroup-long arrays (the others hold stale
+// values, so a finisher may transform all kGroup lanes in one fixed-length loop that vectorises).
 template <bool kDiagonal, bool kAligned, bool kMask, typename Finish>
 void sweepGroup(const Surface& s, const Lines& l, int o0, int count, GroupScratch& g,
                 const Finish& finish) {
