@@ -68,4 +68,14 @@ string(FIND "${out}${err}" "${prefix}/share/sierra/assets" at)
 if(rc EQUAL 0 OR at EQUAL -1)
   message(FATAL_ERROR "the installed sierra-render did not look in its prefix (exit ${rc}):\n${out}${err}")
 endif()
+# The Python module, where it was built: importable from the prefix's site-packages.
+file(GLOB site_packages ${prefix}/lib/python3*/site-packages)
+if(site_packages AND PYTHON)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${site_packages} ${PYTHON} -c
+                          "import sierra; print(sierra.Renderer().render(generate=65, width=32, height=18).shape)"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err WORKING_DIRECTORY ${WORK_DIR})
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "\\(18, 32, 4\\)")
+    message(FATAL_ERROR "the installed Python module does not render (exit ${rc}):\n${out}${err}")
+  endif()
+endif()
 message(STATUS "install.package: ok")

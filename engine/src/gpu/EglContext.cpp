@@ -12,6 +12,8 @@
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <mutex>
 
 namespace sierra::gpu {
 namespace {
@@ -184,6 +186,25 @@ int cudaToEgl(const std::vector<EglDeviceInfo>& infos, int ordinal) {
                     ") matches none of the EGL devices; see --list-devices"));
 }
 
+// EGL hands out one display per device and eglTerminate ends every context on
+// it, so a display is terminated only when the last of this process's contexts
+// on it goes: two renderers in one program stay independent.
+std::mutex displayMutex;
+std::map<EGLDisplay, int> displayUsers;
+
+void retainDisplay(EGLDisplay display) {
+    std::lock_guard lock(displayMutex);
+    ++displayUsers[display];
+}
+
+void releaseDisplay(EGLDisplay display) {
+    std::lock_guard lock(displayMutex);
+    auto it = displayUsers.find(display);
+    if (it != displayUsers.end() && --it->second > 0) return;
+    if (it != displayUsers.end()) displayUsers.erase(it);
+    eglTerminate(display);
+}
+
 }  // namespace
 
 struct EglContext::State {
@@ -200,7 +221,7 @@ struct EglContext::State {
         eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
         if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
-        eglTerminate(display);
+        releaseDisplay(display);
     }
 };
 
@@ -296,6 +317,7 @@ EglContext EglContext::create(const ContextDesc& desc) {
     auto state = std::make_unique<State>();
     DeviceApi api = DeviceApi::load();
     state->display = openDisplay(api, desc.device, desc.choice, state->platform);
+    retainDisplay(state->display);
 
     if (!eglBindAPI(EGL_OPENGL_API))
         failEgl("eglBindAPI(EGL_OPENGL_API)", "this EGL has no desktop OpenGL");
@@ -437,6 +459,10 @@ EglContext::~EglContext() = default;
 void EglContext::makeCurrent() {
     if (!eglMakeCurrent(state_->display, state_->surface, state_->surface, state_->context))
         failEgl("eglMakeCurrent");
+}
+void EglContext::release() {
+    if (!eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT))
+        failEgl("eglMakeCurrent (release)");
 }
 int EglContext::width() const {
     return state_->width;

@@ -7,20 +7,31 @@
 
 namespace sierra::render {
 
-SceneRenderer::SceneRenderer(scene::Scene scene, gpu::EglContext context)
+SceneRenderer::SceneRenderer(scene::Scene scene, std::shared_ptr<gpu::EglContext> context)
     : scene_(std::move(scene)),
-      context_(std::move(context)),
+      context_((context->makeCurrent(), std::move(context))),
       target_(FrameTarget::create({.width = scene_.output.width,
                                    .height = scene_.output.height,
-                                   .samples = scene_.output.msaa})) {}
+                                   .samples = scene_.output.msaa,
+                                   .offscreen = context_->width() != scene_.output.width ||
+                                                context_->height() != scene_.output.height})) {}
 
 SceneRenderer SceneRenderer::create(const scene::Scene& scene) {
-    // The context comes first: its texture limit bounds the grid the loader takes.
-    gpu::EglContext context =
-        gpu::EglContext::create({.width = scene.output.width, .height = scene.output.height});
+    return create(scene, std::make_shared<gpu::EglContext>(gpu::EglContext::create(
+                             {.width = scene.output.width, .height = scene.output.height})));
+}
+
+SceneRenderer SceneRenderer::create(const scene::Scene& scene,
+                                    std::shared_ptr<gpu::EglContext> context,
+                                    const terrain::Heightfield* grid) {
+    SIERRA_CHECK(context, "SceneRenderer::create needs a context");
     SceneRenderer r(scene, std::move(context));
+    // The context comes first: its texture limit bounds the grid the loader takes.
     std::string loaded;
-    r.field_ = scene::loadTerrain(scene.terrain, &loaded, scene::Padding::PowerOfTwoPlusOne,
+    r.field_ =
+        grid ? scene::prepareTerrain(*grid, scene.terrain, &loaded,
+                                     scene::Padding::PowerOfTwoPlusOne, TerrainGpu::maxGridSide())
+             : scene::loadTerrain(scene.terrain, &loaded, scene::Padding::PowerOfTwoPlusOne,
                                   TerrainGpu::maxGridSide());
     const float seaLevel = scene::resolveSeaLevel(scene.terrain, r.field_);
     r.terrain_ = std::make_unique<TerrainRenderer>(
@@ -38,7 +49,7 @@ SceneRenderer SceneRenderer::create(const scene::Scene& scene) {
 gpu::Image SceneRenderer::frame(int k) {
     SIERRA_CHECK(k >= 0 && k < frameCount(), "frame ", k, " is outside the scene's 0..",
                  frameCount() - 1);
-    context_.makeCurrent();
+    context_->makeCurrent();
     target_.begin(TerrainRenderer::clearColour(draw_.lighting));
     stats_ = terrain_->draw(cameras_[size_t(k)], target_.width(), target_.height(), draw_);
     gpu::Image image = target_.read();
@@ -49,7 +60,7 @@ gpu::Image SceneRenderer::frame(int k) {
 DepthImage SceneRenderer::depth(int k) {
     SIERRA_CHECK(k >= 0 && k < frameCount(), "frame ", k, " is outside the scene's 0..",
                  frameCount() - 1);
-    context_.makeCurrent();
+    context_->makeCurrent();
     return terrain_->renderDepth(cameras_[size_t(k)], target_.width(), target_.height(), draw_);
 }
 

@@ -97,38 +97,13 @@ std::pair<int, int> parseRawSize(const std::string& text, const std::string& opt
     return parseSize(text, option, 65537, "4097x4097");
 }
 
-terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description,
-                                 Padding padding, int maxPaddedSide) {
-    terrain::Heightfield field;
-    std::string what;
-    bool metric = false;
-    if (source.heightmap.empty()) {
-        SIERRA_CHECK(source.generateSize <= maxPaddedSide, "--generate ", source.generateSize,
-                     " is larger than the largest grid this renderer takes, ", maxPaddedSide, "x",
-                     maxPaddedSide, " (its texture size limit)");
-        field = terrain::generateDiamondSquare({.size = source.generateSize,
-                                                .seed = source.seed,
-                                                .roughness = source.roughness,
-                                                .hurst = source.hurst});
-        what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ",
-                   source.seed, ", roughness ", source.roughness,
-                   source.hurst ? msg(", Hurst ", *source.hurst) : std::string());
-    } else {
-        // The loaders take the channel's name ("" = grey images only).
-        field = terrain::loadHeightfield(
-            source.heightmap,
-            {.rawWidth = source.rawWidth,
-             .rawHeight = source.rawHeight,
-             .channel = source.channel == Channel::Grey ? std::string() : toString(source.channel),
-             .maxPaddedSide = maxPaddedSide});
-        what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
-        if (std::string warning = padding == Padding::None
-                                      ? std::string()
-                                      : terrain::paddingWarning(field.width(), field.height());
-            !warning.empty())
-            what += msg(" [warning: ", warning, "]");
-    }
-    metric = metricHeights(source, field);
+namespace {
+
+// What loadTerrain does after reading (or generating) the samples: padding,
+// spacing and vertical scale, and the description's rest.
+terrain::Heightfield finishTerrain(terrain::Heightfield field, const TerrainSource& source,
+                                   std::string what, std::string* description, Padding padding) {
+    const bool metric = metricHeights(source, field);
     int originalWidth = field.width(), originalHeight = field.height();
     if (padding == Padding::PowerOfTwoPlusOne) field = terrain::padToPowerOfTwoPlusOne(field);
     if (field.width() != originalWidth || field.height() != originalHeight)
@@ -157,6 +132,52 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
             "sample is assumed; --spacing gives it]";
     if (description) *description = what;
     return field;
+}
+
+}  // namespace
+
+terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* description,
+                                 Padding padding, int maxPaddedSide) {
+    terrain::Heightfield field;
+    std::string what;
+    if (source.heightmap.empty()) {
+        SIERRA_CHECK(source.generateSize <= maxPaddedSide, "--generate ", source.generateSize,
+                     " is larger than the largest grid this renderer takes, ", maxPaddedSide, "x",
+                     maxPaddedSide, " (its texture size limit)");
+        field = terrain::generateDiamondSquare({.size = source.generateSize,
+                                                .seed = source.seed,
+                                                .roughness = source.roughness,
+                                                .hurst = source.hurst});
+        what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ",
+                   source.seed, ", roughness ", source.roughness,
+                   source.hurst ? msg(", Hurst ", *source.hurst) : std::string());
+    } else {
+        // The loaders take the channel's name ("" = grey images only).
+        field = terrain::loadHeightfield(
+            source.heightmap,
+            {.rawWidth = source.rawWidth,
+             .rawHeight = source.rawHeight,
+             .channel = source.channel == Channel::Grey ? std::string() : toString(source.channel),
+             .maxPaddedSide = maxPaddedSide});
+        what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
+        if (std::string warning = padding == Padding::None
+                                      ? std::string()
+                                      : terrain::paddingWarning(field.width(), field.height());
+            !warning.empty())
+            what += msg(" [warning: ", warning, "]");
+    }
+    return finishTerrain(std::move(field), source, std::move(what), description, padding);
+}
+
+terrain::Heightfield prepareTerrain(terrain::Heightfield field, const TerrainSource& source,
+                                    std::string* description, Padding padding, int maxPaddedSide) {
+    SIERRA_CHECK(!source.heightmap.empty(), "prepareTerrain needs a name for the grid");
+    SIERRA_CHECK(field.width() >= 2 && field.height() >= 2, source.heightmap, ": a ", field.width(),
+                 "x", field.height(), " grid has no cell; give at least 2x2 samples");
+    if (padding == Padding::PowerOfTwoPlusOne)
+        terrain::checkFieldSize(source.heightmap, field.width(), field.height(), maxPaddedSide);
+    std::string what = msg(source.heightmap, " (", field.width(), "x", field.height(), ")");
+    return finishTerrain(std::move(field), source, std::move(what), description, padding);
 }
 
 bool metricHeights(const TerrainSource& source, const terrain::Heightfield& field) {

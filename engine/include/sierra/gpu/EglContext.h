@@ -74,6 +74,9 @@ class EglContext {
     ~EglContext();
 
     void makeCurrent();
+    // Makes no context current on the calling thread, so that another thread
+    // can make this one current (EGL refuses a context current elsewhere).
+    void release();
     int width() const;
     int height() const;
 

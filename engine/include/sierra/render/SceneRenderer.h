@@ -10,8 +10,9 @@
 //   auto renderer = sierra::render::SceneRenderer::create(scene);
 //   sierra::render::writePng("frame.png", renderer.frame());
 //
-// All GL work happens on the thread that created the renderer (the context is
-// current there); one call at a time.
+// Each call makes the renderer's context current on the calling thread, so a
+// renderer can be used from any thread, one call at a time (the caller keeps
+// it to one: nothing here locks).
 
 #include <sierra/gpu/EglContext.h>
 #include <sierra/gpu/ReadBack.h>
@@ -33,6 +34,13 @@ class SceneRenderer {
     // and uploads the scene's terrain. Throws sierra::Error for a bad terrain,
     // surface or mesh, and when no GL 4.5 context can be made.
     static SceneRenderer create(const scene::Scene& scene);
+    // The same on a context the caller shares between renderers (frames larger
+    // than its pbuffer are drawn into an offscreen target), and, when `grid` is
+    // given, for that grid instead of the scene's terrain source: heights as
+    // read, with their spacing and no-data mask, prepared as
+    // scene::prepareTerrain does (scene.terrain.heightmap names it).
+    static SceneRenderer create(const scene::Scene& scene, std::shared_ptr<gpu::EglContext> context,
+                                const terrain::Heightfield* grid = nullptr);
 
     // Frame k of the scene's sequence (0 .. frameCount() - 1), RGBA8, top row
     // first. Blocks until the frame is read back.
@@ -50,15 +58,15 @@ class SceneRenderer {
     const scene::Scene& scene() const { return scene_; }
     const terrain::Heightfield& field() const { return field_; }
     TerrainRenderer& terrain() { return *terrain_; }
-    gpu::EglContext& context() { return context_; }
+    gpu::EglContext& context() { return *context_; }
     const DrawOptions& drawOptions() const { return draw_; }
     FrameTarget& target() { return target_; }
 
   private:
-    SceneRenderer(scene::Scene scene, gpu::EglContext context);
+    SceneRenderer(scene::Scene scene, std::shared_ptr<gpu::EglContext> context);
 
     scene::Scene scene_;
-    gpu::EglContext context_;
+    std::shared_ptr<gpu::EglContext> context_;
     terrain::Heightfield field_;
     std::unique_ptr<TerrainRenderer> terrain_;
     FrameTarget target_;

@@ -96,6 +96,17 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
                                  Padding padding = Padding::PowerOfTwoPlusOne,
                                  int maxPaddedSide = terrain::kDefaultMaxPaddedSide);
 
+// The same for a grid from elsewhere (an array an embedding program hands
+// over): loadTerrain's padding, spacing and vertical scale, with the automatic
+// choices of a loaded heightmap (no water unless asked). `source.heightmap`
+// names the grid in messages and the description; `field` carries its own
+// spacing and no-data mask. Throws sierra::Error for a grid under 2x2 or one
+// that pads past `maxPaddedSide`.
+terrain::Heightfield prepareTerrain(terrain::Heightfield field, const TerrainSource& source,
+                                    std::string* description = nullptr,
+                                    Padding padding = Padding::PowerOfTwoPlusOne,
+                                    int maxPaddedSide = terrain::kDefaultMaxPaddedSide);
+
 // True when the heights of `field`, loaded from `source`, are metres: height
 // units `m`, or automatic with an SRTM (.hgt) or GeoTIFF file, or with a file
 // whose georeferencing says metres (terrain::Heightfield::metres: an .npz
