@@ -18,6 +18,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev glslang-tools clang-format
   libspng-dev libgdal-dev
   python-matplotlib-data
+  gdal-bin python3-gdal python3-numpy
 )
 
 missing=()
