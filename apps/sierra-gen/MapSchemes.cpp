@@ -49,11 +49,12 @@ ColourRamp grey(float black, float white) {
 }
 
 // A diverging ramp symmetric about 0: concave (negative) blue, convex red.
-ColourRamp diverging(std::span<const float> values) {
+// Its ends at the `share` quantile of the magnitudes.
+ColourRamp diverging(std::span<const float> values, double share = 0.98) {
     std::vector<float> magnitude;
     magnitude.reserve(values.size());
     for (float v : values) magnitude.push_back(std::abs(v));
-    float m = terrain::finiteQuantile(magnitude, 0.98);
+    float m = terrain::finiteQuantile(magnitude, share);
     if (!(m > 0.0f)) m = 1.0f;
     return ColourRamp({{-m, {40, 80, 170}},
                        {-0.5f * m, {130, 170, 220}},
@@ -165,6 +166,8 @@ FieldRamp fieldRamp(const Scheme& scheme, const terrain::DemFieldDesc& desc,
         }
         case DemField::Tpi:
             return {diverging(values), length};
+        case DemField::CurvaturePlan:  // 1/G^1.5 spikes on near-flat ground: a tighter range
+            return {diverging(values, 0.9), metres ? "1/m" : ""};
         case DemField::CurvatureGaussian:
             return {diverging(values), metres ? "1/m^2" : ""};
         default:
