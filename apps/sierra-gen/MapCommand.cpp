@@ -228,6 +228,7 @@ terrain::ColourRamp heightRamp(const Scheme& s, const std::optional<terrain::Cpt
     if (!(hi > lo)) hi = lo + 1.0f;
     if (cpt) return cpt->ramp(lo, hi);
     float sea = scene::resolveSeaLevel(o.scene.terrain, field);
+    if (s.kind == Kind::Relief) return map::reliefTints(lo, hi, sea);
     if (!std::isfinite(sea)) sea = lo - (hi - lo);  // no water: below every sample
     const terrain::RampScheme rs =
         s.kind == Kind::Relief                   ? terrain::RampScheme::Hypsometric
@@ -267,7 +268,10 @@ void runMap(const CLI::App& cmd, const MapOptions& o) {
                                        desc.shade == terrain::ShadeStyle::Combined
                                    ? 255.0f
                                    : 1.0f + 254.0f * float(std::sin(o.altitude * M_PI / 180.0));
-            image = terrain::shadedRelief(field, ramp, shade, sky, {.flatShade = flat});
+            image = terrain::shadedRelief(
+                field, ramp, shade, sky,
+                {.flatShade = flat,
+                 .skyFloor = std::min(terrain::finiteQuantile(sky, 0.01), 0.99f)});
         }
     } else {
         const std::vector<float> values =

@@ -175,4 +175,24 @@ FieldRamp fieldRamp(const Scheme& scheme, const terrain::DemFieldDesc& desc,
     }
 }
 
+terrain::ColourRamp reliefTints(float lo, float hi, float sea) {
+    const float span = hi - lo;
+    const bool water = std::isfinite(sea) && sea > lo && sea < hi;
+    const float land = water ? sea : lo;
+    const float relief = hi - land;
+    std::vector<ColourStop> stops;
+    if (water) {
+        stops.push_back({lo, {150, 185, 215}});
+        stops.push_back({sea, {190, 215, 232}});
+    }
+    for (const auto& [t, c] : std::initializer_list<std::pair<float, Rgb>>{{0.0f, {166, 196, 140}},
+                                                                           {0.25f, {196, 210, 152}},
+                                                                           {0.5f, {226, 222, 170}},
+                                                                           {0.75f, {236, 224, 190}},
+                                                                           {1.0f, {250, 247, 240}}})
+        stops.push_back({land + t * relief, c});
+    if (water) stops[2].height = std::nextafter(sea, hi);  // the shore: a hard edge
+    return ColourRamp(std::move(stops), lo, span > 0.0f ? hi : lo + 1.0f);
+}
+
 }  // namespace sierra::apps::map

@@ -50,4 +50,10 @@ struct FieldRamp {
 FieldRamp fieldRamp(const Scheme& scheme, const terrain::DemFieldDesc& desc,
                     std::span<const float> values, bool metres);
 
+// The relief scheme's height tints over lo..hi (stored heights): light,
+// desaturated colours that lighten with height, green lowlands through pale
+// yellow to near white, as on Swiss topographic maps; water blue below `sea`
+// (NaN = no water).
+terrain::ColourRamp reliefTints(float lo, float hi, float sea);
+
 }  // namespace sierra::apps::map

@@ -6,7 +6,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/common.cmake.inc)
 # Each scheme on a generated 129^2 terrain: 129x129 pixels.
 foreach(scheme plasma atlas hypsometric hillshade slope aspect tri tpi roughness curvature-profile
                curvature-plan curvature-tangential curvature-mean curvature-gaussian curvature-min
-               curvature-max)
+               curvature-max shadow sky-view openness-positive openness-negative relief)
   run_app(map_${scheme} EXPECT_OK MESSAGE "(129x129)" COMMAND ${GEN} map --generate 129 --scheme ${scheme} --out ${scheme}.png)
   expect_png_size(${WORK_DIR}/${scheme}.png 129 129)
 endforeach()
@@ -35,8 +35,16 @@ foreach(variant "--multidirectional" "--combined" "--igor" "--algorithm;zevenber
   expect_different(${WORK_DIR}/hillshade.png ${WORK_DIR}/hillshade${tag}.png "hillshade ${variant}")
 endforeach()
 
+# The lighting options change the lighting maps.
+run_app(map_shadow_low EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme shadow --altitude 10 --sun-size 2 --out shadow_low.png)
+expect_different(${WORK_DIR}/shadow.png ${WORK_DIR}/shadow_low.png "shadow --altitude")
+run_app(map_sky_radius EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme sky-view --horizon-radius 5 --directions 8 --out sky_radius.png)
+expect_different(${WORK_DIR}/sky-view.png ${WORK_DIR}/sky_radius.png "sky-view --horizon-radius")
+run_app(map_relief_cpt EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme relief --cpt ${ASSETS_DIR}/cpt/bands.cpt --out relief_cpt.png)
+expect_different(${WORK_DIR}/relief.png ${WORK_DIR}/relief_cpt.png "relief --cpt")
+
 # A colour bar is appended on the right: same height, wider.
-foreach(scheme atlas slope tpi curvature-plan)
+foreach(scheme atlas slope tpi curvature-plan sky-view)
   run_app(map_${scheme}_bar EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme ${scheme} --colour-bar --out ${scheme}_bar.png)
   png_size(w h ${WORK_DIR}/${scheme}_bar.png)
   if(NOT h EQUAL 129 OR NOT w GREATER 129)
@@ -106,6 +114,9 @@ expect_map_error(edges_not_for_heights 2 "--compute-edges does not apply" edges.
 expect_map_error(two_styles 2 "only one of" styles.png --generate 129 --scheme hillshade --igor --combined)
 expect_map_error(igor_altitude 2 "--altitude does not apply" igor.png --generate 129 --scheme hillshade --igor --altitude 30)
 expect_map_error(horn_curvature 2 "evans-young or zevenbergen" horn.png --generate 129 --scheme curvature-mean --algorithm horn)
+expect_map_error(directions_zero 2 "--directions" dirs.png --generate 129 --scheme sky-view --directions 0)
+expect_map_error(radius_negative 2 "--horizon-radius" radius.png --generate 129 --scheme openness-positive --horizon-radius -1)
+expect_map_error(sun_size_not_for_sky 2 "--sun-size does not apply" sky_sun.png --generate 129 --scheme sky-view --sun-size 1)
 expect_map_error(values_of_heights 2 "--values does not apply" heights.png --generate 129 --scheme atlas --values heights.npy)
 expect_map_error(values_not_npy 2 "--values must name a .npy" values.png --generate 129 --scheme slope --values slope.txt)
 expect_map_error(bad_generate_size 1 "2^n + 1" size.png --generate 100)

@@ -98,9 +98,10 @@ RgbImage shadedRelief(const Heightfield& field, const ColourRamp& tints,
                  " samples need as many hillshade and sky-view values, got ", hillshade.size(),
                  " and ", skyView.size());
     SIERRA_CHECK(desc.flatShade > 0.0f && desc.shadeWeight >= 0.0f && desc.shadeWeight <= 1.0f &&
-                     desc.skyWeight >= 0.0f && desc.skyWeight <= 1.0f,
-                 "shaded relief: flatShade > 0 and weights in 0..1, got ", desc.flatShade, ", ",
-                 desc.shadeWeight, ", ", desc.skyWeight);
+                     desc.skyWeight >= 0.0f && desc.skyWeight <= 1.0f && desc.skyFloor >= 0.0f &&
+                     desc.skyFloor < 1.0f,
+                 "shaded relief: flatShade > 0, weights in 0..1 and skyFloor in 0..1, got ",
+                 desc.flatShade, ", ", desc.shadeWeight, ", ", desc.skyWeight, ", ", desc.skyFloor);
     RgbImage image{field.width(), field.height(), std::vector<uint8_t>(n * 3)};
     for (int j = 0; j < field.height(); ++j)
         for (int i = 0; i < field.width(); ++i) {
@@ -113,14 +114,17 @@ RgbImage shadedRelief(const Heightfield& field, const ColourRamp& tints,
             // Light relative to flat ground: 1 on the flat, above on the lit side.
             const float shade = std::isnan(hillshade[k]) ? desc.flatShade : hillshade[k];
             const float light = 1.0f + desc.shadeWeight * (shade / desc.flatShade - 1.0f);
-            const float sky = std::isnan(skyView[k]) ? 1.0f : std::clamp(skyView[k], 0.0f, 1.0f);
+            const float sky =
+                std::isnan(skyView[k])
+                    ? 1.0f
+                    : std::clamp((skyView[k] - desc.skyFloor) / (1.0f - desc.skyFloor), 0.0f, 1.0f);
             const float open = 1.0f - desc.skyWeight * (1.0f - sky);
             // Shadows lean blue-grey and lit slopes warm, as in hand-drawn relief.
             const float dark = std::max(0.0f, 1.0f - light);
             const float lit = std::max(0.0f, light - 1.0f);
-            const float mix[3] = {1.0f - 0.25f * dark + 0.06f * lit,
-                                  1.0f - 0.12f * dark + 0.03f * lit,
-                                  1.0f + 0.10f * dark - 0.08f * lit};
+            const float mix[3] = {1.0f - 0.35f * dark + 0.08f * lit,
+                                  1.0f - 0.18f * dark + 0.03f * lit,
+                                  1.0f + 0.12f * dark - 0.12f * lit};
             const float base[3] = {float(tint.r), float(tint.g), float(tint.b)};
             uint8_t out[3];
             for (int c = 0; c < 3; ++c)

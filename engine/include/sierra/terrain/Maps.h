@@ -57,13 +57,15 @@ float finiteQuantile(std::span<const float> values, double share);
 // Relief Presentation", 1982): height tints multiplied by an oblique
 // hillshade normalised to flat ground (brighter than the tint on slopes facing
 // the light, darker and bluer facing away) and by the sky-view factor (dark in
-// deep valleys and gullies). hillshade: 1..255 per sample as DemField::Hillshade
-// gives it, NaN where it has none (taken as flat: flatShade); skyView 0..1, NaN
-// taken as 1. No-data samples take tints.noDataColour().
+// deep valleys and gullies), stretched from skyFloor (darkest) to 1 (open).
+// hillshade: 1..255 per sample as DemField::Hillshade gives it, NaN where it
+// has none (taken as flat: flatShade); skyView 0..1, NaN taken as 1. No-data
+// samples take tints.noDataColour().
 struct ReliefDesc {
     float flatShade = 181.0f;  // the hillshade of flat ground: 1 + 254 sin(altitude)
-    float shadeWeight = 0.8f;  // 0 = tints only, 1 = the full hillshade
-    float skyWeight = 0.6f;    // 0 = no sky-view darkening, 1 = multiply by it
+    float shadeWeight = 0.6f;  // 0 = tints only, 1 = the full hillshade
+    float skyWeight = 0.5f;    // 0 = no sky-view darkening, 1 = black where the sky is least
+    float skyFloor = 0.0f;     // the sky-view factor drawn darkest (0..1): below it clamps
 };
 RgbImage shadedRelief(const Heightfield& field, const ColourRamp& tints,
                       std::span<const float> hillshade, std::span<const float> skyView,
