@@ -287,7 +287,17 @@ void runMap(const CLI::App& cmd, const MapOptions& o) {
         }
     }
     if (!o.out.empty()) {
-        terrain::writeRgbPng(o.out, image);
+        // Grey maps (hillshade, sky-view, ...) as grey PNGs: a third of the data.
+        bool grey = true;
+        for (size_t k = 0; grey && k < image.rgb.size(); k += 3)
+            grey = image.rgb[k] == image.rgb[k + 1] && image.rgb[k] == image.rgb[k + 2];
+        if (grey) {
+            std::vector<uint8_t> g(image.rgb.size() / 3);
+            for (size_t k = 0; k < g.size(); ++k) g[k] = image.rgb[3 * k];
+            terrain::writeGreyPng(o.out, image.width, image.height, g);
+        } else {
+            terrain::writeRgbPng(o.out, image);
+        }
         log::info("wrote ", o.out, " (", image.width, "x", image.height, ")");
     }
 }
