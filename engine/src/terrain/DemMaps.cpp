@@ -169,7 +169,8 @@ double curvature(DemField field, Gradient g, Second c) {
     }
 }
 
-double value(const double w[9], const DemFieldDesc& d, Stencil stencil, double hx, double hy) {
+double value(const double w[9], const DemFieldDesc& d, double hx, double hy) {
+    const Stencil stencil = d.stencil;
     switch (d.field) {
         case DemField::Slope: {
             const Gradient g = gradient(w, stencil, hx, hy);
@@ -238,8 +239,7 @@ std::vector<float> demField(const Heightfield& field, const DemFieldDesc& desc) 
         for (int i = 0; i < field.width(); ++i) {
             if (!window(field, i, j, desc.computeEdges, w)) continue;
             for (double& v : w) v *= vs;
-            out[size_t(j) * size_t(field.width()) + size_t(i)] =
-                float(value(w, desc, desc.stencil, hx, hy));
+            out[size_t(j) * size_t(field.width()) + size_t(i)] = float(value(w, desc, hx, hy));
         }
     return out;
 }
