@@ -1,8 +1,11 @@
 // Micro-benchmarks of the curvature analysis: the 4-direction field of a
 // fractal grid by each method, and line tracing. items_per_second is grid
 // samples per second. Target: 2049^2 in at most 150 ms with all threads.
+// And the relief fields: horizons in 16 azimuths and the sun's visibility
+// (target: both together for 4097^2 in at most 2 s with all threads).
 #include <sierra/analysis/Curvature.h>
 #include <sierra/analysis/Lines.h>
+#include <sierra/analysis/Relief.h>
 #include <sierra/core/Parallel.h>
 #include <sierra/terrain/DiamondSquare.h>
 
@@ -87,6 +90,46 @@ void BM_TraceLines(benchmark::State& state) {
 }
 BENCHMARK(BM_TraceLines)
     ->ArgsProduct({{1025}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Horizons in 16 azimuths (args: size, threads, 0 = all; radius in world
+// units, 0 = the whole grid). items_per_second is samples times azimuths.
+void BM_Horizons(benchmark::State& state) {
+    const auto& field = terrain(int(state.range(0)));
+    analysis::HorizonOptions o{
+        .directions = 16, .radius = float(state.range(2)), .threads = int(state.range(1))};
+    for (auto _ : state) {
+        auto h = analysis::computeHorizons(field, o);
+        benchmark::DoNotOptimize(h.angle.data());
+    }
+    state.SetItemsProcessed(state.iterations() * field.sampleCount() * o.directions);
+    state.counters["threads"] = o.threads > 0 ? o.threads : sierra::defaultThreadCount();
+}
+BENCHMARK(BM_Horizons)
+    ->Args({4097, 0, 0})
+    ->Args({4097, 1, 0})
+    ->Args({1025, 0, 0})
+    ->Args({1025, 0, 100})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The sun's visibility: one sweep in its azimuth, 300 degrees (a digital
+// line, not a grid axis) at altitude 20 (args: size, threads).
+void BM_SunVisibility(benchmark::State& state) {
+    const auto& field = terrain(int(state.range(0)));
+    analysis::SunDisc sun{.azimuth = 300.0f, .altitude = 20.0f};
+    analysis::HorizonOptions o{.threads = int(state.range(1))};
+    for (auto _ : state) {
+        auto v = analysis::sunVisibility(field, sun, o);
+        benchmark::DoNotOptimize(v.data());
+    }
+    state.SetItemsProcessed(state.iterations() * field.sampleCount());
+    state.counters["threads"] = o.threads > 0 ? o.threads : sierra::defaultThreadCount();
+}
+BENCHMARK(BM_SunVisibility)
+    ->Args({4097, 0})
+    ->Args({4097, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -172,6 +172,25 @@ TEST(AnalysisRelief, SunOnTheHorizonIsHalfADisc) {
     for (float x : night) ASSERT_EQ(x, 0.0f);
 }
 
+TEST(AnalysisRelief, TiltedPlaneSeesItsWholeHemisphere) {
+    // A plane rising at 20 degrees to the east: uphill the horizon is the
+    // plane itself, which is its tangent plane, so the sky light integrates the
+    // hemisphere around the normal (1 up to the 16-azimuth quadrature), while
+    // the sky-view factor loses the sky under the uphill horizon.
+    const double slope = std::tan(20.0 * kPi / 180);
+    auto f = sampleSurface(41, 41, 1.0, 1.0, [&](double x, double) { return slope * x; });
+    auto hz = computeHorizons(f, {});
+    EXPECT_NEAR(hz.at(4, 20, 20), 20.0 * kPi / 180, 1e-6);    // east, uphill
+    EXPECT_NEAR(hz.at(12, 20, 20), -20.0 * kPi / 180, 1e-6);  // west, downhill
+    const float sky = skyLight(f, hz)[20 * 41 + 20];
+    EXPECT_GT(sky, 0.98f);
+    EXPECT_LE(sky, 1.0f);
+    double sum = 0;
+    for (int d = 0; d < 16; ++d) sum += std::sin(std::max(double(hz.at(d, 20, 20)), 0.0));
+    EXPECT_NEAR(skyViewFactor(hz)[20 * 41 + 20], 1 - sum / 16, 1e-6);
+    EXPECT_LT(skyViewFactor(hz)[20 * 41 + 20], 0.9f);
+}
+
 TEST(AnalysisRelief, StepCastsShadowAndPenumbraOfTheDiscsSize) {
     // A plateau of world height h for columns < 20, a plain at 0 beyond, the sun
     // in the west: the plateau's edge (column 19) shades the plain out to
