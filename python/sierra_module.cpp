@@ -1,6 +1,6 @@
 // The compiled half of the Python module `sierra` (python/sierra/__init__.py is
 // the other): a renderer over one shared EGL context, the scene's JSON form,
-// and the GL-free maps, on numpy arrays. Keyword arguments become a scene's
+// and the GL-free maps and relief fields, on numpy arrays. Keyword arguments become a scene's
 // JSON in Python and are read here by the scene's own strict reader, so a
 // Python call and a scene file accept exactly the same keys and values.
 //
@@ -8,6 +8,7 @@
 // mutex, with the context made current on the calling thread and released
 // again afterwards, so any Python thread may use a renderer, one call at a
 // time.
+#include <sierra/analysis/Relief.h>
 #include <sierra/core/Error.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
@@ -15,7 +16,7 @@
 #include <sierra/scene/SceneJson.h>
 #include <sierra/terrain/Heightfield.h>
 #include <sierra/terrain/HeightfieldIO.h>
-#include <sierra/terrain/Maps.h>
+#include <sierra/terrain/DemMaps.h>
 #include <sierra/terrain/Padding.h>
 
 #include <pybind11/numpy.h>
@@ -200,25 +201,59 @@ PYBIND11_MODULE(_sierra, m) {
         return scene::sceneToText(s);
     });
 
+    // One scalar field of a DEM (terrain/DemMaps.h) by the map command's name.
     m.def(
-        "hillshade",
-        [](const FloatGrid& heights, double spacingX, double spacingZ, float azimuth,
-           float altitude, float zFactor) {
+        "dem_field",
+        [](const FloatGrid& heights, double spacingX, double spacingZ, const std::string& name,
+           bool computeEdges, float azimuth, float altitude, float zFactor) {
             terrain::Heightfield field = toHeightfield(heights, spacingX, spacingZ);
-            field.setVerticalScale(zFactor);
-            std::vector<float> shade;
+            terrain::DemFieldDesc desc{.computeEdges = computeEdges,
+                                       .azimuth = azimuth,
+                                       .altitude = altitude,
+                                       .zFactor = zFactor};
+            if (!terrain::parseDemField(name, &desc.field))
+                throw Error(msg("unknown map \"", name, "\""));
+            if (name.rfind("curvature", 0) == 0) desc.stencil = terrain::Stencil::EvansYoung;
+            std::vector<float> values;
             {
                 py::gil_scoped_release unlocked;
-                shade = terrain::hillshade(field, {.azimuth = azimuth, .altitude = altitude});
+                values = terrain::demField(field, desc);
             }
-            // No-data samples give 0 in the map and NaN in the array.
-            for (size_t k = 0; k < shade.size(); ++k)
-                if (!field.valid(int(k % size_t(field.width())), int(k / size_t(field.width()))))
-                    shade[k] = std::numeric_limits<float>::quiet_NaN();
-            return toArray(shade, field.height(), field.width());
+            return toArray(values, field.height(), field.width());
         },
-        py::arg("heights"), py::arg("spacing_x"), py::arg("spacing_z"), py::arg("azimuth"),
-        py::arg("altitude"), py::arg("z_factor"));
+        py::arg("heights"), py::arg("spacing_x"), py::arg("spacing_z"), py::arg("name"),
+        py::arg("compute_edges"), py::arg("azimuth"), py::arg("altitude"), py::arg("z_factor"));
+
+    // The relief lighting fields (analysis/Relief.h) over the whole grid.
+    m.def(
+        "relief_field",
+        [](const FloatGrid& heights, double spacingX, double spacingZ, const std::string& name,
+           int directions, float radius, float azimuth, float altitude, float sunSize) {
+            terrain::Heightfield field = toHeightfield(heights, spacingX, spacingZ);
+            analysis::HorizonOptions options{.directions = directions, .radius = radius};
+            std::vector<float> values;
+            {
+                py::gil_scoped_release unlocked;
+                if (name == "shadow")
+                    values = analysis::sunVisibility(
+                        field, {.azimuth = azimuth, .altitude = altitude, .diameter = sunSize},
+                        options);
+                else if (name == "sky-view")
+                    values = analysis::skyViewFactor(analysis::computeHorizons(field, options));
+                else if (name == "sky-light")
+                    values = analysis::skyLight(field, analysis::computeHorizons(field, options));
+                else if (name == "openness-positive")
+                    values = analysis::opennessPositive(field, options);
+                else if (name == "openness-negative")
+                    values = analysis::opennessNegative(field, options);
+                else
+                    throw Error(msg("unknown relief field \"", name, "\""));
+            }
+            return toArray(values, field.height(), field.width());
+        },
+        py::arg("heights"), py::arg("spacing_x"), py::arg("spacing_z"), py::arg("name"),
+        py::arg("directions"), py::arg("radius"), py::arg("azimuth"), py::arg("altitude"),
+        py::arg("sun_size"));
 
     m.def("read_png", [](const std::string& path) { return toArray(render::readPng(path)); });
 }

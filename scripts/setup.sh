@@ -19,6 +19,7 @@ packages=(
   libspng-dev libgdal-dev
   python-matplotlib-data
   python3-dev python3-numpy python3-pytest pybind11-dev
+  gdal-bin python3-gdal
 )
 
 missing=()

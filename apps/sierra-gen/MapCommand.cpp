@@ -1,100 +1,142 @@
-// sierra-gen map --heightmap FILE [terrain options] --scheme
-// plasma|atlas|hypsometric|hillshade|slope
-//                [--cpt FILE.cpt] [--colour-bar] [--sun-azimuth A --sun-altitude B] --out FILE.png
+// sierra-gen map --heightmap FILE [terrain options] --scheme NAME [scheme options]
+//                [--cpt FILE.cpt] [--colour-bar] [--out FILE.png] [--values FILE.npy]
 //
-// One pixel per sample of the terrain as loaded (padding removed), row 0 =
-// north. Height schemes colour the stored heights over their range (sea level
-// from --sea-level, else the scene's automatic choice); --cpt colours them with
-// a GMT table in absolute stored heights (metres for DEMs). Hillshade and slope
-// use the world gradient (vertical scale and spacing). The colour bar is
-// labelled in world height units (stored height times the vertical scale:
-// metres for metric DEMs), slope's in degrees.
+// One pixel (and one value) per sample of the terrain as loaded (padding
+// removed), row 0 = the file's first row (north for a north-up GeoTIFF), as
+// gdaldem writes its rasters. Height schemes colour the stored heights over
+// their range (sea level from --sea-level, else the scene's automatic choice);
+// --cpt colours them with a GMT table in absolute stored heights. The DEM
+// schemes (terrain/DemMaps.h) and the lighting schemes (analysis/Relief.h) work
+// in world units: heights times the vertical scale, the terrain's spacing.
+// --values writes a scalar scheme's float32 field, NaN where gdaldem writes
+// its no-data value. docs/maps.md has every scheme's formula and option.
 #include "Commands.h"
 
 #include "AppMain.h"
+#include "MapOptions.h"
+#include "MapSchemes.h"
 
+#include <sierra/analysis/Relief.h>
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/core/Log.h>
+#include <sierra/core/Npy.h>
 #include <sierra/scene/Options.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/terrain/Cpt.h>
+#include <sierra/terrain/DemMaps.h>
 #include <sierra/terrain/Maps.h>
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace sierra::apps {
 namespace {
 
-struct MapOptions {
-    scene::Scene scene;  // only its terrain is used
-    std::string scheme = "hypsometric";
-    std::string cpt;
-    bool colourBar = false;
-    terrain::Sun sun;
-    std::string out;
-};
+using map::Kind;
+using map::MapOptions;
+using map::Scheme;
 
-void runMap(const MapOptions& o) {
-    const terrain::MapScheme scheme = [&] {
-        try {
-            return terrain::parseMapScheme(o.scheme);
-        } catch (const Error& e) {
-            throw UsageError(msg("map: --scheme: ", e.what()));
-        }
-    }();
-    const bool shaded =
-        scheme == terrain::MapScheme::Hillshade || scheme == terrain::MapScheme::Slope;
-    if (!o.cpt.empty() && shaded)
-        throw UsageError(
-            msg("map: --cpt colours heights; it cannot be combined with --scheme ", o.scheme));
-    if (o.colourBar && scheme == terrain::MapScheme::Hillshade)
-        throw UsageError(
-            "map: --colour-bar has nothing to label on a hillshade (use it with a height scheme or "
-            "slope)");
+// The lighting fields of analysis/Relief.h for a scheme.
+std::vector<float> lightingField(const terrain::Heightfield& field, const Scheme& s,
+                                 const MapOptions& o) {
+    const analysis::HorizonOptions horizons{.directions = o.directions, .radius = o.horizonRadius};
+    switch (s.kind) {
+        case Kind::Shadow:
+            return analysis::sunVisibility(
+                field, {.azimuth = o.azimuth, .altitude = o.altitude, .diameter = o.sunSize},
+                horizons);
+        case Kind::OpennessPositive:
+            return analysis::opennessPositive(field, horizons);
+        case Kind::OpennessNegative:
+            return analysis::opennessNegative(field, horizons);
+        default:
+            return analysis::skyViewFactor(analysis::computeHorizons(field, horizons));
+    }
+}
 
-    // The output location and the table are checked before the work.
-    if (lowerExtension(o.out) != ".png")
-        throw UsageError(
-            msg("map: --out must name a .png file (maps are written as PNG), got '", o.out, "'"));
-    ensureWritableLocation(o.out);
+terrain::ColourRamp heightRamp(const Scheme& s, const std::optional<terrain::CptTable>& cpt,
+                               const terrain::Heightfield& field, const MapOptions& o) {
+    const std::pair<float, float> range = field.range();
+    float lo = range.first, hi = range.second;
+    if (!(hi > lo)) hi = lo + 1.0f;
+    if (cpt) return cpt->ramp(lo, hi);
+    float sea = scene::resolveSeaLevel(o.scene.terrain, field);
+    if (s.kind == Kind::Relief) return map::reliefTints(lo, hi, sea);
+    if (!std::isfinite(sea)) sea = lo - (hi - lo);  // no water: below every sample
+    const terrain::RampScheme rs =
+        s.kind == Kind::Relief                   ? terrain::RampScheme::Hypsometric
+        : s.height == terrain::MapScheme::Plasma ? terrain::RampScheme::Plasma
+        : s.height == terrain::MapScheme::Atlas  ? terrain::RampScheme::Atlas
+                                                 : terrain::RampScheme::Hypsometric;
+    return terrain::ColourRamp({.scheme = rs, .minHeight = lo, .maxHeight = hi, .seaLevel = sea});
+}
+
+void runMap(const CLI::App& cmd, const MapOptions& o) {
+    const Scheme s = map::parseScheme(o.scheme);
+    map::checkMapOptions(cmd, s, o);
+    const terrain::DemFieldDesc desc = map::demFieldDesc(s, o);
+
+    // The outputs and the table are checked before the work.
+    if (!o.out.empty()) ensureWritableLocation(o.out);
+    if (!o.values.empty()) ensureWritableLocation(o.values);
     std::optional<terrain::CptTable> cpt;
     if (!o.cpt.empty()) cpt = terrain::readCpt(o.cpt);
     std::string source;
     terrain::Heightfield field = scene::loadTerrain(o.scene.terrain, &source, scene::Padding::None);
     log::info("terrain: ", source, "; map ", field.width(), "x", field.height());
-    // Plain variables, not a structured binding: the ramp's lambda captures
-    // them (Clang before 16 cannot capture a binding).
-    const std::pair<float, float> range = field.range();
-    float lo = range.first, hi = range.second;
-    if (!(hi > lo)) hi = lo + 1.0f;
-    float sea = scene::resolveSeaLevel(o.scene.terrain, field);
-    if (!std::isfinite(sea)) sea = lo - (hi - lo);  // no water: below every sample
+    const bool metres = scene::metricHeights(o.scene.terrain, field);
 
-    terrain::ColourRamp ramp = [&] {
-        if (cpt) return cpt->ramp(lo, hi);
-        if (scheme == terrain::MapScheme::Slope)  // the bar of slope: white flat to black vertical
-            return terrain::ColourRamp({{0.0f, {255, 255, 255}}, {90.0f, {0, 0, 0}}}, 0.0f, 90.0f);
-        const terrain::RampScheme rs =
-            scheme == terrain::MapScheme::Plasma  ? terrain::RampScheme::Plasma
-            : scheme == terrain::MapScheme::Atlas ? terrain::RampScheme::Atlas
-                                                  : terrain::RampScheme::Hypsometric;
-        return terrain::ColourRamp(
-            {.scheme = rs, .minHeight = lo, .maxHeight = hi, .seaLevel = sea});
-    }();
-    terrain::RgbImage image = terrain::renderMap(field, scheme, ramp, o.sun);
-    if (o.colourBar) {
-        const bool metres = scene::metricHeights(o.scene.terrain, field);
-        if (scheme == terrain::MapScheme::Slope)
-            terrain::addColourBar(image, ramp, 1.0f, "deg");
-        else
-            terrain::addColourBar(image, ramp, field.verticalScale(), metres ? "m" : "");
+    terrain::RgbImage image;
+    if (s.kind == Kind::Height || s.kind == Kind::Relief) {
+        const terrain::ColourRamp ramp = heightRamp(s, cpt, field, o);
+        if (s.kind == Kind::Height) {
+            image = terrain::renderMap(field, ramp);
+            if (o.colourBar)
+                terrain::addColourBar(image, ramp, field.verticalScale(), metres ? "m" : "");
+        } else {
+            const std::vector<float> shade = terrain::demField(field, desc);
+            const std::vector<float> sky = lightingField(field, s, o);
+            const float flat = desc.shade == terrain::ShadeStyle::Igor ||
+                                       desc.shade == terrain::ShadeStyle::Combined
+                                   ? 255.0f
+                                   : 1.0f + 254.0f * float(std::sin(o.altitude * M_PI / 180.0));
+            image = terrain::shadedRelief(
+                field, ramp, shade, sky,
+                {.flatShade = flat,
+                 .skyFloor = std::min(terrain::finiteQuantile(sky, 0.01), 0.99f)});
+        }
+    } else {
+        const std::vector<float> values =
+            s.kind == Kind::Dem ? terrain::demField(field, desc) : lightingField(field, s, o);
+        if (!o.values.empty()) {
+            writeFileAtomic(o.values, encodeNpyFloat32(field.height(), field.width(), values));
+            log::info("wrote ", o.values, " (", field.height(), "x", field.width(), " float32)");
+        }
+        if (!o.out.empty()) {
+            const map::FieldRamp ramp = map::fieldRamp(s, desc, values, metres);
+            image = terrain::colourField(field.width(), field.height(), values, ramp.ramp);
+            if (o.colourBar) terrain::addColourBar(image, ramp.ramp, 1.0f, ramp.units);
+        }
     }
-    terrain::writeRgbPng(o.out, image);
-    log::info("wrote ", o.out, " (", image.width, "x", image.height, ")");
+    if (!o.out.empty()) {
+        // Grey maps (hillshade, sky-view, ...) as grey PNGs: a third of the data.
+        bool grey = true;
+        for (size_t k = 0; grey && k < image.rgb.size(); k += 3)
+            grey = image.rgb[k] == image.rgb[k + 1] && image.rgb[k] == image.rgb[k + 2];
+        if (grey) {
+            std::vector<uint8_t> g(image.rgb.size() / 3);
+            for (size_t k = 0; k < g.size(); ++k) g[k] = image.rgb[3 * k];
+            terrain::writeGreyPng(o.out, image.width, image.height, g);
+        } else {
+            terrain::writeRgbPng(o.out, image);
+        }
+        log::info("wrote ", o.out, " (", image.width, "x", image.height, ")");
+    }
 }
 
 }  // namespace
@@ -109,31 +151,20 @@ void addMapCommand(CLI::App& app) {
     auto state = std::make_shared<State>();
     MapOptions& o = state->options;
     CLI::App* cmd = app.add_subcommand(
-        "map", "2D map PNG of a heightfield: height colours, hillshade or slope");
+        "map",
+        "2D map PNG (and float32 .npy field) of a heightfield: height colours, hillshade, "
+        "slope, aspect, TRI, TPI, roughness, curvatures, shadow, sky-view, openness, relief");
     state->sceneOptions =
         std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
-    cmd->add_option("--scheme", o.scheme, "plasma (grey), atlas, hypsometric, hillshade or slope")
-        ->capture_default_str();
-    cmd->add_option("--cpt", o.cpt,
-                    "GMT .cpt colour table for the heights (absolute stored heights)");
-    cmd->add_flag("--colour-bar", o.colourBar,
-                  "Add a legend with ticks and numbers in height units");
-    cmd->add_option("--sun-azimuth", o.sun.azimuth,
-                    "Hillshade sun, degrees clockwise from north (up)")
-        ->capture_default_str();
-    cmd->add_option("--sun-altitude", o.sun.altitude,
-                    "Hillshade sun, degrees above the horizon, 0..90")
-        ->capture_default_str();
-    cmd->add_option("--out", o.out, "Output PNG; required")->required();
-    cmd->callback([state] {
+    map::addMapOptions(*cmd, o);
+    cmd->footer(
+        "Curvatures (1/world unit) follow Florinsky's sign convention: positive = convex "
+        "(hilltops, ridges, slope shoulders), negative = concave (valleys, hollows, slope feet). "
+        "Formulas: docs/maps.md.");
+    cmd->callback([state, cmd] {
         asUsage([&] { state->sceneOptions->apply(); });
         if (state->sceneOptions->printConfigRequested()) return;
-        const terrain::Sun& sun = state->options.sun;
-        if (!std::isfinite(sun.azimuth) || !(sun.altitude >= 0.0f && sun.altitude <= 90.0f))
-            throw UsageError(
-                msg("map: --sun-altitude must be 0..90 degrees and --sun-azimuth finite, got ",
-                    sun.altitude, " and ", sun.azimuth));
-        runMap(state->options);
+        runMap(*cmd, state->options);
     });
 }
 

@@ -143,15 +143,51 @@ class Renderer:
 
 
 class _Maps:
-    """2-D maps of a heightfield, one value per sample (no GL)."""
+    """2-D maps of a heightfield, one float32 value per sample, NaN at no-data (no GL).
+
+    Row 0 is north, columns run west to east; spacing is (x, z) in world units.
+    The fields and their conventions are those of `sierra-gen map` (docs/maps.md).
+    """
 
     @staticmethod
-    def hillshade(heights, spacing=None, azimuth=315.0, altitude=45.0, z_factor=1.0):
-        """0..255 per sample (NaN at no-data), lit from `azimuth` (degrees clockwise from north,
-        row 0 being north) at `altitude` degrees."""
+    def _dem(name, heights, spacing, compute_edges=True, azimuth=315.0, altitude=45.0,
+             z_factor=1.0):
         sx, sz = _spacing(spacing)
-        return _sierra.hillshade(_heights(heights), sx, sz, float(azimuth), float(altitude),
-                                 float(z_factor))
+        return _sierra.dem_field(_heights(heights), sx, sz, name, bool(compute_edges),
+                                 float(azimuth), float(altitude), float(z_factor))
+
+    def hillshade(self, heights, spacing=None, azimuth=315.0, altitude=45.0, z_factor=1.0,
+                  compute_edges=True):
+        """1..255 as gdaldem's hillshade (lit from `azimuth`, degrees clockwise from north,
+        at `altitude` degrees)."""
+        return self._dem("hillshade", heights, spacing, compute_edges, azimuth, altitude,
+                         z_factor)
+
+    def slope(self, heights, spacing=None, compute_edges=True):
+        """Degrees, 0 = flat."""
+        return self._dem("slope", heights, spacing, compute_edges)
+
+    def aspect(self, heights, spacing=None, compute_edges=True):
+        """Compass degrees the slope faces (0 = north, 90 = east), NaN where flat."""
+        return self._dem("aspect", heights, spacing, compute_edges)
+
+    def field(self, name, heights, spacing=None, compute_edges=True):
+        """Any scalar map by its `sierra-gen map --scheme` name: tri, tpi, roughness,
+        curvature-profile, curvature-plan, ...; shadow, sky-view, sky-light, openness-positive
+        and openness-negative take the keywords of `relief`."""
+        if name in ("shadow", "sky-view", "sky-light", "openness-positive", "openness-negative"):
+            return self.relief(name, heights, spacing)
+        return self._dem(name, heights, spacing, compute_edges)
+
+    @staticmethod
+    def relief(name, heights, spacing=None, directions=16, radius=0.0, sun_azimuth=315.0,
+               sun_altitude=45.0, sun_size=0.53):
+        """A relief lighting field (docs/relief.md): "shadow" (the share of the sun's disc
+        seen, 0..1), "sky-view", "sky-light", "openness-positive", "openness-negative"."""
+        sx, sz = _spacing(spacing)
+        return _sierra.relief_field(_heights(heights), sx, sz, name, int(directions),
+                                    float(radius), float(sun_azimuth), float(sun_altitude),
+                                    float(sun_size))
 
 
 maps = _Maps()

@@ -82,10 +82,28 @@ def test_hillshade_map(renderer):
     assert hs.shape == heights.shape and hs.dtype == np.float32
     assert 0 <= np.nanmin(hs) and np.nanmax(hs) <= 255 and np.nanstd(hs) > 1
     flat = sierra.maps.hillshade(np.zeros((20, 30)), altitude=45)
-    assert np.allclose(flat, 255 * np.sin(np.radians(45)), atol=0.5)
+    assert np.allclose(flat, 1 + 254 * np.sin(np.radians(45)), atol=1e-3)  # gdaldem's scale
     holes = heights.copy()
     holes[5, 7] = np.nan
     assert np.isnan(sierra.maps.hillshade(holes)[5, 7])
+
+
+def test_slope_and_relief_fields():
+    # A plane rising 1 in 2 to the east: slope atan(0.5), facing west.
+    plane = np.tile(np.arange(40, dtype=np.float64) * 0.5, (30, 1))
+    assert np.allclose(sierra.maps.slope(plane), np.degrees(np.arctan(0.5)), atol=1e-4)
+    assert np.allclose(sierra.maps.aspect(plane), 270.0, atol=1e-4)
+    # Open ground sees the whole sky and the whole sun.
+    flat = np.zeros((33, 33))
+    assert np.allclose(sierra.maps.relief("sky-view", flat), 1.0)
+    assert np.allclose(sierra.maps.relief("shadow", flat, sun_altitude=30), 1.0)
+    # A wall to the west shades the ground east of it from a low western sun.
+    wall = np.zeros((33, 33))
+    wall[:, :4] = 10.0
+    shadow = sierra.maps.relief("shadow", wall, sun_azimuth=270, sun_altitude=20)
+    assert shadow[16, 6] == 0.0 and shadow[16, 30] == 1.0
+    with pytest.raises(sierra.Error, match="unknown"):
+        sierra.maps.field("glow", flat)
 
 
 def test_scene_round_trip_and_render_from_scene(renderer):

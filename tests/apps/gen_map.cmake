@@ -4,7 +4,9 @@
 include(${CMAKE_CURRENT_LIST_DIR}/common.cmake.inc)
 
 # Each scheme on a generated 129^2 terrain: 129x129 pixels.
-foreach(scheme plasma atlas hypsometric hillshade slope)
+foreach(scheme plasma atlas hypsometric hillshade slope aspect tri tpi roughness curvature-profile
+               curvature-plan curvature-tangential curvature-mean curvature-gaussian curvature-min
+               curvature-max shadow sky-view openness-positive openness-negative relief)
   run_app(map_${scheme} EXPECT_OK MESSAGE "(129x129)" COMMAND ${GEN} map --generate 129 --scheme ${scheme} --out ${scheme}.png)
   expect_png_size(${WORK_DIR}/${scheme}.png 129 129)
 endforeach()
@@ -15,8 +17,34 @@ expect_different(${WORK_DIR}/hypsometric.png ${WORK_DIR}/cpt.png "--cpt")
 run_app(map_sun EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme hillshade --sun-azimuth 135 --out sun.png)
 expect_different(${WORK_DIR}/hillshade.png ${WORK_DIR}/sun.png "--sun-azimuth")
 
+# --values: the float32 field, one value per sample, rows as the map's
+# (numpy's header gives the shape (rows, columns)).
+run_app(map_values EXPECT_OK COMMAND ${GEN} map --generate 65 --scheme curvature-mean --values mean.npy)
+expect_file(${WORK_DIR}/mean.npy)
+file(READ ${WORK_DIR}/mean.npy header OFFSET 10 LIMIT 118)  # after the magic and the version
+if(NOT header MATCHES "'descr': '<f4'.*'shape': \\(65, 65\\)")
+  message(FATAL_ERROR "mean.npy: not a 65x65 float32 array:\n${header}")
+endif()
+file(SIZE ${WORK_DIR}/mean.npy npy_size)
+if(NOT npy_size EQUAL 17028)  # a 128-byte header and 65 * 65 * 4 bytes
+  message(FATAL_ERROR "mean.npy has ${npy_size} bytes, expected 17028")
+endif()
+foreach(variant "--multidirectional" "--combined" "--igor" "--algorithm;zevenbergen" "--compute-edges")
+  string(REPLACE ";" "_" tag "${variant}")
+  run_app(map_hillshade${tag} EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme hillshade ${variant} --out hillshade${tag}.png)
+  expect_different(${WORK_DIR}/hillshade.png ${WORK_DIR}/hillshade${tag}.png "hillshade ${variant}")
+endforeach()
+
+# The lighting options change the lighting maps.
+run_app(map_shadow_low EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme shadow --altitude 10 --sun-size 2 --out shadow_low.png)
+expect_different(${WORK_DIR}/shadow.png ${WORK_DIR}/shadow_low.png "shadow --altitude")
+run_app(map_sky_radius EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme sky-view --horizon-radius 5 --directions 8 --out sky_radius.png)
+expect_different(${WORK_DIR}/sky-view.png ${WORK_DIR}/sky_radius.png "sky-view --horizon-radius")
+run_app(map_relief_cpt EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme relief --cpt ${ASSETS_DIR}/cpt/bands.cpt --out relief_cpt.png)
+expect_different(${WORK_DIR}/relief.png ${WORK_DIR}/relief_cpt.png "relief --cpt")
+
 # A colour bar is appended on the right: same height, wider.
-foreach(scheme atlas slope)
+foreach(scheme atlas slope tpi curvature-plan sky-view)
   run_app(map_${scheme}_bar EXPECT_OK COMMAND ${GEN} map --generate 129 --scheme ${scheme} --colour-bar --out ${scheme}_bar.png)
   png_size(w h ${WORK_DIR}/${scheme}_bar.png)
   if(NOT h EQUAL 129 OR NOT w GREATER 129)
@@ -77,7 +105,20 @@ expect_map_error(output_is_a_dir 1 "adir.png" adir.png --generate 129 --scheme a
 expect_map_error(cpt_with_hillshade 2 "--cpt" cpt_shade.png --generate 129 --scheme hillshade --cpt ${ASSETS_DIR}/cpt/bands.cpt)
 expect_map_error(missing_cpt 1 "none.cpt" cpt_missing.png --generate 129 --cpt none.cpt)
 expect_map_error(bar_on_hillshade 2 "--colour-bar" bar_shade.png --generate 129 --scheme hillshade --colour-bar)
-expect_map_error(sun_below_horizon 2 "--sun-altitude" sun_low.png --generate 129 --scheme hillshade --sun-altitude -5)
+expect_map_error(sun_below_horizon 2 "--altitude" sun_low.png --generate 129 --scheme hillshade --sun-altitude -5)
+expect_map_error(sun_size_zero 2 "--sun-size" sun_size.png --generate 129 --scheme shadow --sun-size 0)
+expect_map_error(tri_formula 2 "--tri must be riley or wilson" tri_foo.png --generate 129 --scheme tri --tri foo)
+expect_map_error(unknown_scheme_lists 2 "curvature-gaussian" list.png --generate 129 --scheme curvature)
+expect_map_error(option_not_for_scheme 2 "--tri does not apply to --scheme slope" notri.png --generate 129 --scheme slope --tri wilson)
+expect_map_error(edges_not_for_heights 2 "--compute-edges does not apply" edges.png --generate 129 --scheme atlas --compute-edges)
+expect_map_error(two_styles 2 "only one of" styles.png --generate 129 --scheme hillshade --igor --combined)
+expect_map_error(igor_altitude 2 "--altitude does not apply" igor.png --generate 129 --scheme hillshade --igor --altitude 30)
+expect_map_error(horn_curvature 2 "evans-young or zevenbergen" horn.png --generate 129 --scheme curvature-mean --algorithm horn)
+expect_map_error(directions_zero 2 "--directions" dirs.png --generate 129 --scheme sky-view --directions 0)
+expect_map_error(radius_negative 2 "--horizon-radius" radius.png --generate 129 --scheme openness-positive --horizon-radius -1)
+expect_map_error(sun_size_not_for_sky 2 "--sun-size does not apply" sky_sun.png --generate 129 --scheme sky-view --sun-size 1)
+expect_map_error(values_of_heights 2 "--values does not apply" heights.png --generate 129 --scheme atlas --values heights.npy)
+expect_map_error(values_not_npy 2 "--values must name a .npy" values.png --generate 129 --scheme slope --values slope.txt)
 expect_map_error(bad_generate_size 1 "2^n + 1" size.png --generate 100)
 # Maps are PNG whatever their name: another extension is refused before the work.
 run_app(map_not_png EXPECT_FAIL EXIT 2 MESSAGE "--out must name a .png file" COMMAND ${GEN} map --generate 65 --out map.jpg)

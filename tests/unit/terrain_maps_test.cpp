@@ -1,5 +1,6 @@
-// 2D maps: plasma is grey, hillshade and slope behave as the usual DEM tools'
-// do on planes, and the colour bar's legend labels the colours it shows.
+// 2D maps: plasma is grey, scalar fields take their ramp's colours, the shaded
+// relief follows its light, and the colour bar's legend labels the colours it
+// shows.
 
 #include <sierra/terrain/Maps.h>
 
@@ -10,14 +11,6 @@
 
 namespace sierra::terrain {
 namespace {
-
-// A plane z = a * i + b * j (stored heights) on a w x h grid.
-Heightfield plane(int w, int h, float a, float b) {
-    Heightfield f(w, h);
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) f.at(i, j) = a * float(i) + b * float(j);
-    return f;
-}
 
 Heightfield bumpy(int n) {
     Heightfield f(n, n);
@@ -30,7 +23,7 @@ Heightfield bumpy(int n) {
 TEST(Maps, PlasmaIsGrey) {
     Heightfield f = bumpy(65);
     ColourRamp ramp = ColourRamp::forField(f, RampScheme::Plasma, 0.0f);
-    RgbImage image = renderMap(f, MapScheme::Plasma, ramp);
+    RgbImage image = renderMap(f, ramp);
     int distinct = 0, last = -1;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
@@ -46,60 +39,47 @@ TEST(Maps, PlasmaIsGrey) {
     EXPECT_EQ(ramp.colourAt(hi).r, 255);
 }
 
-TEST(Maps, HillshadeOfPlaneFacingTheSunIsUniformAndBrighter) {
-    // Sun in the north-west (315 degrees), 45 degrees up. Row 0 is north: a
-    // plane that rises to the south-east (+i, +j) faces the sun.
-    const Sun sun{315.0f, 45.0f};
-    Heightfield towards = plane(33, 33, 0.5f, 0.5f);
-    Heightfield away = plane(33, 33, -0.5f, -0.5f);
-    std::vector<float> lit = hillshade(towards, sun);
-    std::vector<float> dark = hillshade(away, sun);
-    for (size_t k = 0; k < lit.size(); ++k) {
-        ASSERT_NEAR(lit[k], lit[0], 1e-3f) << k;  // uniform, edges included
-        ASSERT_NEAR(dark[k], dark[0], 1e-3f) << k;
-    }
-    EXPECT_GT(lit[0], dark[0] + 50.0f);
-    // Facing the sun exactly (normal along the sun): slope 45 degrees towards
-    // the sun at altitude 45 is lit at 255 * cos(0)... here the normal is
-    // tilted atan(0.5 * sqrt 2) from vertical towards the sun: the value is
-    // 255 * cos(45 deg - that tilt).
-    const double tilt = std::atan(0.5 * std::sqrt(2.0));
-    EXPECT_NEAR(lit[0], 255.0 * std::cos(M_PI / 4 - tilt), 0.5);
-    // A flat plane is lit by sin(altitude).
-    std::vector<float> flat = hillshade(plane(9, 9, 0.0f, 0.0f), sun);
-    EXPECT_NEAR(flat[40], 255.0 * std::sin(M_PI / 4), 0.5);
+TEST(Maps, ColourFieldUsesTheRampAndNoDataColour) {
+    const float nan = std::nanf("");
+    const std::vector<float> values = {0.0f, 45.0f, 90.0f, nan};
+    ColourRamp ramp({{0.0f, {255, 255, 255}}, {90.0f, {0, 0, 0}}}, 0.0f, 90.0f,
+                    {.noData = Rgb{1, 2, 3}});
+    RgbImage image = colourField(2, 2, values, ramp);
+    EXPECT_EQ(image.at(0, 0).r, 255);
+    EXPECT_EQ(image.at(1, 0).r, 128);  // 255 * (1 - 45 / 90), rounded
+    EXPECT_EQ(image.at(0, 1).r, 0);
+    EXPECT_EQ(image.at(1, 1).b, 3);
+    EXPECT_THROW(colourField(3, 2, values, ramp), Error);
+    EXPECT_EQ(finiteQuantile(values, 1.0), 90.0f);
+    EXPECT_EQ(finiteQuantile(values, 0.0), 0.0f);
 }
 
-TEST(Maps, HillshadeUsesVerticalScaleAndSpacing) {
-    // The same world plane stored two ways shades the same: a falls 1 stored
-    // unit (x1) per 1 world unit; b falls 2 stored units (x2 = 4 world) per 4.
-    // Both descend to the east, towards the sun.
-    Heightfield a = plane(17, 17, -1.0f, 0.0f);
-    Heightfield b = plane(17, 17, -2.0f, 0.0f);
-    b.setVerticalScale(2.0f);
-    b.setSpacing(4.0f, 4.0f);
-    const Sun sun{90.0f, 30.0f};
-    EXPECT_NEAR(hillshade(a, sun)[100], hillshade(b, sun)[100], 1e-3f);
-    // A gentler plane (vertical scale 0.3) turns from the low sun: darker.
-    Heightfield gentler = plane(17, 17, -1.0f, 0.0f);
-    gentler.setVerticalScale(0.3f);
-    EXPECT_LT(hillshade(gentler, sun)[100], hillshade(a, sun)[100] - 30.0f);
-}
-
-TEST(Maps, SlopeInDegrees) {
-    std::vector<float> s = slopeDegrees(plane(9, 9, 1.0f, 0.0f));  // rise 1 per 1: 45 degrees
-    for (float v : s) ASSERT_NEAR(v, 45.0f, 1e-3f);
-    std::vector<float> flat = slopeDegrees(plane(9, 9, 0.0f, 0.0f));
-    for (float v : flat) ASSERT_NEAR(v, 0.0f, 1e-6f);
-    RgbImage image = renderMap(plane(9, 9, 1.0f, 0.0f), MapScheme::Slope, ColourRamp());
-    EXPECT_EQ(image.at(4, 4).r, 128);  // 255 * (1 - 45 / 90), rounded
+TEST(Maps, ShadedReliefFollowsTheLight) {
+    Heightfield f = bumpy(33);
+    const auto [lo, hi] = f.range();
+    ColourRamp tints({{lo, {100, 120, 90}}, {hi, {150, 160, 120}}}, lo, hi);
+    const size_t n = size_t(f.sampleCount());
+    std::vector<float> flat(n, 181.0f), lit(n, 255.0f), dark(n, 40.0f), open(n, 1.0f),
+        closed(n, 0.3f);
+    auto sum = [](const RgbImage& image, int x, int y) {
+        Rgb c = image.at(x, y);
+        return c.r + c.g + c.b;
+    };
+    RgbImage base = shadedRelief(f, tints, flat, open);
+    // Flat ground under an open sky keeps the tint.
+    const Rgb tint = tints.colourAt(f.at(5, 7));
+    EXPECT_EQ(base.at(5, 7).r, tint.r);
+    EXPECT_EQ(base.at(5, 7).g, tint.g);
+    EXPECT_GT(sum(shadedRelief(f, tints, lit, open), 5, 7), sum(base, 5, 7));
+    EXPECT_LT(sum(shadedRelief(f, tints, dark, open), 5, 7), sum(base, 5, 7));
+    EXPECT_LT(sum(shadedRelief(f, tints, flat, closed), 5, 7), sum(base, 5, 7));
 }
 
 TEST(Maps, AtlasLegendColoursMatchRampAtLabelledHeights) {
     Heightfield f = bumpy(129);
     f.setVerticalScale(2.5f);  // labels in world units = stored * 2.5
     ColourRamp ramp = ColourRamp::forField(f, RampScheme::Atlas, 5.0f);
-    RgbImage image = renderMap(f, MapScheme::Atlas, ramp);
+    RgbImage image = renderMap(f, ramp);
     const int mapWidth = image.width;
     int barX = 0;
     std::vector<LegendTick> ticks = addColourBar(image, ramp, f.verticalScale(), "m", &barX);
@@ -152,8 +132,10 @@ TEST(Maps, DigitsAreDrawnWhole) {
 }
 
 TEST(Maps, UnknownSchemeIsAnError) {
-    EXPECT_THROW(parseMapScheme("rainbow"), Error);
-    EXPECT_EQ(parseMapScheme("hillshade"), MapScheme::Hillshade);
+    MapScheme scheme = MapScheme::Plasma;
+    EXPECT_FALSE(parseMapScheme("rainbow", &scheme));
+    EXPECT_TRUE(parseMapScheme("atlas", &scheme));
+    EXPECT_EQ(scheme, MapScheme::Atlas);
 }
 
 }  // namespace

@@ -24,51 +24,10 @@
 namespace sierra::terrain {
 namespace {
 
-constexpr double kDegrees = std::numbers::pi / 180.0;
-
-// World-unit height gradient (east, north) at (i, j), Sobel-weighted over the
-// 3x3 neighbourhood; row j - 1 is north. A neighbour outside the grid or with
-// no data is extrapolated linearly from the centre and the opposite neighbour
-// (the centre itself when that is missing too), so a plane is a plane up to
-// the edges.
-struct Gradient {
-    double east, north;
-};
-
-Gradient gradientAt(const Heightfield& f, int i, int j) {
-    const int w = f.width(), h = f.height();
-    auto has = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && f.valid(x, y); };
-    const double c = f.at(i, j);
-    // Missing diagonal neighbours whose opposite is missing too (corners) are
-    // extrapolated from the two axis neighbours: h(di, dj) = h(di, 0) + h(0, dj) - c.
-    auto axis = [&](int di, int dj) {
-        if (has(i + di, j + dj)) return double(f.at(i + di, j + dj));
-        if (has(i - di, j - dj)) return 2.0 * c - double(f.at(i - di, j - dj));
-        return c;
-    };
-    auto height = [&](int di, int dj) {
-        if (di == 0 || dj == 0 || has(i + di, j + dj) || has(i - di, j - dj)) return axis(di, dj);
-        return axis(di, 0) + axis(0, dj) - c;
-    };
-    double z[3][3];
-    for (int dj = -1; dj <= 1; ++dj)
-        for (int di = -1; di <= 1; ++di) z[dj + 1][di + 1] = height(di, dj);
-    const double vs = f.verticalScale();
-    const double east = ((z[0][2] + 2 * z[1][2] + z[2][2]) - (z[0][0] + 2 * z[1][0] + z[2][0])) /
-                        (8.0 * f.spacingX());
-    const double north = ((z[0][0] + 2 * z[0][1] + z[0][2]) - (z[2][0] + 2 * z[2][1] + z[2][2])) /
-                         (8.0 * f.spacingZ());
-    return {east * vs, north * vs};
-}
-
 void appendBytes(void* context, void* data, int size) {
     auto* out = static_cast<std::vector<uint8_t>*>(context);
     auto* p = static_cast<const uint8_t*>(data);
     out->insert(out->end(), p, p + size);
-}
-
-uint8_t grey8(double v) {
-    return uint8_t(std::lround(std::clamp(v, 0.0, 255.0)));
 }
 
 std::string tickLabel(double value, double step) {
@@ -79,72 +38,99 @@ std::string tickLabel(double value, double step) {
 
 }  // namespace
 
-std::vector<float> hillshade(const Heightfield& field, const Sun& sun) {
-    SIERRA_CHECK(std::isfinite(sun.azimuth) && std::isfinite(sun.altitude) &&
-                     sun.altitude >= 0.0f && sun.altitude <= 90.0f,
-                 "sun azimuth ", sun.azimuth, " and altitude ", sun.altitude,
-                 " degrees: need a finite azimuth and an altitude in 0..90");
-    const double az = sun.azimuth * kDegrees, alt = sun.altitude * kDegrees;
-    const double lx = std::sin(az) * std::cos(alt), ly = std::cos(az) * std::cos(alt),
-                 lz = std::sin(alt);
-    std::vector<float> out(size_t(field.sampleCount()), 0.0f);
-    for (int j = 0; j < field.height(); ++j)
-        for (int i = 0; i < field.width(); ++i) {
-            if (!field.valid(i, j)) continue;
-            const Gradient g = gradientAt(field, i, j);
-            // Normal of z = f(east, north): (-dz/de, -dz/dn, 1), normalised.
-            const double len = std::sqrt(g.east * g.east + g.north * g.north + 1.0);
-            const double lit = (-g.east * lx - g.north * ly + lz) / len;
-            out[size_t(j) * field.width() + i] = float(255.0 * std::max(0.0, lit));
-        }
-    return out;
+bool parseMapScheme(const std::string& name, MapScheme* out) {
+    MapScheme scheme;
+    if (name == "plasma")
+        scheme = MapScheme::Plasma;
+    else if (name == "atlas")
+        scheme = MapScheme::Atlas;
+    else if (name == "hypsometric")
+        scheme = MapScheme::Hypsometric;
+    else
+        return false;
+    if (out) *out = scheme;
+    return true;
 }
 
-std::vector<float> slopeDegrees(const Heightfield& field) {
-    std::vector<float> out(size_t(field.sampleCount()), std::numeric_limits<float>::quiet_NaN());
-    for (int j = 0; j < field.height(); ++j)
-        for (int i = 0; i < field.width(); ++i) {
-            if (!field.valid(i, j)) continue;
-            const Gradient g = gradientAt(field, i, j);
-            out[size_t(j) * field.width() + i] =
-                float(std::atan(std::hypot(g.east, g.north)) / kDegrees);
-        }
-    return out;
-}
-
-MapScheme parseMapScheme(const std::string& name) {
-    if (name == "plasma") return MapScheme::Plasma;
-    if (name == "atlas") return MapScheme::Atlas;
-    if (name == "hypsometric") return MapScheme::Hypsometric;
-    if (name == "hillshade") return MapScheme::Hillshade;
-    if (name == "slope") return MapScheme::Slope;
-    throw Error(msg("unknown map scheme '", name,
-                    "'; expected plasma, atlas, hypsometric, hillshade or slope"));
-}
-
-RgbImage renderMap(const Heightfield& field, MapScheme scheme, const ColourRamp& ramp,
-                   const Sun& sun) {
+RgbImage renderMap(const Heightfield& field, const ColourRamp& ramp) {
     SIERRA_CHECK(!field.empty(), "cannot draw a map of an empty heightfield");
     RgbImage image{field.width(), field.height(),
                    std::vector<uint8_t>(size_t(field.sampleCount()) * 3)};
-    std::vector<float> grey;
-    if (scheme == MapScheme::Hillshade) grey = hillshade(field, sun);
-    if (scheme == MapScheme::Slope) {
-        grey = slopeDegrees(field);
-        for (float& s : grey) s = 255.0f * (1.0f - s / 90.0f);  // flat white, vertical black
-    }
+    for (int j = 0; j < field.height(); ++j)
+        for (int i = 0; i < field.width(); ++i)
+            image.set(i, j,
+                      field.valid(i, j) ? ramp.colourAt(field.at(i, j)) : ramp.noDataColour());
+    return image;
+}
+
+RgbImage colourField(int width, int height, std::span<const float> values, const ColourRamp& ramp) {
+    SIERRA_CHECK(width > 0 && height > 0 && values.size() == size_t(width) * size_t(height), "a ",
+                 width, "x", height, " map needs ", int64_t(width) * height, " values, got ",
+                 values.size());
+    RgbImage image{width, height, std::vector<uint8_t>(values.size() * 3)};
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const float v = values[size_t(y) * size_t(width) + size_t(x)];
+            image.set(x, y, std::isnan(v) ? ramp.noDataColour() : ramp.colourAt(v));
+        }
+    return image;
+}
+
+float finiteQuantile(std::span<const float> values, double share) {
+    SIERRA_CHECK(share >= 0.0 && share <= 1.0, "a quantile needs a share in [0, 1], got ", share);
+    std::vector<float> finite;
+    finite.reserve(values.size());
+    for (float v : values)
+        if (std::isfinite(v)) finite.push_back(v);
+    if (finite.empty()) return 0.0f;
+    auto nth = finite.begin() +
+               std::ptrdiff_t(std::min(finite.size() - 1, size_t(double(finite.size()) * share)));
+    std::nth_element(finite.begin(), nth, finite.end());
+    return *nth;
+}
+
+RgbImage shadedRelief(const Heightfield& field, const ColourRamp& tints,
+                      std::span<const float> hillshade, std::span<const float> skyView,
+                      const ReliefDesc& desc) {
+    SIERRA_CHECK(!field.empty(), "cannot draw a relief of an empty heightfield");
+    const size_t n = size_t(field.sampleCount());
+    SIERRA_CHECK(hillshade.size() == n && skyView.size() == n, "shaded relief: ", n,
+                 " samples need as many hillshade and sky-view values, got ", hillshade.size(),
+                 " and ", skyView.size());
+    SIERRA_CHECK(desc.flatShade > 0.0f && desc.shadeWeight >= 0.0f && desc.shadeWeight <= 1.0f &&
+                     desc.skyWeight >= 0.0f && desc.skyWeight <= 1.0f && desc.skyFloor >= 0.0f &&
+                     desc.skyFloor < 1.0f,
+                 "shaded relief: flatShade > 0, weights in 0..1 and skyFloor in 0..1, got ",
+                 desc.flatShade, ", ", desc.shadeWeight, ", ", desc.skyWeight, ", ", desc.skyFloor);
+    RgbImage image{field.width(), field.height(), std::vector<uint8_t>(n * 3)};
     for (int j = 0; j < field.height(); ++j)
         for (int i = 0; i < field.width(); ++i) {
-            Rgb c = ramp.noDataColour();
-            if (field.valid(i, j)) {
-                if (grey.empty()) {
-                    c = ramp.colourAt(field.at(i, j));
-                } else {
-                    const uint8_t g = grey8(grey[size_t(j) * field.width() + i]);
-                    c = {g, g, g};
-                }
+            const size_t k = size_t(j) * size_t(field.width()) + size_t(i);
+            if (!field.valid(i, j)) {
+                image.set(i, j, tints.noDataColour());
+                continue;
             }
-            image.set(i, j, c);
+            const Rgb tint = tints.colourAt(field.at(i, j));
+            // Light relative to flat ground: 1 on the flat, above on the lit side.
+            const float shade = std::isnan(hillshade[k]) ? desc.flatShade : hillshade[k];
+            const float light = 1.0f + desc.shadeWeight * (shade / desc.flatShade - 1.0f);
+            const float sky =
+                std::isnan(skyView[k])
+                    ? 1.0f
+                    : std::clamp((skyView[k] - desc.skyFloor) / (1.0f - desc.skyFloor), 0.0f, 1.0f);
+            const float open = 1.0f - desc.skyWeight * (1.0f - sky);
+            // Shadows lean blue-grey and lit slopes warm, as in hand-drawn relief.
+            const float dark = std::max(0.0f, 1.0f - light);
+            const float lit = std::max(0.0f, light - 1.0f);
+            const float mix[3] = {1.0f - 0.35f * dark + 0.08f * lit,
+                                  1.0f - 0.18f * dark + 0.03f * lit,
+                                  1.0f + 0.12f * dark - 0.12f * lit};
+            const float base[3] = {float(tint.r), float(tint.g), float(tint.b)};
+            uint8_t out[3];
+            for (int c = 0; c < 3; ++c)
+                out[c] =
+                    uint8_t(std::lround(std::clamp(base[c] * light * open * mix[c], 0.0f, 255.0f)));
+            image.set(i, j, {out[0], out[1], out[2]});
         }
     return image;
 }

@@ -1,7 +1,7 @@
 #pragma once
-// 2D maps of a heightfield (no GL): height colour schemes, hillshade and slope
-// as GIS users know them from the usual DEM tools, and a colour bar legend with
-// ticks and numbers in height units.
+// 2D maps of a heightfield (no GL): height colour schemes, scalar fields
+// (DemMaps.h) through colour ramps, the shaded relief composite, and a colour
+// bar legend with ticks and numbers in the field's units.
 
 #include <sierra/terrain/ColourRamp.h>
 #include <sierra/terrain/Heightfield.h>
@@ -36,35 +36,40 @@ struct RgbImage {
 RgbImage decodePngRgb8(const std::string& what, std::span<const uint8_t> bytes,
                        int maxPaddedSide = kDefaultMaxPaddedSide);
 
-// The sun for hillshade: compass azimuth in degrees clockwise from north (the
-// top of the map), altitude in degrees above the horizon. Defaults 315 / 45:
-// light from the upper left, as shaded relief maps are usually lit.
-struct Sun {
-    float azimuth = 315.0f;
-    float altitude = 45.0f;
+enum class MapScheme { Plasma, Atlas, Hypsometric, Cpt };
+
+// Parses "plasma", "atlas", "hypsometric"; false for any other name.
+bool parseMapScheme(const std::string& name, MapScheme* out);
+
+// The map image of `field`'s heights, one pixel per sample, coloured through
+// `ramp`. No-data samples take ramp.noDataColour().
+RgbImage renderMap(const Heightfield& field, const ColourRamp& ramp);
+
+// A scalar field (row-major, width x height) coloured through `ramp`; NaN
+// takes ramp.noDataColour().
+RgbImage colourField(int width, int height, std::span<const float> values, const ColourRamp& ramp);
+
+// The value below which `share` (0..1) of the finite values lie; 0 when there
+// are none.
+float finiteQuantile(std::span<const float> values, double share);
+
+// The shaded relief of Swiss topographic maps (after Imhof, "Cartographic
+// Relief Presentation", 1982): height tints multiplied by an oblique
+// hillshade normalised to flat ground (brighter than the tint on slopes facing
+// the light, darker and bluer facing away) and by the sky-view factor (dark in
+// deep valleys and gullies), stretched from skyFloor (darkest) to 1 (open).
+// hillshade: 1..255 per sample as DemField::Hillshade gives it, NaN where it
+// has none (taken as flat: flatShade); skyView 0..1, NaN taken as 1. No-data
+// samples take tints.noDataColour().
+struct ReliefDesc {
+    float flatShade = 181.0f;  // the hillshade of flat ground: 1 + 254 sin(altitude)
+    float shadeWeight = 0.6f;  // 0 = tints only, 1 = the full hillshade
+    float skyWeight = 0.5f;    // 0 = no sky-view darkening, 1 = black where the sky is least
+    float skyFloor = 0.0f;     // the sky-view factor drawn darkest (0..1): below it clamps
 };
-
-// Hillshade 0..255 per sample: 255 * max(0, n . sun), n the surface normal from
-// the 3x3 (Sobel-weighted) height gradient in world units: heights times
-// field.verticalScale(), distances field.spacingX() / spacingZ(). The map's top
-// is north (row 0), its right east. Edges repeat their samples; no-data
-// neighbours take the centre's height; no-data samples give 0.
-std::vector<float> hillshade(const Heightfield& field, const Sun& sun);
-
-// Slope in degrees (0 = flat, 90 = vertical) per sample, from the same
-// gradient; no-data samples give NaN.
-std::vector<float> slopeDegrees(const Heightfield& field);
-
-enum class MapScheme { Plasma, Atlas, Hypsometric, Hillshade, Slope, Cpt };
-
-// Parses "plasma", "atlas", "hypsometric", "hillshade", "slope"; throws otherwise.
-MapScheme parseMapScheme(const std::string& name);
-
-// The map image of `field`, one pixel per sample. Height schemes colour through
-// `ramp`; hillshade and slope are grey (hillshade: 0 = unlit; slope: white
-// flat to black vertical). No-data samples take ramp.noDataColour().
-RgbImage renderMap(const Heightfield& field, MapScheme scheme, const ColourRamp& ramp,
-                   const Sun& sun = {});
+RgbImage shadedRelief(const Heightfield& field, const ColourRamp& tints,
+                      std::span<const float> hillshade, std::span<const float> skyView,
+                      const ReliefDesc& desc = {});
 
 // A legend tick: the height it labels (height units = stored height times
 // unitScale) and the image row of the bar where that height's colour is.
