@@ -7,7 +7,16 @@
 // Azimuths are compass bearings in degrees, clockwise from north; north is
 // -z (row 0 of the grid), east +x. Fields are row-major like the heightfield
 // (index j * width + i). No-data samples neither cast nor receive: their
-// values are NaN and they are skipped as occluders.
+// values are NaN and they are skipped as occluders; so is the padding
+// (HorizonOptions::validWidth / validHeight).
+//
+// Horizons are found by a sweep per azimuth along digital lines that tile the
+// grid (docs/relief.md): the occluder of a sample is the point of its line's
+// profile where the tangent from it touches the profile's upper hull, the
+// profile's abscissa being the projection onto the azimuth; the elevation is
+// then taken at that point's true horizontal distance. Grid-aligned azimuths
+// (the axes, and the diagonals on a square grid) are exact for the surface as
+// drawn at full resolution. O(samples) per azimuth without a radius.
 
 #include <sierra/terrain/Heightfield.h>
 
@@ -21,13 +30,15 @@ struct HorizonOptions {
     // (degrees clockwise from north). Default 16, from north.
     int directions = 16;
     float firstAzimuth = 0.0f;
-    // Search radius in world units; 0 (the default) searches the whole grid.
+    // Search radius in world units, measured along the azimuth; 0 (the
+    // default) searches the whole grid.
     float radius = 0.0f;
     // Columns and rows of real data (the rest is padding, which never casts);
     // 0 = the whole grid.
     int validWidth = 0;
     int validHeight = 0;
-    // Worker threads (0 = sierra::defaultThreadCount()).
+    // Worker threads (0 = sierra::defaultThreadCount()); the result does not
+    // depend on it.
     int threads = 0;
 };
 
@@ -50,6 +61,9 @@ struct Horizons {
     }
 };
 
+// Throws sierra::Error for an empty field, directions outside 1..1024, a
+// non-finite firstAzimuth, a negative or non-finite radius, valid sizes
+// outside 0..width / 0..height, or negative threads.
 Horizons computeHorizons(const terrain::Heightfield& field, const HorizonOptions& options);
 
 // The sun as a disc: bearing and altitude of its centre in degrees, and its
@@ -61,8 +75,16 @@ struct SunDisc {
 };
 
 // Fraction 0..1 of the sun's disc above the horizon in the sun's azimuth, per
-// sample (NaN at no-data). The disc's vertical extent gives the penumbra.
-// Throws sierra::Error for a diameter <= 0 or a non-finite sun.
+// sample (NaN at no-data and in the padding): the area of the disc above a
+// horizontal line at the horizon's elevation (a circular segment), so the
+// disc's vertical extent gives the penumbra. One sweep, in the sun's azimuth
+// only (options.directions and firstAzimuth are not used). A sun at or below
+// the horizontal is taken as it is (a summit whose horizon is below 0 still
+// sees part of it), except that a sun with altitude < -diameter / 2, its whole
+// disc below the horizontal, gives 0 at every sample with data.
+// Throws sierra::Error for a diameter outside (0, 180) or non-finite, a
+// non-finite azimuth, an altitude outside [-90, 90], and bad options as
+// computeHorizons.
 std::vector<float> sunVisibility(const terrain::Heightfield& field, const SunDisc& sun,
                                  const HorizonOptions& options = {});
 
@@ -72,14 +94,21 @@ std::vector<float> skyViewFactor(const Horizons& horizons);
 
 // The ambient term of the terrain pass: the cosine-weighted fraction of a
 // uniform sky that a sample's surface (its normal from the heightfield)
-// sees past its horizons; 1 on a flat plane. The formula is in docs/relief.md.
+// sees past its horizons; 1 on a flat plane. Normals are central differences
+// in world units (NormalMethod::Edge), as the terrain shader's. Per azimuth
+// the sky from max(horizon, the tangent plane) to the zenith counts, weighted
+// by n . w; the sum is normalised by pi and capped at 1. The closed form is in
+// docs/relief.md. Throws sierra::Error when the horizons do not belong to the
+// field.
 std::vector<float> skyLight(const terrain::Heightfield& field, const Horizons& horizons);
 
 // Openness (Yokoyama, Shirasawa and Pike, "Visualizing Topography by
 // Openness", 2002), in degrees: positive is the mean zenith angle of the
 // horizon over the D azimuths (90 - elevation), negative the mean nadir angle
 // of the terrain seen from below (the positive openness of the inverted
-// surface). Both use options.radius as Yokoyama's L.
+// surface). Both use options.radius as Yokoyama's L. Azimuths in which
+// nothing lies within reach (the grid's edge looking out) are left out of the
+// mean; NaN where none is left, at no-data and in the padding.
 std::vector<float> opennessPositive(const terrain::Heightfield& field,
                                     const HorizonOptions& options = {});
 std::vector<float> opennessNegative(const terrain::Heightfield& field,
