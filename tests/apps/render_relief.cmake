@@ -67,3 +67,12 @@ if(PYTHON3)
 else()
   message(STATUS "python3 not found: the far camera's fog is checked by the GL tests only")
 endif()
+# sierra-bench frames times frames with and without the relief fields.
+run_app(bench_lighting EXPECT_OK MESSAGE "lighting costs (frame medians"
+        COMMAND ${BENCH} frames --generate 65 --size 160x90 --frames 2 --lighting-costs --json costs.json)
+file(READ ${WORK_DIR}/costs.json costs)
+if(NOT costs MATCHES "\"lighting_costs\"")
+  message(FATAL_ERROR "the JSON lacks the lighting costs:\n${costs}")
+endif()
+run_app(bench_lighting_off EXPECT_FAIL EXIT 2 MESSAGE "--lighting-costs compares frames with shadows"
+        COMMAND ${BENCH} frames --generate 65 --size 160x90 --frames 2 --lighting-costs --shadows off --sky-light off)
