@@ -66,9 +66,16 @@ float smoothHeight(vec2 xz) {
            g1.y * (g0.x * texture(uHeights, vec2(t0.x, t1.y)).r + g1.x * texture(uHeights, vec2(t1.x, t1.y)).r);
 }
 
+// The texture coordinate of a ground position in a texture with one texel per
+// grid sample (uHeights, and the terrain pass's relief fields): texel centres
+// on the samples, so linear filtering interpolates between neighbours.
+vec2 groundUv(vec2 xz) {
+    return (xz / uSpacingValid.xy + 0.5) / vec2(uGrid.x);
+}
+
 Ground groundAt(vec2 xz) {
     vec2 texel = 1.0 / vec2(uGrid.x);
-    vec2 uv = (xz / uSpacingValid.xy + 0.5) * texel;
+    vec2 uv = groundUv(xz);
     Ground g;
 #ifdef SIERRA_GROUND_BILINEAR_HEIGHT
     g.height = texture(uHeights, uv).r;

@@ -44,7 +44,8 @@ struct FramesOptions {
     scene::Scene scene;
     std::unique_ptr<scene::SceneOptions> registrar;
     bool compareFull = false;
-    bool overlayCosts = false;  // also time each frame without overlays and with each alone
+    bool overlayCosts = false;   // also time each frame without overlays and with each alone
+    bool lightingCosts = false;  // also time each frame without shadows and sky light
     std::string json;
     std::string saveFrames;  // prefix for PNGs of every frame, empty = none
     int pinCpu = -1;         // the CPU the refining (main) thread is kept on, -1 = any
@@ -59,6 +60,7 @@ struct FrameRecord {
     double psnr = 0, differing = 0;  // against the full grid (compare mode)
     double fullTotal = 0;            // full-grid frame time (compare mode)
     double bare = 0;                 // frame time without overlay passes (--overlay-costs)
+    double plain = 0;                // frame time without shadows and sky light (--lighting-costs)
     std::vector<double> alone;       // frame time with only added pass k (--overlay-costs)
 };
 
@@ -158,6 +160,7 @@ void runFrames(const FramesOptions& o) {
                            render::TerrainGpu::maxGridSide());
     float seaLevel = scene::resolveSeaLevel(sc.terrain, field);
     std::fprintf(stderr, "terrain: %s\n", description.c_str());
+    const std::vector<glm::vec3> allSuns = render::sceneSunDirections(sc, field);
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
@@ -176,7 +179,13 @@ void runFrames(const FramesOptions& o) {
     const int first = sc.path.range ? sc.path.range->first : 0;
     const int last = sc.path.range ? sc.path.range->last : int(all.size()) - 1;
     std::vector<render::Camera> cameras(all.begin() + first, all.begin() + last + 1);
+    const std::vector<glm::vec3> suns(allSuns.begin() + first, allSuns.begin() + last + 1);
     render::DrawOptions draw = render::sceneDrawOptions(sc);
+    draw.lighting.sunDirection = suns.front();
+    if (o.lightingCosts && !draw.lighting.shadows && !draw.lighting.skyLight)
+        throw UsageError(
+            "--lighting-costs compares frames with shadows and sky light against frames "
+            "without: leave --shadows or --sky-light on");
     render::Lod lod = draw.lod;
     render::DrawOptions fullDraw = draw;
     fullDraw.lod = render::Lod::Full;
@@ -190,6 +199,11 @@ void runFrames(const FramesOptions& o) {
         timedFrame(terrain, target, cameras.front(), draw, warm);
         if (o.compareFull || lod == render::Lod::Full)
             timedFrame(terrain, target, cameras.front(), fullDraw, warm);
+        if (o.lightingCosts) {
+            render::DrawOptions plainDraw = draw;
+            plainDraw.lighting.shadows = plainDraw.lighting.skyLight = false;
+            timedFrame(terrain, target, cameras.front(), plainDraw, warm);
+        }
     }
 
     std::vector<FrameRecord> records;
@@ -205,6 +219,8 @@ void runFrames(const FramesOptions& o) {
     }
     for (size_t k = 0; k < cameras.size(); ++k) {
         FrameRecord r;
+        draw.lighting.sunDirection = suns[k];
+        fullDraw.lighting.sunDirection = suns[k];
         gpu::Image image = timedFrame(terrain, target, cameras[k], draw, r);
         if (!o.saveFrames.empty())
             render::writePng(render::sequencePath(o.saveFrames, first + int(k)), image);
@@ -221,6 +237,15 @@ void runFrames(const FramesOptions& o) {
             detail +=
                 msg(", full grid ", fixed(full.total, 1), " ms, PSNR ",
                     std::isfinite(d.psnr) ? fixed(d.psnr, 2) + " dB" : std::string("identical"));
+        }
+        if (o.lightingCosts) {
+            // The same camera without the relief fields, in turn with the frame above.
+            render::DrawOptions plainDraw = draw;
+            plainDraw.lighting.shadows = plainDraw.lighting.skyLight = false;
+            FrameRecord other;
+            timedFrame(terrain, target, cameras[k], plainDraw, other);
+            r.plain = other.total;
+            detail += msg(", plain lighting ", fixed(r.plain, 1), " ms");
         }
         if (o.overlayCosts) {
             // Interleaved with the frame above, so the machine's load weighs on all alike.
@@ -370,6 +395,23 @@ void runFrames(const FramesOptions& o) {
                      {"note", "dB against the full grid; null = identical frames"}};
         j["differing_share_median"] = differing.median;
     }
+    if (o.lightingCosts) {
+        // The ratio of medians of frames drawn in turn from the same cameras.
+        Stats plain = stats(records, &FrameRecord::plain);
+        std::printf(
+            "lighting costs (frame medians, each camera drawn in turn with and without): plain "
+            "lighting %.3f ms, %s%s%s %.3f ms: x%.3f (%+.1f%%); relief fields computed in %.1f "
+            "ms\n",
+            plain.median, draw.lighting.shadows ? "shadows" : "",
+            draw.lighting.shadows && draw.lighting.skyLight ? " and " : "",
+            draw.lighting.skyLight ? "sky light" : "", total.median, total.median / plain.median,
+            100.0 * (total.median / plain.median - 1.0), terrain.terrain().reliefMs());
+        j["lighting_costs"] = {{"plain_frame_median", plain.median},
+                               {"ratio", total.median / plain.median},
+                               {"shadows", draw.lighting.shadows},
+                               {"sky_light", draw.lighting.skyLight},
+                               {"relief_ms", terrain.terrain().reliefMs()}};
+    }
     if (o.overlayCosts) {
         // Ratios of medians of frames drawn in turn from the same cameras.
         Stats bare = stats(records, &FrameRecord::bare);
@@ -439,6 +481,8 @@ void addFramesCommand(CLI::App& app) {
     cmd->add_flag("--overlay-costs", o->overlayCosts,
                   "Also draw each frame without the overlay passes and with each alone: their cost "
                   "as ratios");
+    cmd->add_flag("--lighting-costs", o->lightingCosts,
+                  "Also draw each frame without shadows and sky light: their cost as a ratio");
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");
     cmd->add_option("--save-frames", o->saveFrames,
                     "Write every frame as PNG (NAME_0000.png, ...)");

@@ -81,6 +81,8 @@ int run(const scene::Scene& s) {
                            render::TerrainGpu::maxGridSide());
     float seaLevel = scene::resolveSeaLevel(s.terrain, field);
     log::info("terrain: ", description);
+    // Before the terrain's GPU data: a sun time without a place fails at once.
+    const std::vector<glm::vec3> suns = render::sceneSunDirections(s, field);
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
@@ -186,6 +188,7 @@ int run(const scene::Scene& s) {
     };
     for (int k = first; k <= last; ++k) {
         const render::Camera& camera = cameras[size_t(k)];
+        draw.lighting.sunDirection = suns[size_t(k)];
         Stopwatch frame;
         target.begin(clear);
         stats = terrain.draw(camera, width, height, draw);

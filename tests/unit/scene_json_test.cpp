@@ -83,7 +83,15 @@ Scene unusualScene() {
                   .sunAltitude = 0.7f,
                   .ambient = 0.123456789f,
                   .fog = 0.0f,
-                  .sky = {0.0f, 1.0f, 0.333f}};
+                  .sky = {0.0f, 1.0f, 0.333f},
+                  .shadows = false,
+                  .skyLight = false,
+                  .sunSize = 1.25f,
+                  .horizonRadius = 5000.0f,
+                  .sunTime = "2026-06-21T19:30:00+02:00",
+                  .latitude = 46.5f,
+                  .longitude = -7.25f,
+                  .sunStep = 60.0f};
     s.lod = {.mode = LodMode::Full,
              .tau = 2.75f,
              .geomorph = false,

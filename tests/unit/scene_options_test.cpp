@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -320,6 +322,108 @@ TEST_F(SceneOptionsTest, ParserRefusesWhatCannotGoTogether) {
             << shading;
     EXPECT_THROW(parse({"--triplanar"}, Scene{}, kZoneOptions), CLI::ExtrasError);
     EXPECT_EQ(parse({"--blend", "linear"}, Scene{}, kZoneShadingOptions).zones.blend, "linear");
+}
+
+TEST_F(SceneOptionsTest, ReliefLightingAndTheSunFromATime) {
+    Scene d;
+    EXPECT_TRUE(d.lighting.shadows);
+    EXPECT_TRUE(d.lighting.skyLight);
+    EXPECT_EQ(d.lighting.sunSize, 0.53f);
+    Scene s = parse({"--shadows", "off", "--sky-light", "off", "--sun-size", "2",
+                     "--horizon-radius", "1500", "--sun-time", "2026-06-21T17:30:00Z", "--latitude",
+                     "10", "--longitude", "-20", "--sun-step", "600"});
+    EXPECT_FALSE(s.lighting.shadows);
+    EXPECT_FALSE(s.lighting.skyLight);
+    EXPECT_EQ(s.lighting.sunSize, 2.0f);
+    EXPECT_EQ(s.lighting.horizonRadius, 1500.0f);
+    EXPECT_EQ(s.lighting.sunTime, "2026-06-21T17:30:00Z");
+    EXPECT_EQ(s.lighting.latitude, 10.0f);
+    EXPECT_EQ(s.lighting.longitude, -20.0f);
+    EXPECT_EQ(s.lighting.sunStep, 600.0f);
+    EXPECT_TRUE(parse({"--shadows", "on"}).lighting.shadows);
+
+    EXPECT_THAT(parseError({"--shadows", "maybe"}),
+                HasSubstr("--shadows 'maybe': expected on or off"));
+    EXPECT_THAT(parseError({"--sky-light", ""}), HasSubstr("--sky-light"));
+    EXPECT_THAT(parseError({"--sun-size", "0"}),
+                AllOf(HasSubstr("lighting.sun_size (--sun-size)"), HasSubstr("0.53")));
+    EXPECT_THAT(parseError({"--sun-size", "-1"}), HasSubstr("--sun-size"));
+    EXPECT_THAT(parseError({"--horizon-radius", "-5"}), HasSubstr("--horizon-radius"));
+    EXPECT_THAT(parseError({"--sun-time", "2026-06-21T17:30:00"}),
+                AllOf(HasSubstr("--sun-time"), HasSubstr("time zone")));
+    EXPECT_THAT(parseError({"--sun-time", "tomorrow"}), HasSubstr("--sun-time 'tomorrow'"));
+    EXPECT_THAT(parseError({"--latitude", "10"}), HasSubstr("with a time"));
+    EXPECT_THAT(parseError({"--sun-time", "2026-06-21T17:30:00Z", "--latitude", "91"}),
+                HasSubstr("lighting.latitude (--latitude)"));
+    EXPECT_THAT(parseError({"--sun-step", "60"}), HasSubstr("--sun-time"));
+    EXPECT_THROW(parse({"--sun-time", "2026-06-21T17:30:00Z", "--sun-azimuth", "30"}),
+                 CLI::ExcludesError);
+    // A fixed sun on the command line replaces a scene file's time.
+    std::string config = write("timed.json", R"({"lighting": {"sun_time": "2026-06-21T17:30:00Z",
+                                                 "latitude": 45, "longitude": 7}})");
+    EXPECT_EQ(parse({"--config", config}).lighting.sunTime, "2026-06-21T17:30:00Z");
+    Scene fixed = parse({"--config", config, "--sun-altitude", "20"});
+    EXPECT_FALSE(fixed.lighting.sunTime);
+    EXPECT_FALSE(fixed.lighting.latitude);
+    EXPECT_EQ(fixed.lighting.sunAltitude, 20.0f);
+    std::string bad = write("bad.json", R"({"lighting": {"sun_time": "21 June"}})");
+    EXPECT_THAT(parseError({"--config", bad}), HasSubstr("lighting.sun_time"));
+}
+
+TEST_F(SceneOptionsTest, SunFromATimeOverTheTerrain) {
+    Scene s;
+    s.lighting.sunTime = "2026-06-21T17:30:00Z";
+    terrain::Heightfield plain(5, 5);
+    // No georeference and no place: one clear error naming the options.
+    try {
+        sceneSun(s, plain, 0);
+        ADD_FAILURE() << "accepted a time without a place";
+    } catch (const Error& e) {
+        EXPECT_THAT(
+            std::string(e.what()),
+            AllOf(HasSubstr("no georeference"), HasSubstr("--latitude"), HasSubstr("--longitude")));
+    }
+    // Boulder, Colorado (tests/unit/terrain_sun_reference.py): from the DEM's centre ...
+    terrain::Heightfield boulder(5, 5);
+    boulder.setGeoCentre(terrain::Heightfield::GeoPoint{40.0150, -105.2705});
+    SunAngles sun = sceneSun(s, boulder, 0);
+    EXPECT_NEAR(sun.azimuth, 123.261057, 0.01);
+    EXPECT_NEAR(sun.altitude, 64.353650, 0.01);
+    // ... or the options over a DEM without one.
+    s.lighting.latitude = 40.0150f;
+    s.lighting.longitude = -105.2705f;
+    EXPECT_NEAR(sceneSun(s, plain, 0).altitude, 64.353650, 0.01);
+    // A sequence: frame k at the time plus k steps; the afternoon sun goes west.
+    s.lighting.sunStep = 3600.0f;
+    EXPECT_EQ(sceneSun(s, plain, 0).azimuth, sun.azimuth);
+    EXPECT_GT(sceneSun(s, plain, 3).azimuth, 180.0f);
+    // Without a time, the fixed sun whatever the frame.
+    Scene fixed;
+    EXPECT_EQ(sceneSun(fixed, plain, 7).azimuth, kDefaultSunAzimuth);
+    EXPECT_EQ(sceneSun(fixed, plain, 7).altitude, kDefaultSunAltitude);
+}
+
+TEST(AutomaticFog, FarEdgeFixedWhateverTheDistance) {
+    const float radius = 300.0f;
+    for (float distance : {500.0f, 2000.0f, 20000.0f}) {
+        SCOPED_TRACE(distance);
+        FogRange f = automaticFog(distance, radius);
+        EXPECT_FLOAT_EQ(f.start, distance - radius);
+        auto fogAt = [&](float d) {
+            return 1.0f - std::exp(-f.density * std::max(d - f.start, 0.0f));
+        };
+        EXPECT_FLOAT_EQ(fogAt(distance - radius), 0.0f);
+        EXPECT_NEAR(fogAt(distance + radius), kAutoFogFarEdge, 1e-5f);
+        EXPECT_LT(fogAt(distance), kAutoFogFarEdge);
+    }
+    // Seven extents away (the far camera of the 403-sample DEM): the terrain is no more fogged
+    // than from near by.
+    EXPECT_FLOAT_EQ(automaticFog(20000.0f, radius).density, automaticFog(500.0f, radius).density);
+    // Inside the sphere the haze starts at the eye and reaches the same share at the far edge.
+    FogRange inside = automaticFog(100.0f, radius);
+    EXPECT_EQ(inside.start, 0.0f);
+    EXPECT_NEAR(1.0f - std::exp(-inside.density * 400.0f), kAutoFogFarEdge, 1e-5f);
+    EXPECT_EQ(automaticFog(100.0f, 0.0f).density, 0.0f);
 }
 
 TEST_F(SceneOptionsTest, PrintConfigFedBackGivesTheSameScene) {

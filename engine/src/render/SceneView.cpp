@@ -2,6 +2,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Log.h>
+#include <sierra/core/Progress.h>
 #include <sierra/render/CurvatureGpu.h>
 #include <sierra/render/ZoneSurface.h>
 #include <sierra/render/passes/ContourPass.h>
@@ -9,6 +10,7 @@
 #include <sierra/render/passes/LinePass.h>
 #include <sierra/scene/Assets.h>
 #include <sierra/scene/Terrain.h>
+#include <sierra/terrain/SunPosition.h>
 #include <sierra/tin/Export.h>
 
 #include <algorithm>
@@ -105,7 +107,52 @@ Lighting sceneLighting(const scene::LightingDesc& l, bool transparent) {
     out.fogDensity = l.fog ? *l.fog : -1.0f;
     out.sky = {l.sky.r, l.sky.g, l.sky.b};
     out.transparent = transparent;
+    out.shadows = l.shadows;
+    out.skyLight = l.skyLight;
+    out.sunSize = l.sunSize;
+    out.horizonRadius = l.horizonRadius;
     return out;
+}
+
+namespace {
+
+std::string describeSun(const scene::SunAngles& sun) {
+    std::string where;
+    if (sun.time)
+        where = msg(terrain::formatUtcTime(*sun.time), " over ", fixed(std::abs(sun.latitude), 4),
+                    sun.latitude >= 0.0 ? " N, " : " S, ", fixed(std::abs(sun.longitude), 4),
+                    sun.longitude >= 0.0 ? " E" : " W", ": ");
+    return msg(where, "azimuth ", fixed(sun.azimuth, 2), ", altitude ", fixed(sun.altitude, 2),
+               " degrees");
+}
+
+}  // namespace
+
+std::vector<glm::vec3> sceneSunDirections(const scene::Scene& s,
+                                          const terrain::Heightfield& field) {
+    const int frames = s.path.frames;
+    std::vector<glm::vec3> directions;
+    directions.reserve(size_t(frames));
+    const bool moving = s.lighting.sunTime && s.lighting.sunStep != 0.0f && frames > 1;
+    int below = 0, firstBelow = -1;
+    for (int k = 0; k < frames; ++k) {
+        const scene::SunAngles sun = scene::sceneSun(s, field, moving ? k : 0);
+        directions.push_back(compassDirection(sun.azimuth, sun.altitude));
+        if (k == 0 || (moving && k == frames - 1))
+            log::info("sun", moving ? msg(" of frame ", k) : std::string(), ": ", describeSun(sun));
+        if (sun.altitude + 0.5f * s.lighting.sunSize <= 0.0f && below++ == 0) firstBelow = k;
+        if (!moving) {
+            directions.resize(size_t(frames), directions.front());
+            below *= frames;
+            break;
+        }
+    }
+    if (below > 0)
+        log::warn("the sun is below the horizon in ",
+                  below == frames ? "every frame" : msg(below, " of ", frames, " frames"),
+                  below == frames ? std::string() : msg(" (from frame ", firstBelow, ")"),
+                  ": no direct light, those frames are lit by the sky alone");
+    return directions;
 }
 
 std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s,

@@ -23,6 +23,7 @@ class RampSurface final : public Surface {
 class PaperSurface final : public Surface {
   public:
     std::string shaderFile() const override { return "surface_paper.glsl"; }
+    bool lit() const override { return false; }
     void bind() const override {}
 };
 

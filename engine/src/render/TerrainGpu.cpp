@@ -1,14 +1,19 @@
 #include <sierra/render/TerrainGpu.h>
 
 #include "render/SbtBridge.h"
+#include <sierra/analysis/Relief.h>
 #include <sierra/core/Error.h>
 #include <sierra/core/Log.h>
+#include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/FrameUniforms.h>
 #include <sierra/terrain/HeightfieldIO.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <optional>
 
 namespace sierra::render {
 
@@ -65,6 +70,23 @@ static_assert(sizeof(TerrainUniformData) == 48,
               "TerrainUniformData must match std140 `uniform Terrain`");
 }  // namespace
 
+// The relief fields kept on the CPU and the texture that holds the last
+// frame's. Keys are exact floats: a sun that is the same to the bit is the
+// same sun (a sequence with a fixed sun computes it once).
+struct ReliefState {
+    using SunKey = std::array<float, 4>;  // azimuth, altitude, size, radius
+    struct Sun {
+        std::vector<float> visibility;
+        uint64_t lastUse = 0;
+    };
+    std::map<float, std::vector<float>> skyLight;  // by radius
+    std::map<SunKey, Sun> suns;
+    uint64_t uses = 0;
+    gpu::Texture texture;                          // RG16F: sun visibility, sky light
+    std::optional<std::array<float, 6>> uploaded;  // shadows, sky light, then SunKey
+    double ms = 0.0;
+};
+
 struct TerrainGpu::State {
     int side = 0;
     glm::vec2 spacing{1.0f};
@@ -86,6 +108,9 @@ struct TerrainGpu::State {
     uint64_t fullIndexCount = 0;
     gpu::Buffer meshIndices;
     uint64_t meshIndexCount = 0;
+    glm::ivec2 realSamples{0};  // columns and rows of real data (the rest is padding)
+    int threads = 0;
+    ReliefState relief;
 };
 
 int TerrainGpu::maxGridSide() {
@@ -135,6 +160,8 @@ TerrainGpu TerrainGpu::create(const TerrainGpuDesc& desc) {
                 if (field.valid(i, j)) lastReal = glm::max(lastReal, glm::ivec2(i, j));
     }
     glm::vec2 validMax{float(lastReal.x) * field.spacingX(), float(lastReal.y) * field.spacingZ()};
+    s->realSamples = lastReal + 1;
+    s->threads = desc.threads;
     s->bounds.min = {0.0f, lo * vs, 0.0f};
     s->bounds.max = {validMax.x, hi * vs, validMax.y};
     s->summary = msg(side, "x", side, " samples, spacing ", field.spacingX(), "x", field.spacingZ(),
@@ -191,6 +218,96 @@ void TerrainGpu::bind() const {
     glBindTextureUnit(0, state_->data.id());
     glBindTextureUnit(2, state_->heights.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, kTerrainUniformBinding, state_->uniforms.id());
+}
+
+bool TerrainGpu::prepareRelief(const ReliefRequest& request) {
+    if (!request.any()) return false;
+    State& s = *state_;
+    ReliefState& r = s.relief;
+    const ReliefState::SunKey sunKey{request.sunAzimuth, request.sunAltitude, request.sunSize,
+                                     request.radius};
+    const std::array<float, 6> key{request.shadows ? 1.0f : 0.0f,
+                                   request.skyLight ? 1.0f : 0.0f,
+                                   sunKey[0],
+                                   sunKey[1],
+                                   sunKey[2],
+                                   sunKey[3]};
+    if (r.uploaded && (*r.uploaded)[0] == key[0] && (*r.uploaded)[1] == key[1] &&
+        (!request.shadows || std::equal(key.begin() + 2, key.end(), r.uploaded->begin() + 2)) &&
+        (!request.skyLight || (*r.uploaded)[5] == key[5]))
+        return true;
+    const analysis::HorizonOptions options{.radius = request.radius,
+                                           .validWidth = s.realSamples.x,
+                                           .validHeight = s.realSamples.y,
+                                           .threads = s.threads};
+    const std::vector<float>* sky = nullptr;
+    if (request.skyLight) {
+        auto it = r.skyLight.find(request.radius);
+        if (it == r.skyLight.end()) {
+            Stopwatch sw;
+            analysis::Horizons horizons = analysis::computeHorizons(s.surface, options);
+            std::vector<float> light = analysis::skyLight(s.surface, horizons);
+            const double ms = sw.ms();
+            r.ms += ms;
+            log::info("relief: sky light of ", s.realSamples.x, "x", s.realSamples.y, " samples (",
+                      horizons.directions, " azimuths, horizon radius ",
+                      request.radius > 0.0f ? msg(request.radius) : std::string("the whole grid"),
+                      ") computed in ", fixed(ms, 1), " ms");
+            it = r.skyLight.emplace(request.radius, std::move(light)).first;
+        }
+        sky = &it->second;
+    }
+    const std::vector<float>* sun = nullptr;
+    if (request.shadows) {
+        auto it = r.suns.find(sunKey);
+        if (it == r.suns.end()) {
+            if (r.suns.size() >= size_t(kReliefSunsKept)) {
+                auto oldest = r.suns.begin();
+                for (auto k = r.suns.begin(); k != r.suns.end(); ++k)
+                    if (k->second.lastUse < oldest->second.lastUse) oldest = k;
+                r.suns.erase(oldest);
+            }
+            ReliefState::Sun entry;
+            if (request.sunAltitude + 0.5f * request.sunSize <= 0.0f) {
+                entry.visibility.assign(s.surface.samples().size(), 0.0f);  // below the horizon
+            } else {
+                Stopwatch sw;
+                entry.visibility = analysis::sunVisibility(s.surface,
+                                                           {.azimuth = request.sunAzimuth,
+                                                            .altitude = request.sunAltitude,
+                                                            .diameter = request.sunSize},
+                                                           options);
+                const double ms = sw.ms();
+                r.ms += ms;
+                log::info("relief: shadows of the sun at azimuth ", request.sunAzimuth,
+                          ", altitude ", request.sunAltitude, " (", request.sunSize,
+                          " degrees wide) computed in ", fixed(ms, 1), " ms");
+            }
+            it = r.suns.emplace(sunKey, std::move(entry)).first;
+        }
+        it->second.lastUse = ++r.uses;
+        sun = &it->second.visibility;
+    }
+    // No-data samples (NaN) are not occluded and see the whole sky.
+    const size_t n = s.surface.samples().size();
+    std::vector<float> texels(2 * n, 1.0f);
+    for (size_t k = 0; k < n; ++k) {
+        if (sun && std::isfinite((*sun)[k])) texels[2 * k] = (*sun)[k];
+        if (sky && std::isfinite((*sky)[k])) texels[2 * k + 1] = (*sky)[k];
+    }
+    if (!r.texture)
+        r.texture = gpu::Texture::create({.format = GL_RG16F, .width = s.side, .height = s.side});
+    r.texture.upload(GL_RG, GL_FLOAT, texels.data());
+    r.uploaded = key;
+    return true;
+}
+
+void TerrainGpu::bindRelief() const {
+    glBindTextureUnit(kReliefTextureUnit, state_->relief.texture.id());
+}
+
+double TerrainGpu::reliefMs() const {
+    return state_->relief.ms;
 }
 
 SbtBridge& TerrainGpu::sbt() {

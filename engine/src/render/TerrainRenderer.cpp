@@ -6,6 +6,7 @@
 #include <sierra/render/passes/PointsPass.h>
 #include <sierra/render/passes/TerrainPass.h>
 #include <sierra/render/passes/WireframePass.h>
+#include <sierra/scene/Scene.h>
 
 #include <algorithm>
 #include <cmath>
@@ -59,28 +60,46 @@ FrameUniformData TerrainRenderer::frameUniforms(const Camera& camera, int width,
                  "ambient light must be in [0, 1], got ", light.ambient);
     float aspect = float(width) / float(height);
     LodView lod = camera.lodView(height);
-    glm::vec3 extent = state_->terrain.bounds().size();
-    // Automatic haze grows with distance from the eye; an orthographic view has
-    // no meaningful eye distance (its eye is put anywhere behind the terrain),
-    // so maps get none unless asked for.
-    float automaticFog = camera.projection == Projection::Orthographic
-                             ? 0.0f
-                             : 0.35f / std::max({extent.x, extent.z, 1e-6f});
-    float fog = light.fogDensity >= 0.0f ? light.fogDensity : automaticFog;
+    // Automatic haze over the terrain's bounding sphere as the eye sees it;
+    // an orthographic view has no meaningful eye distance (its eye is put
+    // anywhere behind the terrain), so maps get none unless asked for.
+    scene::FogRange fog{.density = std::max(light.fogDensity, 0.0f)};
+    if (light.fogDensity < 0.0f && camera.projection != Projection::Orthographic) {
+        const SceneBounds bounds = state_->terrain.bounds();
+        fog = scene::automaticFog(glm::distance(camera.position, bounds.centre()),
+                                  0.5f * glm::length(bounds.size()));
+    }
+    // A sun whose whole disc is below the horizon lights nothing directly.
+    glm::vec3 sun = glm::normalize(light.sunDirection);
+    if (std::asin(std::clamp(sun.y, -1.0f, 1.0f)) <= -0.5f * glm::radians(light.sunSize))
+        sun = glm::vec3(0.0f);
     FrameUniformData u;
     u.viewProj = camera.viewProjection(aspect);
     u.eye = {camera.position, 1.0f};
     u.lodEye = {lod.eye,
                 options.lod == Lod::Sbt && options.geomorph ? lod.lambda / options.tau : 0.0f};
-    u.sun = {glm::normalize(light.sunDirection), light.ambient};
+    u.sun = {sun, light.ambient};
     u.sky = clearColour(light);
     u.frameSize = {float(width), float(height), lod.lambda, options.tau};
-    u.fog = {fog, camera.projection == Projection::Orthographic ? 1.0f : 0.0f, 0.0f, 0.0f};
+    u.fog = {fog.density, camera.projection == Projection::Orthographic ? 1.0f : 0.0f, fog.start,
+             0.0f};
     u.viewDir = {camera.forward(), 0.0f};
     return u;
 }
 
 namespace {
+ReliefRequest reliefRequest(const Lighting& light) {
+    const glm::vec3 d = glm::normalize(light.sunDirection);
+    float azimuth = glm::degrees(std::atan2(d.x, -d.z));
+    if (azimuth < 0.0f) azimuth += 360.0f;
+    return {.shadows = light.shadows,
+            .skyLight = light.skyLight,
+            .sunAzimuth = azimuth,
+            .sunAltitude = glm::degrees(std::asin(std::clamp(d.y, -1.0f, 1.0f))),
+            .sunSize = light.sunSize,
+            .radius = light.horizonRadius};
+}
+
 LodSettings lodSettings(const DrawOptions& options) {
     return {.lod = options.lod,
             .tau = options.tau,
@@ -96,6 +115,10 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height,
     SIERRA_CHECK(width > 0 && height > 0, "frame size must be positive, got ", width, "x", height);
     DrawStats stats;
     MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height, lodSettings(options), stats);
+    // The relief fields of this frame's sun (computed once per terrain and
+    // sun, outside the submit time; TerrainGpu::reliefMs has their cost).
+    const bool relief = options.polygons && options.colourBy == 0 && s.shaded->lit() &&
+                        s.terrain.prepareRelief(reliefRequest(options.lighting));
     Stopwatch submit;
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
     GLint previousBlock = 0;
@@ -109,6 +132,7 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height,
         s.debugColour->draw(frame);
     } else if (options.polygons) {
         TerrainShading shading;
+        shading.relief = relief;
         for (size_t k = 0; k < s.extra.size(); ++k)
             if (k >= 64 || (options.addedPasses >> k & 1u) != 0) s.extra[k]->shadeTerrain(shading);
         s.shaded->setShading(shading);

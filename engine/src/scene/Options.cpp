@@ -2,6 +2,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/scene/SceneJson.h>
+#include <sierra/terrain/SunPosition.h>
 
 #include <cerrno>
 #include <cmath>
@@ -67,6 +68,24 @@ Rgb parseRgb(const std::string& text, const std::string& option) {
     return {parseFloat(parts[0], option, "R,G,B numbers"),
             parseFloat(parts[1], option, "R,G,B numbers"),
             parseFloat(parts[2], option, "R,G,B numbers")};
+}
+
+// "on" or "off" (also true/false, yes/no, 1/0).
+bool parseOnOff(const std::string& text, const std::string& option) {
+    if (text == "on" || text == "true" || text == "yes" || text == "1") return true;
+    if (text == "off" || text == "false" || text == "no" || text == "0") return false;
+    throw Error(msg(option, " '", text, "': expected on or off"));
+}
+
+const char* onOff(bool on) {
+    return on ? "on" : "off";
+}
+
+void clearSunTime(Scene& s) {
+    s.lighting.sunTime.reset();
+    s.lighting.latitude.reset();
+    s.lighting.longitude.reset();
+    s.lighting.sunStep = 0.0f;
 }
 
 std::string show(float v) {
@@ -257,12 +276,17 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
 
     if (groups & kLightingOptions) {
         const std::string g = "Lighting";
-        add("--sun-azimuth", "Sun bearing, degrees clockwise from north (-z)", g, "DEG",
-            show(d.lighting.sunAzimuth), 1,
-            [](Scene& s, Words w) { s.lighting.sunAzimuth = parseFloat(w[0], "--sun-azimuth"); });
-        add("--sun-altitude", "Sun altitude above the horizon, degrees", g, "DEG",
-            show(d.lighting.sunAltitude), 1,
-            [](Scene& s, Words w) { s.lighting.sunAltitude = parseFloat(w[0], "--sun-altitude"); });
+        // Given here, a fixed sun replaces a scene file's time.
+        auto* sunAzimuth = add("--sun-azimuth", "Sun bearing, degrees clockwise from north (-z)", g,
+                               "DEG", show(d.lighting.sunAzimuth), 1, [](Scene& s, Words w) {
+                                   s.lighting.sunAzimuth = parseFloat(w[0], "--sun-azimuth");
+                                   clearSunTime(s);
+                               });
+        auto* sunAltitude = add("--sun-altitude", "Sun altitude above the horizon, degrees", g,
+                                "DEG", show(d.lighting.sunAltitude), 1, [](Scene& s, Words w) {
+                                    s.lighting.sunAltitude = parseFloat(w[0], "--sun-altitude");
+                                    clearSunTime(s);
+                                });
         add("--ambient", "Ambient light, fraction of full light 0..1", g, "A",
             show(d.lighting.ambient), 1,
             [](Scene& s, Words w) { s.lighting.ambient = parseFloat(w[0], "--ambient"); });
@@ -276,6 +300,40 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
         add("--sky", "Sky and fog colour, each 0..1", g, "R,G,B",
             msg(d.lighting.sky.r, ",", d.lighting.sky.g, ",", d.lighting.sky.b), 1,
             [](Scene& s, Words w) { s.lighting.sky = parseRgb(w[0], "--sky"); });
+        add("--shadows", "Soft shadows the terrain casts from the sun", g, "on|off",
+            onOff(d.lighting.shadows), 1,
+            [](Scene& s, Words w) { s.lighting.shadows = parseOnOff(w[0], "--shadows"); });
+        add("--sky-light",
+            "Ambient light scaled by the share of the sky each point sees (darker valleys)", g,
+            "on|off", onOff(d.lighting.skyLight), 1,
+            [](Scene& s, Words w) { s.lighting.skyLight = parseOnOff(w[0], "--sky-light"); });
+        add("--sun-size", "Angular diameter of the sun, degrees (the penumbra's width), > 0", g,
+            "DEG", show(d.lighting.sunSize), 1,
+            [](Scene& s, Words w) { s.lighting.sunSize = parseFloat(w[0], "--sun-size"); });
+        add("--horizon-radius",
+            "How far shadows and sky light search for the horizon, world units (0 = the whole "
+            "grid)",
+            g, "D", show(d.lighting.horizonRadius), 1, [](Scene& s, Words w) {
+                s.lighting.horizonRadius = parseFloat(w[0], "--horizon-radius");
+            });
+        auto* sunTime =
+            add("--sun-time",
+                "Place the sun at this time over the DEM's centre (ISO 8601 with zone, e.g. "
+                "2026-06-21T17:30:00Z); replaces --sun-azimuth and --sun-altitude",
+                g, "TIME", d.lighting.sunTime.value_or(""), 1, [](Scene& s, Words w) {
+                    terrain::parseUtcTime(w[0], "--sun-time");
+                    s.lighting.sunTime = w[0];
+                });
+        sunTime->excludes(sunAzimuth)->excludes(sunAltitude);
+        add("--latitude", "Latitude of --sun-time, degrees north (default: the DEM's centre)", g,
+            "DEG", show(d.lighting.latitude, "DEM"), 1,
+            [](Scene& s, Words w) { s.lighting.latitude = parseFloat(w[0], "--latitude"); });
+        add("--longitude", "Longitude of --sun-time, degrees east (default: the DEM's centre)", g,
+            "DEG", show(d.lighting.longitude, "DEM"), 1,
+            [](Scene& s, Words w) { s.lighting.longitude = parseFloat(w[0], "--longitude"); });
+        add("--sun-step", "Seconds of --sun-time between frames of a sequence (0 = a fixed sun)", g,
+            "S", show(d.lighting.sunStep), 1,
+            [](Scene& s, Words w) { s.lighting.sunStep = parseFloat(w[0], "--sun-step"); });
     }
 
     if (groups & kLodOptions) {

@@ -5,9 +5,11 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/terrain/DiamondSquare.h>
+#include <sierra/terrain/SunPosition.h>
 
 #include "scene/Names.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -130,6 +132,28 @@ void validateLighting(const LightingDesc& l) {
         if (!(v >= 0.0f && v <= 1.0f))
             fail("lighting.sky", "--sky",
                  msg("channels must be 0..1, got ", l.sky.r, ",", l.sky.g, ",", l.sky.b));
+    if (!(l.sunSize > 0.0f && l.sunSize <= kMaxSunSize))
+        fail("lighting.sun_size", "--sun-size",
+             msg("must be an angular diameter in (0, ", kMaxSunSize,
+                 "] degrees (the sun seen from the Earth: 0.53), got ", l.sunSize));
+    if (!(l.horizonRadius >= 0.0f && std::isfinite(l.horizonRadius)))
+        fail("lighting.horizon_radius", "--horizon-radius",
+             msg("must be >= 0 world units (0 = the whole grid), got ", l.horizonRadius));
+    if (l.sunTime) terrain::parseUtcTime(*l.sunTime, "lighting.sun_time (--sun-time)");
+    if (l.latitude && !(*l.latitude >= -90.0f && *l.latitude <= 90.0f))
+        fail("lighting.latitude", "--latitude", msg("must be -90..90 degrees, got ", *l.latitude));
+    if (l.longitude && !(*l.longitude >= -180.0f && *l.longitude <= 360.0f))
+        fail("lighting.longitude", "--longitude",
+             msg("must be -180..360 degrees east, got ", *l.longitude));
+    if (!l.sunTime && (l.latitude || l.longitude))
+        fail(l.latitude ? "lighting.latitude" : "lighting.longitude",
+             l.latitude ? "--latitude" : "--longitude",
+             "places the sun only with a time: give lighting.sun_time (--sun-time) too");
+    if (!std::isfinite(l.sunStep))
+        fail("lighting.sun_step", "--sun-step", msg("must be finite seconds, got ", l.sunStep));
+    if (!l.sunTime && l.sunStep != 0.0f)
+        fail("lighting.sun_step", "--sun-step",
+             "moves the sun from lighting.sun_time (--sun-time): give that too");
 }
 
 void validateStyle(const StyleDesc& s) {
@@ -279,6 +303,36 @@ void validateScene(const Scene& scene) {
     validateStyle(scene.style);
     validateZones(scene.zones);
     validateOutput(scene.output);
+}
+
+SunAngles sceneSun(const Scene& scene, const terrain::Heightfield& field, int frame) {
+    const LightingDesc& l = scene.lighting;
+    SunAngles sun{.azimuth = l.sunAzimuth, .altitude = l.sunAltitude};
+    if (!l.sunTime) return sun;
+    const std::optional<terrain::Heightfield::GeoPoint>& centre = field.geoCentre();
+    if (!centre && !(l.latitude && l.longitude))
+        throw Error(
+            "lighting.sun_time (--sun-time) places the sun over the terrain's latitude and "
+            "longitude, but this terrain has no georeference (SRTM .hgt, GeoTIFF and .npz with "
+            "geographic bounds have one): give --latitude and --longitude (lighting.latitude, "
+            "lighting.longitude), or --sun-azimuth and --sun-altitude instead");
+    sun.latitude = l.latitude ? double(*l.latitude) : centre->latitude;
+    sun.longitude = l.longitude ? double(*l.longitude) : centre->longitude;
+    sun.time = terrain::parseUtcTime(*l.sunTime, "lighting.sun_time (--sun-time)") +
+               double(frame) * double(l.sunStep);
+    const terrain::SunPosition p = terrain::sunPosition(*sun.time, sun.latitude, sun.longitude);
+    sun.azimuth = float(p.azimuth);
+    sun.altitude = float(p.altitude);
+    return sun;
+}
+
+FogRange automaticFog(float eyeToCentre, float radius) {
+    if (!(radius > 0.0f) || !std::isfinite(radius) || !std::isfinite(eyeToCentre)) return {};
+    const float start = std::max(eyeToCentre - radius, 0.0f);
+    const float far = std::max(eyeToCentre + radius, 0.0f);
+    // fog(d) = 1 - exp(-density * (d - start)) is kAutoFogFarEdge at `far`.
+    return {.density = -std::log(1.0f - kAutoFogFarEdge) / std::max(far - start, 1e-6f),
+            .start = start};
 }
 
 std::string presetPath(const std::string& name) {

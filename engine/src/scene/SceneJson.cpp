@@ -276,6 +276,26 @@ void readLighting(ObjectReader& r, LightingDesc& l) {
         l.sky = {r.toFloat(v[0], k + "[0]"), r.toFloat(v[1], k + "[1]"),
                  r.toFloat(v[2], k + "[2]")};
     });
+    r.field("shadows", [&](const Json& v, const std::string& k) { l.shadows = r.toBool(v, k); });
+    r.field("sky_light", [&](const Json& v, const std::string& k) { l.skyLight = r.toBool(v, k); });
+    r.field("sun_size", [&](const Json& v, const std::string& k) { l.sunSize = r.toFloat(v, k); });
+    r.field("horizon_radius",
+            [&](const Json& v, const std::string& k) { l.horizonRadius = r.toFloat(v, k); });
+    r.field("sun_time", [&](const Json& v, const std::string& k) {
+        readOptional(v, l.sunTime, [&](const Json& x) {
+            return r.toString(x, k);  // checked by validateScene
+        });
+    });
+    auto degrees = [&](std::optional<float>& out) {
+        return [&](const Json& v, const std::string& k) {
+            readOptional(v, out, [&](const Json& x) {
+                return r.toFloat(x, k, "degrees or null (the DEM's centre)");
+            });
+        };
+    };
+    r.field("latitude", degrees(l.latitude));
+    r.field("longitude", degrees(l.longitude));
+    r.field("sun_step", [&](const Json& v, const std::string& k) { l.sunStep = r.toFloat(v, k); });
 }
 
 void readLod(ObjectReader& r, LodDesc& l) {
@@ -447,6 +467,14 @@ Json sceneToJson(const Scene& s) {
         {"ambient", number(l.ambient)},
         {"fog", optional(l.fog, number)},
         {"sky", Json::array({number(l.sky.r), number(l.sky.g), number(l.sky.b)})},
+        {"shadows", l.shadows},
+        {"sky_light", l.skyLight},
+        {"sun_size", number(l.sunSize)},
+        {"horizon_radius", number(l.horizonRadius)},
+        {"sun_time", l.sunTime ? Json(*l.sunTime) : Json(nullptr)},
+        {"latitude", optional(l.latitude, number)},
+        {"longitude", optional(l.longitude, number)},
+        {"sun_step", number(l.sunStep)},
     };
     Json lod = {
         {"mode", toString(s.lod.mode)}, {"tau", number(s.lod.tau)}, {"geomorph", s.lod.geomorph},

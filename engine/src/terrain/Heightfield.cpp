@@ -29,6 +29,16 @@ void Heightfield::setVerticalScale(float scale) {
     verticalScale_ = scale;
 }
 
+void Heightfield::setGeoCentre(std::optional<GeoPoint> centre) {
+    SIERRA_CHECK(
+        !centre || (std::isfinite(centre->latitude) && std::abs(centre->latitude) <= 90.0 &&
+                    std::isfinite(centre->longitude) && centre->longitude >= -180.0 &&
+                    centre->longitude <= 360.0),
+        "a geographic centre needs latitude -90..90 and longitude -180..360 degrees, got ",
+        centre ? centre->latitude : 0.0, ", ", centre ? centre->longitude : 0.0);
+    geoCentre_ = centre;
+}
+
 void Heightfield::setMask(std::vector<uint8_t> mask) {
     SIERRA_CHECK(mask.empty() || mask.size() == samples_.size(), "mask has ", mask.size(),
                  " entries for ", samples_.size(), " samples");

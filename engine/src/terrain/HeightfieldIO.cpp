@@ -443,9 +443,10 @@ std::pair<double, double> degreesToMetres(double east, double north, double lati
                             1.0 / kWgs84InverseFlattening);
 }
 
-// The latitude of an SRTM tile's south edge from its file name (N45E006.hgt:
-// 45; S12W077.hgt: -12), or nothing for a name of another form.
-std::optional<int> srtmTileLatitude(const std::string& path) {
+// The south-west corner of an SRTM tile from its file name, in whole degrees
+// (N45E006.hgt: latitude 45, longitude 6; S12W077.hgt: -12, -77), or nothing
+// for a name of another form.
+std::optional<std::pair<int, int>> srtmTileCorner(const std::string& path) {
     const std::string name = std::filesystem::path(path).filename().string();
     if (name.size() < 7 || (name[0] != 'N' && name[0] != 'n' && name[0] != 'S' && name[0] != 's'))
         return std::nullopt;
@@ -457,8 +458,10 @@ std::optional<int> srtmTileLatitude(const std::string& path) {
     for (int k = 4; k < 7; ++k)
         if (!std::isdigit(static_cast<unsigned char>(name[size_t(k)]))) return std::nullopt;
     const int degrees = (name[1] - '0') * 10 + (name[2] - '0');
-    if (degrees > 89) return std::nullopt;
-    return name[0] == 'N' || name[0] == 'n' ? degrees : -degrees;
+    const int east = (name[4] - '0') * 100 + (name[5] - '0') * 10 + (name[6] - '0');
+    if (degrees > 89 || east > 180) return std::nullopt;
+    return std::pair{name[0] == 'N' || name[0] == 'n' ? degrees : -degrees,
+                     ew == 'E' ? east : -east};
 }
 
 Heightfield loadHgt(const std::string& path, const std::vector<uint8_t>& bytes) {
@@ -492,9 +495,10 @@ Heightfield loadHgt(const std::string& path, const std::vector<uint8_t>& bytes) 
     // south-west corner); nominal 90 or 30 m both ways for a file named
     // otherwise.
     const double step = (side == kSrtm3Side ? 3.0 : 1.0) / 3600.0;
-    if (const std::optional<int> south = srtmTileLatitude(path)) {
-        const auto [east, north] = degreesToMetres(step, step, *south + 0.5);
+    if (const auto corner = srtmTileCorner(path)) {
+        const auto [east, north] = degreesToMetres(step, step, corner->first + 0.5);
         field.setSpacing(float(east), float(north));
+        field.setGeoCentre(Heightfield::GeoPoint{corner->first + 0.5, corner->second + 0.5});
     } else {
         const float spacing = side == kSrtm3Side ? 90.0f : 30.0f;
         field.setSpacing(spacing, spacing);
@@ -750,10 +754,12 @@ void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& b
         };
         if (x0 && x1 && y0 && y1 && within(*x0, *x1, -180.0, 360.0) &&
             within(*y0, *y1, -90.0, 90.0) && spans(*x0, *x1, *dx, field.width()) &&
-            spans(*y0, *y1, *dy, field.height()))
+            spans(*y0, *y1, *dy, field.height())) {
             toMetres(*dx, *dy, 0.5 * (*y0 + *y1));
-        else
+            field.setGeoCentre(Heightfield::GeoPoint{0.5 * (*y0 + *y1), 0.5 * (*x0 + *x1)});
+        } else {
             field.setSpacing(float(*dx), float(*dy));
+        }
         return;
     }
     const std::vector<double>* lat = list({"latitude", "lat"}, field.height());
@@ -775,6 +781,8 @@ void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& b
     const double north = std::abs(lat->back() - lat->front()) / double(lat->size() - 1);
     const double east = std::abs(lon->back() - lon->front()) / double(lon->size() - 1);
     toMetres(east, north, 0.5 * (lat->front() + lat->back()));
+    field.setGeoCentre(Heightfield::GeoPoint{0.5 * (lat->front() + lat->back()),
+                                             0.5 * (lon->front() + lon->back())});
     if (northward) flip(field, true);
     if (!eastward) flip(field, false);
 }
@@ -792,6 +800,26 @@ std::pair<double, double> geographicSpacing(const OGRSpatialReference& srs, cons
                             (geo[3] + geo[5] * height * 0.5) * radiansPerUnit,
                             srs.GetSemiMajor(nullptr),
                             inverseFlattening > 0.0 ? 1.0 / inverseFlattening : 0.0);
+}
+
+// The raster's centre in WGS 84 degrees: a geographic system's own
+// coordinates (x longitude, y latitude, as GeoTIFF stores them), a projected
+// one's transformed; nothing when the transformation is not available.
+std::optional<Heightfield::GeoPoint> geographicCentre(const OGRSpatialReference& srs,
+                                                      const double geo[6], int width, int height) {
+    double x = geo[0] + geo[1] * 0.5 * width + geo[2] * 0.5 * height;
+    double y = geo[3] + geo[4] * 0.5 * width + geo[5] * 0.5 * height;
+    OGRSpatialReference wgs84;
+    if (wgs84.importFromEPSG(4326) != OGRERR_NONE) return std::nullopt;
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);  // x longitude, y latitude
+    OGRSpatialReference source(srs);
+    source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> transform(
+        OGRCreateCoordinateTransformation(&source, &wgs84));
+    if (!transform || !transform->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y) ||
+        std::abs(y) > 90.0 || x < -180.0 || x > 360.0)
+        return std::nullopt;
+    return Heightfield::GeoPoint{y, x};
 }
 
 Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
@@ -863,6 +891,7 @@ Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
             field.setSpacing(float(dx), float(dz));
             field.setMetres(true);
         }
+        field.setGeoCentre(geographicCentre(*srs, geo, width, height));
     }
     return field;
 }

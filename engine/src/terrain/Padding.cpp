@@ -38,6 +38,7 @@ Heightfield padToPowerOfTwoPlusOne(const Heightfield& field) {
     padded.setSpacing(field.spacingX(), field.spacingZ());
     padded.setVerticalScale(field.verticalScale());
     padded.setMetres(field.metres());
+    padded.setGeoCentre(field.geoCentre());
     std::vector<uint8_t> mask(size_t(side) * side, 0);
     for (int j = 0; j < side; ++j) {
         const int sj = std::min(j, height - 1);

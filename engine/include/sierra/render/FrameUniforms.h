@@ -18,10 +18,12 @@ struct FrameUniformData {
     glm::vec4 eye{0.0f};        // xyz: camera position (world units)
     glm::vec4 lodEye{0.0f};     // xyz: eye the SBT measures distance from (orthographic: a far
                                 // virtual eye); w: lambda / tau for geomorphing, 0 = off
-    glm::vec4 sun{0.0f};        // xyz: unit vector towards the sun; w: ambient light 0..1
+    glm::vec4 sun{0.0f};        // xyz: unit vector towards the sun, 0 when it is below the
+                                // horizon; w: ambient light 0..1
     glm::vec4 sky{0.0f};        // rgb: sky colour; a: background alpha (0 = transparent)
     glm::vec4 frameSize{0.0f};  // x, y: frame width and height (px); z: lambda; w: tau (px)
-    glm::vec4 fog{0.0f};        // x: fog density per world unit (0 = off); y: 1 orthographic
+    glm::vec4 fog{0.0f};        // x: fog density per world unit (0 = off); y: 1 orthographic;
+                                // z: eye distance where the fog begins (world units)
     glm::vec4 viewDir{0.0f};    // xyz: camera forward, unit (linear depth = dot(p - eye, viewDir))
 };
 

@@ -28,7 +28,19 @@ std::vector<Camera> sceneCameras(const scene::Scene& scene, const SceneBounds& b
 std::vector<Camera> snapshotCameras(const scene::Scene& scene, const SceneBounds& bounds,
                                     int frameWidth);
 
+// The draw options of the scene; lighting.sunDirection is the scene's fixed
+// sun (lighting.sun_azimuth / sun_altitude): with a sun time, set each
+// frame's from sceneSunDirections.
 DrawOptions sceneDrawOptions(const scene::Scene& scene);
+
+// The direction towards the sun in every frame of the scene's sequence
+// (path.frames of them, scene::sceneSun for each) over `field` as loaded.
+// Says where the sun stands (with a time: when and from where, for the first
+// and the last frame of a moving sun) and warns when a frame's sun is below
+// the horizon (that frame is then lit by the sky alone). Throws sierra::Error
+// as sceneSun does.
+std::vector<glm::vec3> sceneSunDirections(const scene::Scene& scene,
+                                          const terrain::Heightfield& field);
 
 // The renderer's description of the scene's terrain: `field` as loaded by
 // scene::loadTerrain, the sea level from scene::resolveSeaLevel, metric

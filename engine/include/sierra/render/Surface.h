@@ -1,9 +1,10 @@
 #pragma once
 // A surface: the albedo function the terrain pass is built with
 // (shaders/surface_NAME.glsl defines `vec3 surfaceAlbedo(vec3 world, Ground g)`)
-// and the inputs it reads (textures on units 1 and 3..7, uniform blocks from
-// binding 2 on). A new shading is a new Surface, never a copy of the terrain
-// shader.
+// and the inputs it reads (textures on units 1 and 3..6, uniform blocks from
+// binding 2 on). A surface chooses the colour only; the terrain pass lights
+// it (terrain.frag). A new shading is a new Surface, never a copy of the
+// terrain shader.
 
 #include <sierra/gpu/Objects.h>
 
@@ -21,6 +22,10 @@ class Surface {
     virtual std::string shaderFile() const = 0;
     // Lines inserted after #version when the program is built (driver workarounds, options).
     virtual std::string defines() const { return {}; }
+    // False for a surface drawn unlit, one flat tone whatever the light (the
+    // paper of the line styles): the pass then compiles the lighting out
+    // (SIERRA_UNLIT) and computes no relief fields for it.
+    virtual bool lit() const { return true; }
     // Binds the surface's textures and blocks (inside the terrain pass's state scope).
     virtual void bind() const = 0;
 };

@@ -7,7 +7,9 @@
 // Texture units (fixed, shared by every terrain shader, see terrain_common.glsl):
 //   0  uData     RGBA32F: drawn surface height, geomorph base, error, radius
 //   2  uHeights  R32F: true world heights, linearly filtered
-// Units 1 and 3.. belong to the passes (a surface's ramp or tiles).
+//   7  uRelief   RG16F: the relief lighting fields, linearly filtered (the
+//                terrain pass's, bound by bindRelief)
+// Units 1 and 3..6 belong to the passes (a surface's ramp or tiles).
 
 #include <sierra/gpu/Objects.h>
 #include <sierra/render/Camera.h>
@@ -32,6 +34,20 @@ struct TerrainGpuDesc {
     int threads = 0;  // CPU threads for the error pass, 0 = default
 };
 
+inline constexpr GLuint kReliefTextureUnit = 7;
+
+// The relief lighting fields a frame asks for (analysis/Relief.h), on the
+// drawn surface (water flat at sea level), over the real samples.
+struct ReliefRequest {
+    bool shadows = false;       // r: the visible share of the sun's disc (1 when off)
+    bool skyLight = false;      // g: the cosine-weighted sky light (1 when off)
+    float sunAzimuth = 0.0f;    // degrees clockwise from north
+    float sunAltitude = 45.0f;  // degrees above the horizon
+    float sunSize = 0.53f;      // angular diameter, degrees, > 0
+    float radius = 0.0f;        // horizon search radius, world units; 0 = the whole grid
+    bool any() const { return shadows || skyLight; }
+};
+
 class TerrainGpu {
   public:
     static TerrainGpu create(const TerrainGpuDesc& desc);
@@ -46,6 +62,20 @@ class TerrainGpu {
 
     // Binds the data textures (units 0 and 2) and the terrain uniform block.
     void bind() const;
+
+    // Makes the relief texture hold the fields `request` asks for, computing
+    // on the CPU only what is not kept: the sky light once per radius (it does
+    // not depend on the sun), the sun's visibility once per distinct sun
+    // (azimuth, altitude, size, radius; the last kReliefSunsKept), each
+    // computation logged with its time. A sun whose disc is wholly below the
+    // horizon is invisible everywhere, without a computation. The texture is
+    // uploaded again only when its fields change. Returns request.any().
+    bool prepareRelief(const ReliefRequest& request);
+    // Binds the relief texture of the last prepareRelief to kReliefTextureUnit.
+    void bindRelief() const;
+    // CPU time of the relief computations so far, milliseconds.
+    double reliefMs() const;
+    static constexpr int kReliefSunsKept = 8;
 
     SbtBridge& sbt();
     // Every grid cell as indexed triangles, built on first use.

@@ -36,13 +36,24 @@ struct TerrainDesc {
     std::string cpt;           // .cpt colour table instead of the scheme; empty = none
 };
 
+// The terrain pass lights each fragment with one function (terrain.frag):
+// albedo * (ambient * skyLight + (1 - ambient) * max(n . sun, 0) * sunVisibility),
+// then fog. skyLight and sunVisibility are the relief fields (TerrainGpu::prepareRelief),
+// 1 where they are off. A sun whose whole disc is below the horizon lights
+// nothing directly: the frame is lit by the ambient (sky) term alone.
 struct Lighting {
     // Towards the sun (unit): compass bearing 232.1 degrees (south-west), 52.8 degrees up.
     glm::vec3 sunDirection = glm::normalize(glm::vec3(-0.45f, 0.75f, 0.35f));
-    float ambient = 0.32f;     // light that reaches faces turned away, 0..1
-    float fogDensity = -1.0f;  // haze per world unit; 0 = off; < 0 = automatic (0.35 / extent)
+    float ambient = 0.32f;  // light that reaches faces turned away, 0..1
+    // Haze per world unit; 0 = off; < 0 = automatic (scene::automaticFog over
+    // the terrain's bounding sphere; perspective only).
+    float fogDensity = -1.0f;
     glm::vec3 sky{0.62f, 0.74f, 0.86f};  // sky and fog colour, linear 0..1
     bool transparent = false;            // sky alpha 0 (RGBA output)
+    bool shadows = false;                // soft cast shadows (the sun's visible share)
+    bool skyLight = false;               // the ambient term times the sky light
+    float sunSize = 0.53f;               // the sun's angular diameter, degrees, > 0
+    float horizonRadius = 0.0f;          // horizon search, world units; 0 = the whole grid
 };
 
 struct DrawOptions {

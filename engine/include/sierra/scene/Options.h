@@ -42,7 +42,9 @@ enum OptionGroup : unsigned {
     kCameraOptions = 1u << 1,
     // --path none|orbit|flyover|keyframes, --frames N|A:B, --frame-count N
     kPathOptions = 1u << 2,
-    // --sun-azimuth DEG, --sun-altitude DEG, --ambient A, --fog D|auto, --sky R,G,B
+    // --sun-azimuth DEG, --sun-altitude DEG, --ambient A, --fog D|auto, --sky R,G,B,
+    // --shadows on|off, --sky-light on|off, --sun-size DEG, --horizon-radius D,
+    // --sun-time TIME, --latitude DEG, --longitude DEG, --sun-step S
     kLightingOptions = 1u << 3,
     // --lod sbt|full, --tau PX, --no-geomorph, --no-cull, --threads N
     kLodOptions = 1u << 4,

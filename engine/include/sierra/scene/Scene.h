@@ -86,14 +86,33 @@ struct PathDesc {
 // used (bearing 232.125, altitude 52.7609 degrees: south-west, fairly high).
 inline constexpr float kDefaultSunAzimuth = 232.125f;
 inline constexpr float kDefaultSunAltitude = 52.7609f;
+// The largest sun diameter taken, degrees: a disc wider than this is no sun.
+inline constexpr float kMaxSunSize = 20.0f;
 
 struct LightingDesc {
     float sunAzimuth = kDefaultSunAzimuth;    // bearing of the sun seen from the ground, degrees
     float sunAltitude = kDefaultSunAltitude;  // degrees above the horizon, -90..90
-    float ambient = 0.32f;                    // ambient light, fraction of full light, 0..1
-    std::optional<float> fog;                 // density per world unit; absent = automatic
-                                              // (0.35 / the terrain's extent); 0 = off
-    Rgb sky{0.62f, 0.74f, 0.86f};             // background and fog colour
+    // The terrain's ambient term (the sky) as a fraction of full light, 0..1;
+    // with the sky light on it is scaled by the share of the sky each point sees.
+    float ambient = 0.32f;
+    std::optional<float> fog;  // density per world unit; absent = automatic (aerial
+                               // perspective over the framed terrain, see docs/scene.md); 0 = off
+    Rgb sky{0.62f, 0.74f, 0.86f};  // background and fog colour
+    // Relief lighting (analysis/Relief.h), computed on the CPU once per
+    // terrain and sun and sampled per fragment at full resolution:
+    bool shadows = true;    // soft shadows the terrain casts (the visible share of the sun's disc)
+    bool skyLight = true;   // the ambient term times the sky light (darker valleys)
+    float sunSize = 0.53f;  // the sun's angular diameter, degrees, (0, 20]: the penumbra
+    float horizonRadius = 0.0f;  // horizon search radius, world units, >= 0; 0 = the whole grid
+    // The sun from a place and a time instead of sunAzimuth / sunAltitude: an
+    // ISO 8601 time with its zone (2026-06-21T17:30:00Z, ...+02:00), the
+    // place the georeferenced DEM's centre unless latitude / longitude say
+    // otherwise (terrain/SunPosition.h). Frame k of a sequence is at
+    // sunTime + k * sunStep seconds.
+    std::optional<std::string> sunTime;
+    std::optional<float> latitude;   // degrees north, -90..90
+    std::optional<float> longitude;  // degrees east, -180..360
+    float sunStep = 0.0f;            // seconds between frames; 0 = the same sun in every frame
     bool operator==(const LightingDesc&) const = default;
 };
 
@@ -195,6 +214,37 @@ struct Scene {
 // The unit vector towards a direction of compass bearing `azimuth` and
 // `altitude` above the horizon (degrees), in world coordinates (see above).
 Vec3 directionFromAngles(float azimuthDegrees, float altitudeDegrees);
+
+// The sun of one frame: where it stands (degrees) and, with a time, when and
+// from where it is seen.
+struct SunAngles {
+    float azimuth = kDefaultSunAzimuth;      // compass bearing, degrees
+    float altitude = kDefaultSunAltitude;    // degrees above the horizon (refraction included)
+    std::optional<double> time;              // seconds since 1970 (UTC), with lighting.sunTime
+    double latitude = 0.0, longitude = 0.0;  // degrees, with lighting.sunTime
+};
+
+// The sun of frame `frame` (0-based) of the scene's sequence: lighting's
+// azimuth and altitude, or with lighting.sunTime the sun at that time plus
+// frame * sunStep seconds over lighting.latitude / longitude, each defaulting
+// to the centre of `field`'s georeference (terrain::Heightfield::geoCentre).
+// Throws sierra::Error when a time has no place (a DEM without a
+// georeference and no latitude and longitude).
+SunAngles sceneSun(const Scene& scene, const terrain::Heightfield& field, int frame);
+
+// Automatic fog (lighting.fog absent): aerial perspective over the framed
+// terrain whatever the camera's distance. No haze up to the near edge of the
+// terrain's bounding sphere seen from the eye; from there the haze grows
+// exponentially, to kAutoFogFarEdge of the way to the sky colour at the
+// sphere's far edge (a camera inside the sphere: from the eye to the far edge).
+inline constexpr float kAutoFogFarEdge = 0.4f;
+struct FogRange {
+    float density = 0.0f;  // per world unit
+    float start = 0.0f;    // world units from the eye where the haze begins
+};
+// eyeToCentre: distance from the eye to the sphere's centre; radius: the
+// sphere's, both world units (> 0; a radius <= 0 gives no fog).
+FogRange automaticFog(float eyeToCentre, float radius);
 
 // Names used by the command line and the JSON form (the terrains are in
 // Terrain.h); parse* throw sierra::Error

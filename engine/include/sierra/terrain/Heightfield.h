@@ -8,6 +8,7 @@
 #include <sierra/core/Error.h>
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -43,6 +44,18 @@ class Heightfield {
     bool metres() const { return metres_; }
     void setMetres(bool metres) { metres_ = metres; }
 
+    // The geographic position of the real samples' centre (WGS 84 degrees,
+    // latitude north, longitude east), when the file's georeferencing gives
+    // it (SRTM's tile name, a GeoTIFF's geotransform and reference system, an
+    // .npz's geographic bounds); the sun's position at a time needs it.
+    struct GeoPoint {
+        double latitude = 0.0;   // degrees, -90..90
+        double longitude = 0.0;  // degrees, -180..360
+        bool operator==(const GeoPoint&) const = default;
+    };
+    const std::optional<GeoPoint>& geoCentre() const { return geoCentre_; }
+    void setGeoCentre(std::optional<GeoPoint> centre);
+
     // World height of sample (i, j): at(i, j) * verticalScale().
     float worldHeight(int i, int j) const { return at(i, j) * verticalScale_; }
 
@@ -63,6 +76,7 @@ class Heightfield {
     float spacingZ_ = 1.0f;
     float verticalScale_ = 1.0f;
     bool metres_ = false;
+    std::optional<GeoPoint> geoCentre_;
     std::vector<float> samples_;
     std::vector<uint8_t> mask_;
 };
