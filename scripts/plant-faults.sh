@@ -26,6 +26,7 @@ faults=(
   "palette-swaps-zones-0-1|engine/src/zones/Palette.cpp|if (surfaces[k].colour == colour) return int(k);|if (surfaces[k].colour == colour) return int(k < 2 ? 1 - k : k);|sierra_unit_tests|ZonesIo.PaletteReadsFieldsAndResolvesTiles ZonesIo.ZoneMapRoundTripsThroughPng"
   "parity-fixed-leaf-level|engine/src/sbt/Refiner.cpp|                        append(q, l & 1);|                        append(q, (l + 1) & 1);|sierra_unit_tests|SbtFixed.MeshesMatchBruteForceAndConform SbtFixed.FullGridStripLengthIsExact"
   "parity-keyed-depth-2|engine/src/sbt/Refiner.cpp|constexpr int parity = int(kOdd) ^ (depth & 1), childParity = parity ^ 1;|constexpr int parity = int(kOdd) ^ (depth & 1) ^ (depth == 2), childParity = parity ^ 1;|sierra_unit_tests sierra_sbt_scalar_tests|SbtView.FastPathEmitsTheBaselineStrip SbtViewOrder.SameTrianglesInTheSameOrderAsTheReference scalar.SbtView.FastPathEmitsTheBaselineStrip"
+  "parallel-never-forks|engine/src/core/Parallel.cpp|        while ((unit = claim(nullptr)) >= 0) {|        for (woken = true; (unit = claim(nullptr)) >= 0;) {|sierra_unit_tests|CoreParallel.LongCallsShareTheWork"
   "frames-range-drops-last|apps/sierra-render/main.cpp|const int last = s.path.range ? s.path.range->last : frameCount - 1;|const int last = s.path.range ? s.path.range->last - 1 : frameCount - 1;|sierra-render|apps.render_scene"
 )
 
