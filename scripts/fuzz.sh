@@ -1,27 +1,58 @@
 #!/usr/bin/env bash
 # Fuzzes every Sierra loader with libFuzzer under ASan + UBSan and prints, per
 # target, the executions, the time and the findings (crash-*, leak-*, oom-*,
-# timeout-* files libFuzzer leaves in fuzz/findings/TARGET).
+# timeout-* files libFuzzer leaves in build-fuzz/findings/TARGET).
 #
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default 120 s, every target)
 #
-# Needs clang and libclang-rt-dev (apt-get install clang libclang-rt-14-dev on
-# Debian 12). Builds into build-fuzz/; seeds come from small valid files made
-# here, the corpus grows in build-fuzz/corpus/TARGET.
+# Exits 1 when any target has a finding (a new file in its findings folder or
+# libFuzzer stopping with an error), after printing each reproducer's path and
+# the command that replays it; .ci/run's fuzz stage relies on that status.
+#
+# Needs clang, libclang-rt-14-dev (libFuzzer's runtime) and python3 (the
+# seeds) on Debian 12: run as root it installs them when missing, as scripts/setup.sh does for its
+# packages; otherwise it prints the apt-get line and exits 1. Builds into
+# build-fuzz/; seeds come from small valid files made here, the corpus grows in
+# build-fuzz/corpus/TARGET.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-120}
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap)
+[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap obj camera)
 
-if ! command -v clang++ >/dev/null; then
-  echo "fuzz.sh: clang++ not found; install it with: apt-get install clang libclang-rt-14-dev" >&2
+packages=(clang libclang-rt-14-dev python3)
+missing=()
+if command -v dpkg-query >/dev/null; then
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+elif ! command -v clang++ >/dev/null; then
+  missing=("${packages[@]}")
+fi
+if ((${#missing[@]})); then
+  if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null; then
+    echo "fuzz.sh: installing ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  else
+    echo "fuzz.sh: missing packages. Install them with:" >&2
+    echo "  sudo apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+built=$SECONDS
+mkdir -p build-fuzz
+if ! { cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+         -DSIERRA_FUZZ=ON -DSIERRA_BUILD_TESTS=OFF -DSIERRA_WITH_GDAL=OFF &&
+       cmake --build build-fuzz -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}"); } \
+     >build-fuzz/build.log 2>&1; then
+  tail -n 30 build-fuzz/build.log >&2
+  echo "fuzz.sh: the build failed (build-fuzz/build.log)" >&2
   exit 1
 fi
-cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-      -DSIERRA_FUZZ=ON -DSIERRA_BUILD_TESTS=OFF -DSIERRA_WITH_GDAL=OFF >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}") >/dev/null
+echo "fuzz.sh: built ${#targets[@]} targets in $((SECONDS - built)) s"
 
 # Seeds: one or two small valid inputs per target.
 seeds=build-fuzz/seeds
@@ -91,20 +122,70 @@ put("scene", "scene.json", json.dumps({"terrain": {"generate": 257, "seed": 3, "
     "path": {"type": "orbit", "frames": 3, "keyframes": []},
     "lighting": {"sun_azimuth": 232.0, "fog": None, "sky": [0.6, 0.7, 0.8]},
     "lod": {"mode": "sbt", "tau": 2.0, "geomorph": True}, "output": {"width": 64, "height": 48, "msaa": 4}}))
+# The OBJ reader: what sierra-tin writes (mtllib, usemtl, v, vt, f i/t), the
+# other corner forms, negative indices and comments; an MTL beside it.
+put("obj", "tin.obj", "# sierra-tin\nmtllib tin.mtl\nv 0 1.5 0\nv 1 2 0\nv 0 0.5 1\nv 1 1 1\n"
+    "vt 0 0\nvt 0.5 0\nvt 0 0.5\nvt 0.5 0.5\nusemtl zone_1\nf 1/1 3/3 2/2\n"
+    "usemtl band_1_2\nf 2/2 3/3 4/4\n")
+put("obj", "corners.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nvn 0 1 0\nvt 0 0\n"
+    "f 1//1 3//1 2//1\nf -3/-1/1 -1/-1/1 -2/-1/1\ng ground\no mesh\ns off\n")
+put("obj", "tin.mtl", "newmtl zone_1\nKd 0.2 0.6 0.1\nmap_Kd tiles/grass.png\n"
+    "newmtl band_1_2\nKd 0.4 0.4 0.2\n")
+# Cameras: one scene per path type and projection (fuzz_camera follows each to
+# its matrices); the scene seed above as well.
+cameras = {
+    "still.json": {"camera": {"position": [300.0, 120.0, -40.0], "target": [128.0, 10.0, 128.0],
+                              "fov": 30.0}},
+    "angles.json": {"camera": {"azimuth": 90.0, "elevation": 89.9, "distance": 400.0},
+                    "output": {"width": 640, "height": 360}},
+    "ortho.json": {"camera": {"elevation": 90.0, "projection": "orthographic"}},
+    "orbit.json": {"camera": {"target": [100.0, 0.0, 90.0], "distance": 250.0, "elevation": 10.0},
+                   "path": {"type": "orbit", "frames": 12, "range": [3, 7]}},
+    "flyover.json": {"camera": {"fov": 70.0}, "path": {"type": "flyover", "frames": 8}},
+    "keys.json": {"path": {"type": "keyframes", "frames": 9, "keyframes": [
+        {"time": 0.0, "position": [0.0, 80.0, 300.0], "target": [128.0, 0.0, 128.0]},
+        {"time": 1.5, "position": [300.0, 60.0, 300.0], "target": [128.0, 20.0, 128.0]},
+        {"time": 4.0, "position": [128.0, 200.0, -20.0], "target": [130.0, 0.0, 120.0]}]}},
+}
+for name, scene in cameras.items():
+    put("camera", name, json.dumps(scene))
+    put("scene", name, json.dumps(scene))
+with open(os.path.join(root, "scene", "scene.json"), "rb") as f:
+    put("camera", "scene.json", f.read())
 PY
 
+# A finding: a new file in the target's findings folder (left there by this
+# run; older ones are kept but not counted again) or libFuzzer stopping with
+# an error status.
 printf '%-9s %14s %8s %9s  %s\n' target executions seconds exec/s findings
+failed=()
 for t in "${targets[@]}"; do
   corpus=build-fuzz/corpus/$t findings=build-fuzz/findings/$t
   mkdir -p "$corpus" "$findings"
   log=build-fuzz/fuzz_$t.log
+  stamp=build-fuzz/findings/.$t.start
+  touch "$stamp"
   # -rss_limit_mb: the 2049^2 budget at 8 bytes a sample is 32 MiB; 2 GiB flags
   # any input that costs far more memory than its grid.
+  status=0
   build-fuzz/fuzz/fuzz_$t "$corpus" "$seeds/$t" -max_total_time="$seconds" -rss_limit_mb=2048 \
-      -max_len=65536 -timeout=10 -artifact_prefix="$findings/" -print_final_stats=1 >"$log" 2>&1 || true
+      -max_len=65536 -timeout=10 -artifact_prefix="$findings/" -print_final_stats=1 >"$log" 2>&1 ||
+    status=$?
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
   took=$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | grep -o 'in [0-9]*' | grep -o '[0-9]*' || echo "$seconds")
-  found=$(find "$findings" -type f | wc -l)
+  new=$(find "$findings" -type f -newer "$stamp")
+  found=$(printf '%s' "$new" | grep -c . || true)
   printf '%-9s %14s %8s %9s  %s\n' "$t" "$runs" "$took" "$(( runs / (took > 0 ? took : 1) ))" "$found"
+  if [[ $status -ne 0 || $found -gt 0 ]]; then
+    failed+=("$t")
+    for f in $new; do
+      echo "fuzz.sh: $t: finding $f; replay: build-fuzz/fuzz/fuzz_$t $f" >&2
+    done
+    [[ $found -gt 0 ]] || echo "fuzz.sh: $t: libFuzzer exited with status $status; see $log" >&2
+  fi
 done
 echo "logs: build-fuzz/fuzz_TARGET.log; findings: build-fuzz/findings/TARGET"
+if ((${#failed[@]})); then
+  echo "fuzz.sh: findings in ${failed[*]}" >&2
+  exit 1
+fi

@@ -6,12 +6,15 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include <time.h>
 
 using namespace sierra;
 
@@ -105,25 +108,54 @@ TEST(CoreParallel, ShortCallsStayOnTheCallingThread) {
     for (const std::thread::id& id : ids) EXPECT_EQ(id, std::this_thread::get_id());
 }
 
+// CPU time of the calling thread, seconds (what parallelChunks measures its
+// lone start in).
+static double threadCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 TEST(CoreParallel, LongCallsShareTheWork) {
-    // Chunks of 2 ms busy work: after the first, a helper is woken; it sleeps
-    // in between, so even a busy machine schedules it before the 40 are done.
+    // The caller starts alone and takes chunk 0 first; that chunk burns 5 times
+    // kForkAfterSeconds of the caller's CPU time, so the call has proved long
+    // and the helper is woken. Every later chunk the caller takes then waits
+    // until a chunk has run on another thread: the call can finish only by
+    // sharing the work, however the machine schedules its threads. The wait is
+    // bounded (30 s, once) so that a pool that never forks fails instead of
+    // hanging.
+    constexpr int kChunks = 40;
+    const std::thread::id caller = std::this_thread::get_id();
     std::mutex m;
+    std::condition_variable helped;
+    bool helperRan = false, callerStarted = false, timedOut = false;
     std::set<std::thread::id> ids;
-    std::vector<int> order;
+    std::vector<int> runs(kChunks, 0);
     parallelChunks(
-        0, 40, 40,
+        0, kChunks, kChunks,
         [&](int64_t, int64_t, int c) {
-            const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(2);
-            while (std::chrono::steady_clock::now() < until) {
+            std::unique_lock lock(m);
+            if (std::this_thread::get_id() != caller) {
+                helperRan = true;
+                helped.notify_all();
+            } else if (!callerStarted) {
+                callerStarted = true;
+                lock.unlock();
+                const double t0 = threadCpuSeconds();
+                while (threadCpuSeconds() - t0 < 5 * kForkAfterSeconds) {
+                }
+                lock.lock();
+            } else if (!timedOut && !helped.wait_for(lock, std::chrono::seconds(30),
+                                                     [&] { return helperRan; })) {
+                timedOut = true;
             }
-            std::lock_guard lock(m);
             ids.insert(std::this_thread::get_id());
-            order.push_back(c);
+            ++runs[size_t(c)];
         },
         2);
-    EXPECT_EQ(order.size(), 40u);
+    EXPECT_FALSE(timedOut) << "no helper ran a chunk within 30 s of being woken";
     EXPECT_EQ(ids.size(), 2u);
+    for (int c = 0; c < kChunks; ++c) EXPECT_EQ(runs[size_t(c)], 1) << "chunk " << c;
 }
 
 TEST(CoreParallel, ExceptionsFromHelpersReachTheCaller) {

@@ -412,16 +412,69 @@ TEST(SbtFixed, OneThreadJoinsIntoAReusedMeshAsSeveralThreadsDo) {
     EXPECT_EQ(mesh.indices.capacity(), capacity);
 }
 
-TEST(SbtFixed, IndicesPerTriangleAtMost1Point7) {
+// The strip of a full (2^n + 1)^2 grid, counted exactly. It has T = 2 * 4^n
+// leaf triangles. Every index after the first two closes a triangle, so
+// I = 2 + T + D with D the degenerate ones: where the strip turns (two
+// appended vertices of the same parity make the walk re-send one) and where
+// the two level-0 triangles' strips join. On the 3x3 grid, in (i, j):
+//     (0,0) (0,1) (1,1) (0,2) [(1,1)] (1,2) [(1,1)] (2,2) [(2,2)] (2,1) (1,1)
+//     (2,0) [(1,1)] (1,0) [(1,1)] (0,0)
+// (all 8 triangles are a fan around (1,1), so every other step re-sends it;
+// (2,2) twice where the second root's strip joins the first: 6 degenerate
+// triangles), I(1) = 16 = 2 + 8 + 6. Two more levels make each leaf triangle four
+// in the same Sierpinski pattern: the strip is four copies of the coarser
+// pattern sharing 8 indices where they meet, I(n + 1) = 4 I(n) - 8 (5x5: 56
+// indices, 32 triangles), whose solution from I(1) = 16 is
+//     I0(n) = (10 * 4^n + 8) / 3 = (5 T + 8) / 3,
+// 5/3 per triangle plus 8/3 in all. Subtrees at the chunk level c (at
+// least two levels tall, c <= 2n - 2, as the default clamp(2n - 10, 0, 6)
+// always is) are walked as separate strips, each beginning with its entry
+// vertex twice, and joined into one: before a subtree of odd level the
+// doubled entry takes the place of the vertex the single walk re-sends there
+// (no cost); before one of even level k >= 2 the entry stands three times
+// where the single walk has it once (2 more indices). Level k brings 2^k new
+// joins, so with e the largest even level <= c
+//     I = I0 + 2 (2^2 + 2^4 + ... + 2^e) = I0 + 8 (2^e - 1) / 3.
+// The same for one thread and two: the joined strip does not depend on who
+// walked which subtree.
+TEST(SbtFixed, FullGridStripLengthIsExact) {
+    for (int n : {1, 2, 5, 7, 8}) {
+        const int size = (1 << n) + 1;
+        Heightfield f = fractal(size, 5);
+        auto ve = sbt::computeVertexErrors(f);
+        for (int chunkLevel : {-1, 0, 1, 2, 3, 4, 6}) {
+            if (chunkLevel > 2 * n - 2) continue;
+            for (int threads : {1, 2}) {
+                sbt::Refiner refiner(f, ve, {.threads = threads, .chunkLevel = chunkLevel});
+                sbt::StripMesh mesh;
+                refiner.refineFixed(-1.0f, mesh);
+                const int64_t t = int64_t(2) << (2 * n);
+                const int e = refiner.chunkLevel() & ~1;
+                const int64_t indices = (5 * t + 8) / 3 + 8 * ((int64_t(1) << e) - 1) / 3;
+                EXPECT_EQ(mesh.triangleCount, t) << size << " chunk level " << chunkLevel;
+                EXPECT_EQ(int64_t(mesh.indices.size()), indices)
+                    << size << " chunk level " << refiner.chunkLevel() << ", " << threads
+                    << " threads";
+                EXPECT_EQ(mesh.stripCount, 1);
+            }
+        }
+    }
+}
+
+// Adaptive fixed-error meshes: fewer indices per triangle than the full grid's
+// 5/3 (fewer turns where the levels are mixed), and well under the paper's 2.
+TEST(SbtFixed, IndicesPerTriangleOfAdaptiveMeshes) {
     for (int size : {129, 257}) {
         Heightfield f = size == 129 ? gaussians(size, 4) : fractal(size, 4);
         auto ve = sbt::computeVertexErrors(f);
         sbt::Refiner refiner(f, ve);
         sbt::StripMesh mesh;
         float emax = *std::max_element(ve.error.begin(), ve.error.end());
-        for (float eps : {-1.0f, 0.0f, emax * 0.001f, emax * 0.01f, emax * 0.05f}) {
+        for (float eps : {0.0f, emax * 0.001f, emax * 0.01f, emax * 0.05f}) {
             refiner.refineFixed(eps, mesh);
             if (mesh.triangleCount < 1000) continue;
+            std::printf("%d eps %g: %lld triangles, %.4f indices per triangle\n", size, eps,
+                        (long long)mesh.triangleCount, mesh.indicesPerTriangle());
             EXPECT_LE(mesh.indicesPerTriangle(), 1.7)
                 << size << " eps " << eps << " triangles " << mesh.triangleCount;
         }
