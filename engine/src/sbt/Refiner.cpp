@@ -4,11 +4,13 @@
 //   run                 one refinement, in these steps:
 //     takeFrame         the working data no helper of the last one still reads
 //     setUpWalker       the walker's configuration for this mode and view
-//     setUpViewKeys     ... and for the keyed walk (view keys, reach factor)
+//     setUpViewKeys     ... and for the keyed walk (followReachFactor: which
+//                       lambda / tau the reach keys are made for)
 //     recordTop         the serial top of the tree, cut into chunks
 //     chooseThreads     one thread or several (ThreadPolicy.cpp)
-//     refineSerially    the chunks in turn, joined in place in the output
-//     refineInParallel  the chunks on the pool, then joined by copies
+//     refineSerially    one thread: the chunks in turn, joined in place
+//     runChunksPooled   several: the chunks on the pool, then
+//     joinPooledChunks  joined by copies into the output
 //
 // The walks a chunk runs are in the headers beside this file (Walker.h maps
 // them), the strip writer and the join in StripWriter.h, the keys' building

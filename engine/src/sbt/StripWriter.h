@@ -59,18 +59,21 @@ struct PackedStripParity {
 // one of the last two; when p equals the parity of the previous append the
 // second-last vertex is re-sent first, so that the strip turns (Lindstrom and
 // Pascucci's tstrip-append). Returns the strip's new end. Inlined into every
-// walk, the parity compared in the writer itself: each walk's code is what it
-// would be with the rule written out in it.
+// walk, with the parity compared in the writer itself, one return, and the
+// re-send out of line ([[unlikely]]: the layout of the walks' own copies of
+// this rule, which GCC otherwise inverts here), the walks' code keeps the
+// size and shape it had with the rule written out in each of them.
 template <typename Parity>
 [[gnu::always_inline]] inline uint32_t* appendToStrip(uint32_t* o, uint32_t v, int p, Parity last) {
-    if (v == o[-1] || v == o[-2]) return o;
-    if (p + Parity::kOffset == last.stored()) {
-        o[0] = o[-2];  // re-send: the strip turns
-        ++o;
-    } else {
-        last.store(p + Parity::kOffset);
+    if (v != o[-1] && v != o[-2]) {
+        if (p + Parity::kOffset == last.stored()) [[unlikely]] {
+            o[0] = o[-2];  // re-send: the strip turns
+            ++o;
+        } else {
+            last.store(p + Parity::kOffset);
+        }
+        *o++ = v;
     }
-    *o++ = v;
     return o;
 }
 
