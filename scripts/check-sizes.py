@@ -4,6 +4,7 @@ no function over MAX_FUNCTION_LINES lines (from its signature's first line to
 its closing brace).
 
 Usage: check-sizes.py [ENGINE_SRC_DIR]   (default: engine/src beside this script)
+       check-sizes.py --self-test       (the checker against fixtures it writes)
 Prints every file and function over the limits and exits 1 when one is not in
 the allow-list below; exits 0 otherwise.
 
@@ -84,7 +85,9 @@ def blank_comments_and_strings(text):
 def is_function_head(head):
     """Whether the declaration text before a '{' is a function's signature."""
     head = re.sub(r"^\s*#.*$", "", head, flags=re.M).strip()  # preprocessor lines
-    if not head or NOT_FUNCTIONS.match(head) or "=" in head.split("(")[0]:
+    if not head or NOT_FUNCTIONS.match(head):
+        return False
+    if "=" in head.split("(")[0] and "operator" not in head:  # an initialiser, not a signature
         return False
     if head.startswith("template"):
         # template <...> struct X: not a function
@@ -143,15 +146,9 @@ def functions(text):
     return found
 
 
-def main():
-    root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
-        os.path.dirname(os.path.abspath(__file__)), "..", "engine", "src")
-    root = os.path.normpath(root)
-    if not os.path.isdir(root):
-        print(f"check-sizes: error: {root} is not a folder", file=sys.stderr)
-        return 2
-    failures = 0
-    allowed = 0
+def check(root, allowed_files):
+    """Prints the sizes over the limits under root; the count not allowed, and allowed."""
+    failures = allowed = 0
     for folder, _, names in sorted(os.walk(root)):
         for name in sorted(names):
             if not name.endswith(SOURCE_EXTENSIONS):
@@ -170,12 +167,64 @@ def main():
                     problems.append(
                         f"{rel}:{first}: function {fname} has {length} lines (at most {MAX_FUNCTION_LINES})")
             for p in problems:
-                if rel in ALLOWED:
+                if rel in allowed_files:
                     allowed += 1
                     print(f"allowed: {p}")
                 else:
                     failures += 1
                     print(p)
+    return failures, allowed
+
+
+def self_test():
+    """The checker on fixtures: each case's expected failure count."""
+    import tempfile
+
+    def body(n):  # a function of n lines in all
+        return "int f() {\n" + "    x();\n" * (n - 2) + "}\n"
+
+    cases = {
+        "fits.cpp": (body(MAX_FUNCTION_LINES), 0),
+        "long.cpp": (body(MAX_FUNCTION_LINES + 1), 1),
+        # a lambda and braces in literals and comments count towards the function
+        "lambda.cpp": ("void g() {\n    auto h = [] {\n" + "        y(\"{\", '}');  // }\n" * 118 +
+                       "    };\n}\n", 1),
+        "member.h": ("struct S {\n    void m() const {\n" + "        z();\n" * 117 +
+                     "    }\n};\n", 0),
+        "ctor.cpp": ("S::S(int a)\n    : a_(a) {\n" + "    w();\n" * 119 + "}\n", 1),
+        "big.cpp": ("int v;\n" * (MAX_FILE_LINES + 1), 1),
+        "classes.cpp": ("namespace n {\nstruct T {\n" + "    int a;\n" * 200 + "};\n}\n", 0),
+    }
+    ok = True
+    with tempfile.TemporaryDirectory() as root:
+        for name, (text, want) in cases.items():
+            case = os.path.join(root, name.replace(".", "_"))
+            os.mkdir(case)
+            with open(os.path.join(case, name), "w") as f:
+                f.write(text)
+            got, _ = check(case, set())
+            if got != want:
+                print(f"self-test: {name}: {got} over the limits, expected {want}")
+                ok = False
+        allowed_case = os.path.join(root, "long_cpp")
+        got, allowed = check(allowed_case, {"long.cpp"})
+        if got != 0 or allowed != 1:
+            print("self-test: an allowed file still fails the check")
+            ok = False
+    print("check-sizes: self-test " + ("passed" if ok else "FAILED"))
+    return 0 if ok else 1
+
+
+def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "--self-test":
+        return self_test()
+    root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "..", "engine", "src")
+    root = os.path.normpath(root)
+    if not os.path.isdir(root):
+        print(f"check-sizes: error: {root} is not a folder", file=sys.stderr)
+        return 2
+    failures, allowed = check(root, ALLOWED)
     if failures:
         print(f"check-sizes: {failures} file(s) or function(s) over the limits", file=sys.stderr)
         return 1
