@@ -189,7 +189,7 @@ inline auto Walker<kView, kFast>::keyedLevel(V a, V q, V b, uint64_t kb, uint32_
     const V m = (a + b) >> 1;
     const uint32_t sd = kw_.side;
     auto idx = [sd](V v) { return uint32_t(v >> 32) * sd + uint32_t(v); };
-    auto put = [&](uint32_t v, int p) { o = appendToStrip(o, v, p, PackedStripParity{state}); };
+    auto put = [&](uint32_t v, int p) { appendToStrip(o, v, p, PackedStripParity{state}); };
     auto room = [&](size_t need) {
         if (size_t(cap - o) < need) [[unlikely]] {
             out = o;

@@ -172,7 +172,7 @@ struct Walker {
         if constexpr (kView) {
             if (needStart) return;
         }
-        out = appendToStrip(out, v, p, StripParity{parity});
+        appendToStrip(out, v, p, StripParity{parity});
     }
 
     void start(uint32_t a) {
