@@ -68,6 +68,62 @@ std::vector<zones::Vertex> convexHull(const zones::Borderlines& lines,
     return hull;
 }
 
+// An island: a closed loop of edges without a junction, its component's root.
+struct Island {
+    uint32_t root;
+    double x0, y0, x1, y1;  // bounding box
+};
+
+// Whether the loop (an island's edges, at least 3) is thin: every vertex
+// within epsilon of a longest chord. *box: the island and its bounding box.
+bool thinIsland(const zones::Borderlines& lines, const std::vector<uint32_t>& loop, uint32_t root,
+                double epsilon, Island* box) {
+    std::vector<uint32_t> vs;
+    for (uint32_t k : loop) vs.push_back(lines.edges[k].from);
+    // A strip within epsilon of a chord no longer than the box's diagonal
+    // has an area of at most 2 epsilon x diagonal: a cheap test first.
+    *box = Island{root, 1e300, 1e300, -1e300, -1e300};
+    double twiceArea = 0.0;
+    const int32_t inside = lines.edges[loop[0]].left;
+    for (uint32_t k : loop) {
+        const zones::Edge& e = lines.edges[k];
+        const zones::Vertex& a = lines.vertices[e.left == inside ? e.from : e.to];
+        const zones::Vertex& b = lines.vertices[e.left == inside ? e.to : e.from];
+        twiceArea += a.x * b.y - b.x * a.y;
+        box->x0 = std::min(box->x0, a.x), box->y0 = std::min(box->y0, a.y);
+        box->x1 = std::max(box->x1, a.x), box->y1 = std::max(box->y1, a.y);
+    }
+    const double diagonal = std::hypot(box->x1 - box->x0, box->y1 - box->y0);
+    if (0.5 * std::fabs(twiceArea) > 2.0 * epsilon * diagonal) return false;
+    // The longest chord joins two corners of the convex hull: the pairs are
+    // tried over the hull only (a long thin island has thousands of
+    // vertices, its hull a few dozen). The island is thin when every vertex
+    // lies within epsilon of a longest chord (of any, where several tie).
+    const std::vector<zones::Vertex> hull = convexHull(lines, vs);
+    double longest = 0.0;
+    std::vector<std::pair<size_t, size_t>> chords;
+    for (size_t i = 0; i < hull.size(); ++i)
+        for (size_t j = i + 1; j < hull.size(); ++j) {
+            const double d = (hull[i].x - hull[j].x) * (hull[i].x - hull[j].x) +
+                             (hull[i].y - hull[j].y) * (hull[i].y - hull[j].y);
+            if (d > longest) longest = d, chords.clear();
+            if (d == longest && d > 0.0) chords.emplace_back(i, j);
+        }
+    const double length = std::sqrt(longest);
+    bool within = false;
+    for (size_t c = 0; c < chords.size() && !within; ++c) {
+        const zones::Vertex& p = hull[chords[c].first];
+        const zones::Vertex& q = hull[chords[c].second];
+        within = true;
+        for (size_t i = 0; i < vs.size() && within; ++i) {
+            const zones::Vertex& s = lines.vertices[vs[i]];
+            within = std::fabs((q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x)) <=
+                     epsilon * length;
+        }
+    }
+    return within;
+}
+
 }  // namespace
 
 size_t removeThinIslands(zones::Borderlines& lines, double epsilon) {
@@ -91,58 +147,12 @@ size_t removeThinIslands(zones::Borderlines& lines, double epsilon) {
         if (!hasJunction[root(lines.edges[k].from)])
             loopEdges[root(lines.edges[k].from)].push_back(k);
 
-    struct Island {
-        uint32_t root;
-        double x0, y0, x1, y1;  // bounding box
-    };
     std::vector<Island> thin;
     for (uint32_t r = 0; r < nv; ++r) {
         const std::vector<uint32_t>& loop = loopEdges[r];
         if (loop.size() < 3) continue;
-        std::vector<uint32_t> vs;
-        for (uint32_t k : loop) vs.push_back(lines.edges[k].from);
-        // A strip within epsilon of a chord no longer than the box's diagonal
-        // has an area of at most 2 epsilon x diagonal: a cheap test first.
-        Island box{r, 1e300, 1e300, -1e300, -1e300};
-        double twiceArea = 0.0;
-        const int32_t inside = lines.edges[loop[0]].left;
-        for (uint32_t k : loop) {
-            const zones::Edge& e = lines.edges[k];
-            const zones::Vertex& a = lines.vertices[e.left == inside ? e.from : e.to];
-            const zones::Vertex& b = lines.vertices[e.left == inside ? e.to : e.from];
-            twiceArea += a.x * b.y - b.x * a.y;
-            box.x0 = std::min(box.x0, a.x), box.y0 = std::min(box.y0, a.y);
-            box.x1 = std::max(box.x1, a.x), box.y1 = std::max(box.y1, a.y);
-        }
-        const double diagonal = std::hypot(box.x1 - box.x0, box.y1 - box.y0);
-        if (0.5 * std::fabs(twiceArea) > 2.0 * epsilon * diagonal) continue;
-        // The longest chord joins two corners of the convex hull: the pairs are
-        // tried over the hull only (a long thin island has thousands of
-        // vertices, its hull a few dozen). The island is thin when every vertex
-        // lies within epsilon of a longest chord (of any, where several tie).
-        const std::vector<zones::Vertex> hull = convexHull(lines, vs);
-        double longest = 0.0;
-        std::vector<std::pair<size_t, size_t>> chords;
-        for (size_t i = 0; i < hull.size(); ++i)
-            for (size_t j = i + 1; j < hull.size(); ++j) {
-                const double d = (hull[i].x - hull[j].x) * (hull[i].x - hull[j].x) +
-                                 (hull[i].y - hull[j].y) * (hull[i].y - hull[j].y);
-                if (d > longest) longest = d, chords.clear();
-                if (d == longest && d > 0.0) chords.emplace_back(i, j);
-            }
-        const double length = std::sqrt(longest);
-        bool within = false;
-        for (size_t c = 0; c < chords.size() && !within; ++c) {
-            const zones::Vertex& p = hull[chords[c].first];
-            const zones::Vertex& q = hull[chords[c].second];
-            within = true;
-            for (size_t i = 0; i < vs.size() && within; ++i) {
-                const zones::Vertex& s = lines.vertices[vs[i]];
-                within = std::fabs((q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x)) <=
-                         epsilon * length;
-            }
-        }
-        if (within) thin.push_back(box);
+        Island box;
+        if (thinIsland(lines, loop, r, epsilon, &box)) thin.push_back(box);
     }
     // An island with a kept borderline inside stays: removing it would leave
     // that borderline's outer zone (the island's) inside another zone. Keeping

@@ -199,6 +199,14 @@ class Refiner {
   private:
     template <bool kView, bool kFast = false>
     void run(const ViewParams* view, float epsilon, StripMesh& out);
+    // The steps of run (Refiner.cpp; chooseThreads: ThreadPolicy.cpp).
+    int takeFrame(bool* helperBusy);
+    template <typename W>
+    void setUpWalker(W& proto, const ViewParams* view, float epsilon, Frame& frame);
+    template <typename W>
+    void setUpViewKeys(W& proto, double magnitude, Frame& frame);
+    void followReachFactor(double lambdaOverTau);
+    int chooseThreads(bool view, bool helperBusy, bool* adaptive);
     void buildSplitKeys();
     void buildViewKeys();
     void buildReachKeys(double lambdaOverTau);
@@ -238,7 +246,7 @@ class Refiner {
     // children of a triangle are tested at once. The reach is
     // lambda / tau * e + r for the lambda / tau of keyReachFactor_, computed
     // in double as the baseline does, as a length key (lengthKey in
-    // Refiner.cpp: 5 exponent and 11 mantissa bits of the float above a base
+    // engine/src/sbt/Keys.h: 5 exponent and 11 mantissa bits of the float above a base
     // 32 binades below the largest reach, keyReachBase_; the reach lies
     // between the floats of its key and of the next key). The height key is
     // the world height in steps of 1/65535 of the grid's height range
@@ -249,7 +257,7 @@ class Refiner {
     // (s + max(1 - s, 0) rho) times the keys' bounds, rho = 2^(-12 + 4 c):
     // nearly s times them where the error dominates the reach, as it does on
     // most vertices. After kReachRebuildAfter refinements in a row with one
-    // other factor the keys are made again for it (Refiner::run). The keys
+    // other factor the keys are made again for it (Refiner::followReachFactor). The keys
     // decide all but the vertices near the threshold (about 0.06% on a rough
     // 2049^2 fractal at tau = 1), which read the exact arrays, and a
     // subtree's keys sit together level by level instead of scattered over
