@@ -14,9 +14,9 @@
 #include <sierra/render/Capture.h>
 #include <sierra/render/SceneRenderer.h>
 #include <sierra/scene/SceneJson.h>
+#include <sierra/terrain/DemMaps.h>
 #include <sierra/terrain/Heightfield.h>
 #include <sierra/terrain/HeightfieldIO.h>
-#include <sierra/terrain/DemMaps.h>
 #include <sierra/terrain/Padding.h>
 
 #include <pybind11/numpy.h>

@@ -1,5 +1,7 @@
 #include <sierra/analysis/Relief.h>
 
+#include <sierra/analysis/ReliefLines.h>
+
 #include "ReliefSweep.h"
 
 #include <sierra/analysis/Normals.h>
@@ -16,28 +18,12 @@ namespace {
 
 using namespace relief;
 
-// The most azimuths a call takes: 1024 at 4097^2 is already 64 GiB of angles.
-constexpr int kMaxDirections = 1024;
-
 void validate(const terrain::Heightfield& field, const HorizonOptions& o, const char* caller) {
-    SIERRA_CHECK(!field.empty(), caller, ": the heightfield is empty");
-    SIERRA_CHECK(o.validWidth >= 0 && o.validWidth <= field.width(), caller,
-                 ": validWidth must be in 0..", field.width(), " (0 = the whole grid), got ",
-                 o.validWidth);
-    SIERRA_CHECK(o.validHeight >= 0 && o.validHeight <= field.height(), caller,
-                 ": validHeight must be in 0..", field.height(), " (0 = the whole grid), got ",
-                 o.validHeight);
-    SIERRA_CHECK(std::isfinite(o.radius) && o.radius >= 0.0f, caller,
-                 ": radius must be finite and >= 0 (0 = the whole grid), got ", o.radius);
-    SIERRA_CHECK(o.threads >= 0, caller, ": threads must be >= 0 (0 = the default), got ",
-                 o.threads);
+    checkHorizonOptions(field.width(), field.height(), o, caller);
 }
 
 void validateDirections(const HorizonOptions& o, const char* caller) {
-    SIERRA_CHECK(o.directions >= 1 && o.directions <= kMaxDirections, caller,
-                 ": directions must be in 1..", kMaxDirections, ", got ", o.directions);
-    SIERRA_CHECK(std::isfinite(o.firstAzimuth), caller, ": firstAzimuth must be finite, got ",
-                 o.firstAzimuth);
+    checkHorizonDirections(o, caller);
 }
 
 Surface makeSurface(const terrain::Heightfield& field, const HorizonOptions& o, bool inverted) {
@@ -140,14 +126,7 @@ Horizons computeHorizons(const terrain::Heightfield& field, const HorizonOptions
 std::vector<float> sunVisibility(const terrain::Heightfield& field, const SunDisc& sun,
                                  const HorizonOptions& options) {
     validate(field, options, "sunVisibility");
-    SIERRA_CHECK(std::isfinite(sun.diameter) && sun.diameter > 0.0f && sun.diameter < 180.0f,
-                 "sunVisibility: the sun's diameter must be in (0, 180) degrees, got ",
-                 sun.diameter);
-    SIERRA_CHECK(std::isfinite(sun.azimuth),
-                 "sunVisibility: the sun's azimuth must be finite, got ", sun.azimuth);
-    SIERRA_CHECK(std::isfinite(sun.altitude) && sun.altitude >= -90.0f && sun.altitude <= 90.0f,
-                 "sunVisibility: the sun's altitude must be in [-90, 90] degrees, got ",
-                 sun.altitude);
+    checkSunDisc(sun);
     const Surface s = makeSurface(field, options, false);
     const size_t n = s.samples();
     std::vector<float> out(n);

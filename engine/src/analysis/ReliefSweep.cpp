@@ -6,52 +6,6 @@
 
 namespace sierra::analysis::relief {
 
-Lines makeLines(double degrees, const Surface& s) {
-    Lines l;
-    const double a = std::fmod(double(degrees), 360.0) * kPi / 180.0;
-    double sa = std::sin(a), ca = std::cos(a);
-    // sin(pi) is 1.2e-16, not 0: the four axis azimuths are snapped onto the axes.
-    if (std::fabs(sa) < 1e-12) sa = 0.0;
-    if (std::fabs(ca) < 1e-12) ca = 0.0;
-    l.ux = sa;
-    l.uz = -ca;
-    const double gi = sa / s.sx, gj = -ca / s.sz;
-    l.iMajor = std::fabs(gi) >= std::fabs(gj);
-    const double major = l.iMajor ? gi : gj, minor = l.iMajor ? gj : gi;
-    l.look = major > 0.0 ? 1 : -1;
-    l.slope = minor / major;
-    if (std::fabs(std::fabs(l.slope) - 1.0) < 1e-12) l.slope = l.slope > 0.0 ? 1.0 : -1.0;
-    l.diagonal = std::fabs(l.slope) == 1.0;
-    l.majorCount = l.iMajor ? s.validW : s.validH;
-    l.minorCount = l.iMajor ? s.validH : s.validW;
-    l.r.resize(size_t(l.majorCount));
-    for (int m = 0; m < l.majorCount; ++m) l.r[m] = int(std::floor(l.slope * m + 0.5));
-    const int rLo = std::min(l.r.front(), l.r.back()), rHi = std::max(l.r.front(), l.r.back());
-    l.lineBegin = -rHi;
-    l.lineEnd = l.minorCount - rLo;
-    return l;
-}
-
-// The major indices [begin, end) where any of lines [o, o + count) lies
-// inside the region.
-
-std::pair<int, int> lineSpan(const Lines& l, int o, int count) {
-    // r is monotone: non-decreasing for slope >= 0, non-increasing otherwise.
-    const int lo = -(o + count - 1), hi = l.minorCount - 1 - o;  // r(m) must lie in [lo, hi]
-    auto inside = [&](int m) { return l.r[m] >= lo && l.r[m] <= hi; };
-    int begin, end;
-    if (l.slope >= 0.0) {
-        begin = int(std::lower_bound(l.r.begin(), l.r.end(), lo) - l.r.begin());
-        end = int(std::upper_bound(l.r.begin(), l.r.end(), hi) - l.r.begin());
-    } else {
-        begin =
-            int(std::lower_bound(l.r.begin(), l.r.end(), hi, std::greater<int>()) - l.r.begin());
-        end = int(std::upper_bound(l.r.begin(), l.r.end(), lo, std::greater<int>()) - l.r.begin());
-    }
-    if (begin < end && !inside(begin)) begin = end;
-    return {begin, end};
-}
-
 namespace {
 // True when point b lies on or below the line from p to c, with t_p < t_b and
 // t_p < t_c: then b cannot be the horizon of p or of any point before it.

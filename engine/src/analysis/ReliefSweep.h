@@ -4,6 +4,7 @@
 // fast sweep of groups of lines (no radius). docs/relief.md describes both.
 
 #include <sierra/analysis/Normals.h>
+#include <sierra/analysis/ReliefLines.h>
 #include <sierra/core/Parallel.h>
 
 #include <algorithm>
@@ -38,29 +39,12 @@ struct Surface {
     size_t samples() const { return size_t(width) * size_t(height); }
 };
 
-// --- the digital lines of one azimuth ----------------------------------------
-// The azimuth's direction in grid index space is (gi, gj) = (sin a / sx,
-// -cos a / sz). Its major axis is the one with the larger |component| (i on a
-// tie); `slope` is the minor index change per +1 step of the major index, so
-// |slope| <= 1. Line o holds the samples (major m, minor o + r(m)) with
-// r(m) = floor(slope * m + 0.5): every sample (m, n) lies on exactly the line
-// o = n - r(m). Grid-aligned azimuths (slope 0 or +-1) are straight grid lines.
-struct Lines {
-    double ux = 0.0, uz = 0.0;  // the azimuth's world unit vector (x, z)
-    bool iMajor = true;
-    int look = 1;  // +1: the azimuth points towards increasing major index
-    double slope = 0.0;
-    bool diagonal = false;  // |slope| == 1: cell centres join the profile
-    int majorCount = 0, minorCount = 0;
-    int lineBegin = 0, lineEnd = 0;  // offsets o in [lineBegin, lineEnd)
-    std::vector<int> r;              // r(m), m in [0, majorCount)
-};
+// --- the digital lines of one azimuth (analysis/ReliefLines.h) ------------
+using Lines = DigitalLines;
 
-Lines makeLines(double degrees, const Surface& s);
-
-// The major indices [begin, end) where any of lines [o, o + count) lies
-// inside the region.
-std::pair<int, int> lineSpan(const Lines& l, int o, int count = 1);
+inline Lines makeLines(double degrees, const Surface& s) {
+    return digitalLines(degrees, s.sx, s.sz, s.validW, s.validH);
+}
 
 // --- the sweep ---------------------------------------------------------------
 // One profile: points in sweep order, farthest along the azimuth first, so t

@@ -1,5 +1,6 @@
 #include <sierra/render/ReliefGpu.h>
 
+#include <sierra/analysis/ReliefLines.h>
 #include <sierra/core/Error.h>
 #include <sierra/gpu/GlStateScope.h>
 
@@ -18,85 +19,23 @@ namespace sierra::render {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kMaxDirections = 1024;  // as computeHorizons
 // The shader packs doubled major and minor indices in 16 bits each.
 constexpr int kMaxSide = 32767;
 
-// The CPU's checks (analysis/Relief.cpp), with its messages.
+// The CPU's checks and lines (analysis/ReliefLines.h), so both sweep the
+// same lines and refuse the same options with the same messages.
 void validate(int width, int height, const analysis::HorizonOptions& o, const char* caller) {
-    SIERRA_CHECK(width > 0 && height > 0, caller, ": the heightfield is empty");
-    SIERRA_CHECK(o.validWidth >= 0 && o.validWidth <= width, caller, ": validWidth must be in 0..",
-                 width, " (0 = the whole grid), got ", o.validWidth);
-    SIERRA_CHECK(o.validHeight >= 0 && o.validHeight <= height, caller,
-                 ": validHeight must be in 0..", height, " (0 = the whole grid), got ",
-                 o.validHeight);
-    SIERRA_CHECK(std::isfinite(o.radius) && o.radius >= 0.0f, caller,
-                 ": radius must be finite and >= 0 (0 = the whole grid), got ", o.radius);
-    SIERRA_CHECK(o.threads >= 0, caller, ": threads must be >= 0 (0 = the default), got ",
-                 o.threads);
+    analysis::checkHorizonOptions(width, height, o, caller);
 }
-
 void validateDirections(const analysis::HorizonOptions& o, const char* caller) {
-    SIERRA_CHECK(o.directions >= 1 && o.directions <= kMaxDirections, caller,
-                 ": directions must be in 1..", kMaxDirections, ", got ", o.directions);
-    SIERRA_CHECK(std::isfinite(o.firstAzimuth), caller, ": firstAzimuth must be finite, got ",
-                 o.firstAzimuth);
+    analysis::checkHorizonDirections(o, caller);
 }
-
-// One azimuth's digital lines, as analysis/Relief.cpp's makeLines defines
-// them (the same arithmetic, so the same lines): the direction in index space
-// (sin a / sx, -cos a / sz), its major axis the larger component (i on a
-// tie), line o the samples (m, o + r(m)) with r(m) = floor(slope m + 0.5).
-struct Lines {
-    double ux = 0.0, uz = 0.0;
-    bool iMajor = true;
-    int look = 1;
-    double slope = 0.0;
-    bool diagonal = false;
-    int majorCount = 0, minorCount = 0;
-    int lineBegin = 0, lineEnd = 0;
-    std::vector<int> r;
-};
-
+using Lines = analysis::DigitalLines;
 Lines makeLines(double degrees, double sx, double sz, int validW, int validH) {
-    Lines l;
-    const double a = std::fmod(degrees, 360.0) * kPi / 180.0;
-    double sa = std::sin(a), ca = std::cos(a);
-    if (std::fabs(sa) < 1e-12) sa = 0.0;
-    if (std::fabs(ca) < 1e-12) ca = 0.0;
-    l.ux = sa;
-    l.uz = -ca;
-    const double gi = sa / sx, gj = -ca / sz;
-    l.iMajor = std::fabs(gi) >= std::fabs(gj);
-    const double major = l.iMajor ? gi : gj, minor = l.iMajor ? gj : gi;
-    l.look = major > 0.0 ? 1 : -1;
-    l.slope = minor / major;
-    if (std::fabs(std::fabs(l.slope) - 1.0) < 1e-12) l.slope = l.slope > 0.0 ? 1.0 : -1.0;
-    l.diagonal = std::fabs(l.slope) == 1.0;
-    l.majorCount = l.iMajor ? validW : validH;
-    l.minorCount = l.iMajor ? validH : validW;
-    l.r.resize(size_t(l.majorCount));
-    for (int m = 0; m < l.majorCount; ++m) l.r[size_t(m)] = int(std::floor(l.slope * m + 0.5));
-    const int rLo = std::min(l.r.front(), l.r.back()), rHi = std::max(l.r.front(), l.r.back());
-    l.lineBegin = -rHi;
-    l.lineEnd = l.minorCount - rLo;
-    return l;
+    return analysis::digitalLines(degrees, sx, sz, validW, validH);
 }
-
-// The major indices [begin, end) where any of lines [o, o + count) lies in
-// the region (r is monotone).
 std::pair<int, int> groupSpan(const Lines& l, int o, int count) {
-    const int lo = -(o + count - 1), hi = l.minorCount - 1 - o;  // r(m) in [lo, hi]
-    int begin, end;
-    if (l.slope >= 0.0) {
-        begin = int(std::lower_bound(l.r.begin(), l.r.end(), lo) - l.r.begin());
-        end = int(std::upper_bound(l.r.begin(), l.r.end(), hi) - l.r.begin());
-    } else {
-        begin =
-            int(std::lower_bound(l.r.begin(), l.r.end(), hi, std::greater<int>()) - l.r.begin());
-        end = int(std::upper_bound(l.r.begin(), l.r.end(), lo, std::greater<int>()) - l.r.begin());
-    }
-    return {begin, std::max(begin, end)};
+    return analysis::lineSpan(l, o, count);
 }
 
 // horizon.comp's Direction and Group (std430).
@@ -199,14 +138,7 @@ std::vector<float> readTexture(const gpu::Texture& t, size_t floats) {
 }
 
 void validateSun(const analysis::SunDisc& sun) {
-    SIERRA_CHECK(std::isfinite(sun.diameter) && sun.diameter > 0.0f && sun.diameter < 180.0f,
-                 "sunVisibility: the sun's diameter must be in (0, 180) degrees, got ",
-                 sun.diameter);
-    SIERRA_CHECK(std::isfinite(sun.azimuth),
-                 "sunVisibility: the sun's azimuth must be finite, got ", sun.azimuth);
-    SIERRA_CHECK(std::isfinite(sun.altitude) && sun.altitude >= -90.0f && sun.altitude <= 90.0f,
-                 "sunVisibility: the sun's altitude must be in [-90, 90] degrees, got ",
-                 sun.altitude);
+    analysis::checkSunDisc(sun);
 }
 
 }  // namespace
