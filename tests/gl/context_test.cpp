@@ -257,6 +257,10 @@ TEST(GlContextErrors, BadDeviceChoicesAreReported) {
 }
 
 TEST(GlContextErrors, ListedDevicesNameTheirRenderer) {
+    // A context of this test's own holds the display (and, pinned, the driver)
+    // while the probe makes and ends its own contexts on it.
+    gpu::EglContext held = gpu::EglContext::create({.width = 16, .height = 16});
+    test::keepGlDriverLoaded();
     for (const auto& d : gpu::EglContext::listDevices(true)) {
         // Every device this machine's contexts run on makes a context.
         if (d.software) {
