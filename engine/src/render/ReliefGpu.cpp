@@ -107,13 +107,13 @@ class BindingScope {
 };
 
 gpu::Texture floatTexture(int width, int height, int layers) {
-    gpu::Texture t =
-        gpu::Texture::create({.target = layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D,
-                              .format = GL_R32F,
-                              .width = width,
-                              .height = height,
-                              .layers = layers,
-                              .filter = GL_NEAREST});
+    gpu::Texture t = gpu::Texture::create(
+        {.target = static_cast<GLenum>(layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D),
+         .format = GL_R32F,
+         .width = width,
+         .height = height,
+         .layers = layers,
+         .filter = GL_NEAREST});
     const float nan = std::numeric_limits<float>::quiet_NaN();
     glClearTexImage(t.id(), 0, GL_RED, GL_FLOAT, &nan);
     return t;
