@@ -61,15 +61,8 @@ void runZones(const ZonesOptions& o) {
         std::string description;
         terrain::Heightfield field =
             scene::loadTerrain(o.scene.terrain, &description, scene::Padding::None);
-        // The thresholds as sierra-render applies them (render::applySceneSurface):
-        // without water every sample is land, the sea below the lowest height.
-        const float sea = scene::resolveSeaLevel(o.scene.terrain, field);
-        zones::AutoZoneDesc desc;
-        desc.seaLevel = std::isnan(sea) ? field.range().first - 1.0f : sea;
-        desc.deepWater = z.deepWater;
-        desc.sandTop = z.sandTop;
-        desc.snowLine = z.snowLine;
-        desc.rockSlope = z.rockSlope;
+        const zones::AutoZoneDesc desc =
+            scene::autoZoneDesc(z, scene::resolveSeaLevel(o.scene.terrain, field), field);
         map = zones::autoZones(field, palette, desc);
         source = msg("auto-zoning of ", description);
     } else {

@@ -176,12 +176,7 @@ std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s,
     desc.debugView = z.debugView == "zones"   ? ZoneDebugView::Zones
                      : z.debugView == "bands" ? ZoneDebugView::Bands
                                               : ZoneDebugView::None;
-    // Without water every sample is land: the sea sits below the lowest height.
-    desc.autoZones.seaLevel = std::isnan(seaLevel) ? field.range().first - 1.0f : seaLevel;
-    desc.autoZones.deepWater = z.deepWater;
-    desc.autoZones.sandTop = z.sandTop;
-    desc.autoZones.snowLine = z.snowLine;
-    desc.autoZones.rockSlope = z.rockSlope;
+    desc.autoZones = scene::autoZoneDesc(z, seaLevel, field);
     ZoneSurfaceInfo info;
     renderer.setSurface(makeZoneSurface(renderer.terrain(), field, desc, &info));
     return msg("zones: ", z.map == "auto" ? std::string("auto") : z.map, ", ", info.mapWidth, "x",

@@ -349,4 +349,15 @@ analysis::StyleParams loadPreset(const std::string& name) {
     return analysis::loadStyleFile(presetPath(name));
 }
 
+zones::AutoZoneDesc autoZoneDesc(const ZonesDesc& zones, float seaLevel,
+                                 const terrain::Heightfield& field) {
+    zones::AutoZoneDesc desc;
+    desc.seaLevel = std::isnan(seaLevel) ? field.range().first - 1.0f : seaLevel;
+    desc.deepWater = zones.deepWater;
+    desc.sandTop = zones.sandTop;
+    desc.snowLine = zones.snowLine;
+    desc.rockSlope = zones.rockSlope;
+    return desc;
+}
+
 }  // namespace sierra::scene

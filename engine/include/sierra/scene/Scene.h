@@ -13,6 +13,7 @@
 
 #include <sierra/analysis/Style.h>
 #include <sierra/scene/Terrain.h>
+#include <sierra/zones/ZoneMap.h>
 
 #include <optional>
 #include <string>
@@ -198,6 +199,13 @@ struct ZonesDesc {
     float rockSlope = 25.0f;
     bool operator==(const ZonesDesc&) const = default;
 };
+
+// The auto-zoning of `zones` for `field`, as every program zones "auto": its
+// thresholds, and the sea at `seaLevel` (stored height units, as
+// resolveSeaLevel gives it); NaN = no water, every sample is land and the sea
+// lies below the lowest height.
+zones::AutoZoneDesc autoZoneDesc(const ZonesDesc& zones, float seaLevel,
+                                 const terrain::Heightfield& field);
 
 struct Scene {
     TerrainSource terrain;
