@@ -74,12 +74,7 @@ struct Options {
 struct ZoneInput {
     zones::Palette palette;
     zones::ZoneMap map;
-    zones::Borderlines lines;
-    tin::Constraints constraints;
     double band = 0.0;
-    double epsilon = 0.0;  // the borderlines' simplification, zone-map pixels
-    size_t islandsRemoved =
-        0;  // islands within epsilon of their longest chord (tin::removeThinIslands)
     double ms = 0.0;
 };
 
@@ -90,14 +85,8 @@ ZoneInput loadZones(const scene::Scene& s, const terrain::Heightfield& field) {
     z.palette = zones::loadPalette(d.palette.empty() ? scene::assetPath("palettes/default.json")
                                                      : d.palette);
     if (d.map == "auto") {
-        // The renderer's auto-zoning: its sea level (none = below every sample) and thresholds.
-        zones::AutoZoneDesc a;
-        const float sea = scene::resolveSeaLevel(s.terrain, field);
-        a.seaLevel = std::isnan(sea) ? field.range().first - 1.0f : sea;
-        a.deepWater = d.deepWater;
-        a.sandTop = d.sandTop;
-        a.snowLine = d.snowLine;
-        a.rockSlope = d.rockSlope;
+        const zones::AutoZoneDesc a =
+            scene::autoZoneDesc(d, scene::resolveSeaLevel(s.terrain, field), field);
         z.map = zones::autoZones(field, z.palette, a);
     } else {
         z.map = zones::loadZoneMap(d.map, z.palette);
@@ -107,30 +96,6 @@ ZoneInput loadZones(const scene::Scene& s, const terrain::Heightfield& field) {
     z.band = d.band >= 0.0f ? double(d.band) : double(z.palette.bandWidth);
     z.ms = clock.ms();
     return z;
-}
-
-// The map's borderlines simplified at `epsilon` zone-map pixels, as constraints.
-void makeBorderlines(ZoneInput& z, double epsilon, const terrain::Heightfield& field) {
-    Stopwatch clock;
-    z.epsilon = epsilon;
-    z.lines = tin::gridBorderlines(z.map, z.palette, {.epsilon = epsilon, .bandWidth = z.band},
-                                   field.width(), field.height(), &z.islandsRemoved);
-    z.constraints = tin::constraintsFromBorderlines(z.lines, field.width(), field.height());
-    z.ms += clock.ms();
-}
-
-// The automatic epsilon of a triangle budget (zone-map pixels): 0.45 x the side
-// of the mean triangle's square, sqrt(grid area / triangles), so that at a small
-// budget the borderlines take few of its vertices, and never below `least`.
-// Measured on the default scene with the sample map (README): 3.3 px at 20,000
-// triangles, 1.5 at 100,000, 0.84 at 300,000.
-double budgetEpsilon(int64_t triangles, const terrain::Heightfield& field,
-                     const zones::ZoneMap& map, double least) {
-    const double area = double(field.width() - 1) * double(field.height() - 1);
-    const double samples = 0.45 * std::sqrt(area / double(std::max<int64_t>(triangles, 1)));
-    const double pixelsPerSample = 0.5 * (double(map.width - 1) / double(field.width() - 1) +
-                                          double(map.height - 1) / double(field.height() - 1));
-    return std::max(least, samples * pixelsPerSample);
 }
 
 int run(const Options& o) {
@@ -163,18 +128,6 @@ int run(const Options& o) {
     const bool errorTarget = o.maxError > 0.0 || o.maxErrorRel > 0.0;
     const bool budget = o.maxTriangles > 0 || o.maxPoints > 0;
     if (!errorTarget && !budget) desc.maxErrorRel = 0.001;
-    // A budget alone and the default epsilon: the borderlines are simplified to
-    // the budget's scale (their vertices come out of the budget), and back
-    // towards the default while the zone agreement is below 99.5%.
-    const bool autoEpsilon = zoned && budget && !errorTarget && !o.epsilonGiven &&
-                             s.zones.epsilon == scene::ZonesDesc{}.epsilon;
-    double epsilon = s.zones.epsilon;
-    if (autoEpsilon) {
-        int64_t triangles = o.maxTriangles > 0 ? o.maxTriangles : 2 * o.maxPoints;
-        if (o.maxTriangles > 0 && o.maxPoints > 0)
-            triangles = std::min(o.maxTriangles, 2 * o.maxPoints);
-        epsilon = budgetEpsilon(triangles, field, z.map, epsilon);
-    }
     // A progress line rewritten in place on a terminal, plain lines (fewer) when redirected.
     const bool terminal = ::isatty(fileno(stderr));
     desc.progressEvery = terminal ? 20000 : 200000;
@@ -184,24 +137,34 @@ int run(const Options& o) {
                      terminal ? "\r" : "", (long long)p.points, (long long)p.triangles,
                      p.worstError, p.targetError, terminal ? "   " : "\n");
     };
-    tin::TinResult result;
-    tin::ErrorStats error;
-    tin::ZoneAgreement agreement;
-    constexpr double kLeastAgreement = 0.995;
-    while (true) {
-        if (zoned) makeBorderlines(z, epsilon, field);
-        result = tin::buildTin(field, z.constraints, desc);
-        if (terminal) std::fprintf(stderr, "\n");
-        clock.restart();
-        if (zoned) agreement = tin::zoneAgreement(result.mesh, z.map);
-        if (!autoEpsilon || agreement.fraction() >= kLeastAgreement ||
-            epsilon <= double(s.zones.epsilon))
-            break;
-        std::fprintf(
-            stderr, "sierra-tin: zone agreement %.3f%% at epsilon %.3g px; again at %.3g\n",
-            100.0 * agreement.fraction(), epsilon, std::max(double(s.zones.epsilon), epsilon / 2));
-        epsilon = std::max(double(s.zones.epsilon), epsilon / 2);
+    // A budget alone and the default epsilon: the borderlines are simplified to
+    // the budget's scale and back towards the default while the zone agreement
+    // is below 99.5% (tin::buildZonedTin).
+    tin::ZonedTin zt;
+    if (zoned) {
+        tin::ZonedTinDesc zd{
+            .epsilon = s.zones.epsilon,
+            .bandWidth = z.band,
+            .autoEpsilon = !o.epsilonGiven && s.zones.epsilon == scene::ZonesDesc{}.epsilon,
+            .retry = [&](double agreement, double epsilon, double next) {
+                if (terminal) std::fprintf(stderr, "\n");
+                std::fprintf(stderr,
+                             "sierra-tin: zone agreement %.3f%% at epsilon "
+                             "%.3g px; again at %.3g\n",
+                             100.0 * agreement, epsilon, next);
+            }};
+        zt = tin::buildZonedTin(field, z.map, z.palette, desc, zd);
+        z.ms += zt.borderlinesMs;
+    } else {
+        zt.result = tin::buildTin(field, {}, desc);
     }
+    if (terminal) std::fprintf(stderr, "\n");
+    clock.restart();
+    const tin::TinResult& result = zt.result;
+    const tin::ZoneAgreement& agreement = zt.agreement;
+    const bool autoEpsilon = zt.autoEpsilon;
+    const double epsilon = zt.epsilon;
+    tin::ErrorStats error;
     // Constrained borderlines are inserted whole, before the budget counts: when
     // they alone exceed it the mesh does too, and the user has to know.
     const int64_t meshTriangles = int64_t(result.mesh.triangles.size());
@@ -242,13 +205,13 @@ int run(const Options& o) {
                 o.delaunay == "data" ? "data-dependent" : "Delaunay");
     size_t borderSegments = 0;
     if (zoned) {
-        for (const auto& e : z.lines.edges) borderSegments += e.left >= 0 && e.right >= 0;
+        for (const auto& e : zt.lines.edges) borderSegments += e.left >= 0 && e.right >= 0;
         std::printf(
             "zones: %s, %dx%d, %zu surface types, %zu zones (%zu bands), %zu borderline segments, "
             "epsilon %.3g px%s, %zu thin islands removed, band %.3g px\n",
             s.zones.map.c_str(), z.map.width, z.map.height, z.palette.surfaces.size(),
-            z.lines.zones.size(), z.constraints.bands.size(), borderSegments, z.epsilon,
-            autoEpsilon ? " (automatic, from the budget)" : "", z.islandsRemoved, z.band);
+            zt.lines.zones.size(), zt.constraints.bands.size(), borderSegments, zt.epsilon,
+            autoEpsilon ? " (automatic, from the budget)" : "", zt.islandsRemoved, z.band);
     }
     std::printf("triangles %zu, vertices %zu (%lld inserted, %.0f points/s), stopped by %s\n",
                 result.mesh.triangles.size(), result.mesh.vertices.size(), (long long)st.inserted,
@@ -300,12 +263,12 @@ int run(const Options& o) {
             report["zones"] = {{"map", s.zones.map},
                                {"map_size", {z.map.width, z.map.height}},
                                {"surfaces", z.palette.surfaces.size()},
-                               {"zones", z.lines.zones.size()},
-                               {"bands", z.constraints.bands.size()},
+                               {"zones", zt.lines.zones.size()},
+                               {"bands", zt.constraints.bands.size()},
                                {"borderline_segments", borderSegments},
-                               {"epsilon", z.epsilon},
+                               {"epsilon", zt.epsilon},
                                {"epsilon_auto", autoEpsilon},
-                               {"islands_removed", z.islandsRemoved},
+                               {"islands_removed", zt.islandsRemoved},
                                {"band", z.band},
                                {"agreement", agreement.fraction()},
                                {"agreement_pixels", agreement.pixels},

@@ -1,5 +1,6 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
+#include <sierra/core/Timer.h>
 #include <sierra/tin/ZoneTin.h>
 #include <sierra/zones/Tiles.h>
 
@@ -369,6 +370,53 @@ ObjOptions zoneMaterials(const std::string& objPath, const TinMesh& mesh,
         options.bandImages[{a, b}] = name;
     }
     return options;
+}
+
+double budgetEpsilon(int64_t triangles, int gridWidth, int gridHeight, const zones::ZoneMap& map,
+                     double least) {
+    const double area = double(gridWidth - 1) * double(gridHeight - 1);
+    const double samples = 0.45 * std::sqrt(area / double(std::max<int64_t>(triangles, 1)));
+    const double pixelsPerSample = 0.5 * (double(map.width - 1) / double(gridWidth - 1) +
+                                          double(map.height - 1) / double(gridHeight - 1));
+    return std::max(least, samples * pixelsPerSample);
+}
+
+int64_t budgetTriangles(const TinDesc& desc) {
+    if (desc.maxTriangles > 0 && desc.maxPoints > 0)
+        return std::min(desc.maxTriangles, 2 * desc.maxPoints);
+    return desc.maxTriangles > 0 ? desc.maxTriangles : std::max<int64_t>(0, 2 * desc.maxPoints);
+}
+
+ZonedTin buildZonedTin(const terrain::Heightfield& field, const zones::ZoneMap& map,
+                       const zones::Palette& palette, const TinDesc& desc,
+                       const ZonedTinDesc& zoned) {
+    SIERRA_CHECK(zoned.epsilon >= 0.0, "the borderline epsilon is ", zoned.epsilon,
+                 " px; it must be >= 0");
+    const bool errorTarget = desc.maxError > 0.0 || desc.maxErrorRel > 0.0;
+    const int64_t triangles = budgetTriangles(desc);
+    ZonedTin z;
+    z.autoEpsilon = zoned.autoEpsilon && triangles > 0 && !errorTarget;
+    z.epsilon = z.autoEpsilon
+                    ? budgetEpsilon(triangles, field.width(), field.height(), map, zoned.epsilon)
+                    : zoned.epsilon;
+    while (true) {
+        Stopwatch clock;
+        z.islandsRemoved = 0;
+        z.lines =
+            gridBorderlines(map, palette, {.epsilon = z.epsilon, .bandWidth = zoned.bandWidth},
+                            field.width(), field.height(), &z.islandsRemoved);
+        z.constraints = constraintsFromBorderlines(z.lines, field.width(), field.height());
+        z.borderlinesMs += clock.ms();
+        z.result = buildTin(field, z.constraints, desc);
+        ++z.builds;
+        z.agreement = zoneAgreement(z.result.mesh, map);
+        if (!z.autoEpsilon || z.agreement.fraction() >= zoned.leastAgreement ||
+            z.epsilon <= zoned.epsilon)
+            return z;
+        const double next = std::max(zoned.epsilon, z.epsilon / 2);
+        if (zoned.retry) zoned.retry(z.agreement.fraction(), z.epsilon, next);
+        z.epsilon = next;
+    }
 }
 
 }  // namespace sierra::tin
