@@ -20,7 +20,9 @@ if [[ "${1:-}" != "--tables" ]]; then
     cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
   fi
   cmake --build "$build" -j"$(nproc 2>/dev/null || echo 2)" \
-        --target sierra-render sierra-bench sierra-microbench sierra-tin >/dev/null
+        --target sierra-render sierra-bench sierra-microbench sierra-tin \
+        $(grep -q '^SIERRA_WITH_PYTHON:BOOL=ON' "$build/CMakeCache.txt" && echo _sierra) >/dev/null
+  export PYTHONPATH="$build/python${PYTHONPATH:+:$PYTHONPATH}"
   rm -rf "$out"
   mkdir -p "$out"
   python3 - "$out/machine.json" <<'PY'
@@ -36,11 +38,21 @@ with open(sys.argv[1], "w") as fh:
 PY
   while IFS=$'\t' read -r name optional command; do
     eval "words=($command)"
-    words[0]="$build/apps/${words[0]}"
+    # A program of the build, or a script of the repository run by Debian's python3.
+    if [[ "${words[0]}" == python3 ]]; then
+      words[0]=/usr/bin/python3
+    else
+      words[0]="$build/apps/${words[0]}"
+    fi
     for k in "${!words[@]}"; do
       words[k]="${words[k]//\{json\}/$out/$name.json}"
       words[k]="${words[k]//\{out\}/$out}"
+      words[k]="${words[k]//\{apps\}/$build/apps}"
     done
+    if [[ "$optional" == 1 && "${words[0]}" == /usr/bin/python3 && ! -d "$build/python/sierra" ]]; then
+      echo "measure: $name: no Python module in this build, skipped" >&2
+      continue
+    fi
     if [[ "$optional" == 1 && "${words[0]}" == */sierra-microbench ]]; then
       # A benchmark another build may not have: skip the run when its filter matches nothing.
       filter=""

@@ -192,6 +192,14 @@ def curvature_table(data):
             rows)
 
 
+def python_table(data):
+    d = data["python_render"]
+    return (["path", "median, ms", "renders"],
+            [["`sierra.Renderer.render`", f(d["python_median_ms"]), len(d["python_ms"])],
+             ["`sierra-bench facade`", f(d["facade_median_ms"]), len(d["facade_ms"])],
+             ["ratio", f(d["ratio"]), ""]])
+
+
 def generic_micro_table(run):
     """Every benchmark of a run with its median time and counters."""
     def table(data):
@@ -272,6 +280,14 @@ FIGURES = [
            "Horizon angles of a heightfield (`BM_Horizons`).",
            {"horizons": MICRO + ["--benchmark_filter=^BM_Horizons"]},
            generic_micro_table("horizons"), optional=True),
+    Figure("python", "Python render against the C++ facade",
+           "One 1080p frame of the default scene, the renderer created for the scene on a kept "
+           "context and the frame read back, through `sierra.Renderer.render` and through "
+           "`sierra-bench facade` (render::SceneRenderer) in alternating rounds; medians "
+           "(PYTHONPATH=build/python).",
+           {"python_render": ["python3", "python/bench/render_bench.py", "--bench",
+                              "{apps}/sierra-bench", "--json", "{json}"]},
+           python_table, optional=True),
 ]
 
 
@@ -280,7 +296,8 @@ FIGURES = [
 def shown(command, folder):
     """The command as a reader would type it: program names without the build folder,
     the JSON path relative to the output folder."""
-    words = [w.replace("{json}", "FILE.json").replace("{out}/", "") for w in command]
+    words = [w.replace("{json}", "FILE.json").replace("{out}/", "").replace("{apps}/", "")
+             for w in command]
     return shlex.join(words)
 
 

@@ -2,9 +2,10 @@
 //   sierra-bench static ...   fixed-error SBT mesh: size, strip efficiency, extraction speed
 //   sierra-bench frames ...   frames along a camera path: per-stage times, PSNR against the full
 //   grid
+//   sierra-bench facade ...   whole renders of a scene through the SceneRenderer facade
 //
 // One source, two executables: `sierra-bench` itself links no GL (static needs
-// none), and hands `frames` to `sierra-bench-frames` beside it, which links the
+// none), and hands `frames` and `facade` to `sierra-bench-frames` beside it, which links the
 // renderer. Built with SIERRA_BENCH_FRAMES it is that second program.
 
 #include "Commands.h"
@@ -19,12 +20,14 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 #ifdef SIERRA_BENCH_FRAMES
     sierra::apps::addFramesCommand(app);
+    sierra::apps::addFacadeCommand(app);
 #else
-    if (argc > 1 && std::string_view(argv[1]) == "frames") {
+    if (argc > 1 &&
+        (std::string_view(argv[1]) == "frames" || std::string_view(argv[1]) == "facade")) {
         try {
             sierra::apps::execBeside("sierra-bench-frames", argc, argv);
         } catch (const sierra::Error& e) {
-            std::fprintf(stderr, "sierra-bench: error: frames: %s\n", e.what());
+            std::fprintf(stderr, "sierra-bench: error: %s: %s\n", argv[1], e.what());
             return sierra::apps::kExitRuntime;
         }
     }
@@ -32,6 +35,10 @@ int main(int argc, char** argv) {
     // Listed for --help; its options are the frames program's own.
     app.add_subcommand("frames",
                        "Time view-dependent frames along a camera path (EGL; `frames --help`)")
+        ->allow_extras();
+    app.add_subcommand("facade",
+                       "Time whole renders of a scene through the SceneRenderer facade (EGL; "
+                       "`facade --help`)")
         ->allow_extras();
 #endif
     // The subcommands do their work in their callbacks, during parsing.

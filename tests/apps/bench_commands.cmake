@@ -84,3 +84,12 @@ run_app(overlay_costs_without_overlays EXPECT_FAIL EXIT 2 MESSAGE "--overlay-cos
 run_app(save_frames_not_png EXPECT_FAIL EXIT 2 MESSAGE "--save-frames must name a .png file" COMMAND ${BENCH} frames --generate 65 --size 160x90 --frames 1 --save-frames f.jpg)
 run_app(no_command EXPECT_FAIL COMMAND ${BENCH})
 run_app(bad_path EXPECT_FAIL MESSAGE "path" COMMAND ${BENCH} frames --generate 65 --path spiral)
+# facade: whole renders through SceneRenderer, each timed, the median reported.
+run_app(facade EXPECT_OK MESSAGE " ms over 2 renders" COMMAND ${BENCH} facade --generate 65 --size 160x90 --repeat 2 --json facade.json)
+file(READ ${WORK_DIR}/facade.json facadeJson)
+string(JSON renders LENGTH "${facadeJson}" render_ms)
+string(JSON facadeWidth GET "${facadeJson}" width)
+if(NOT renders EQUAL 2 OR NOT facadeWidth EQUAL 160)
+  message(FATAL_ERROR "facade.json: ${renders} renders at width ${facadeWidth}\n${facadeJson}")
+endif()
+run_app(facade_bad_repeat EXPECT_FAIL MESSAGE "--repeat" COMMAND ${BENCH} facade --generate 65 --repeat 0)
