@@ -137,7 +137,10 @@ void zoneTiles(int zones, int low, int high, vec2 scales, vec2 mapXY, vec4 mapGr
 // (dotted at the frame's resolution). So a texel of another pair is taken at
 // its own distance (a lower bound of its distance to this pair's line) with the
 // sign of its zone's side of this pair, or of this fragment's side when its
-// zone is in neither.
+// zone is in neither. A texel of this pair is that too (its zone is the side
+// its sign gives), so every texel is |distance| times its side, with no test
+// of which pair it holds; where the fragment's pair is one zone twice (no
+// borderline near) the distance is not used.
 void zoneField(vec2 m, out int zone, out uvec2 pair, out float distance) {
     vec2 p = m * uZoneMap.z - 0.5;
     vec2 i0 = floor(p);
@@ -159,9 +162,8 @@ void zoneField(vec2 m, out int zone, out uvec2 pair, out float distance) {
     bool ownNegative = (tk & 0x80000000u) != 0u;
     zone = int(ownNegative ? pair.x : pair.y);
     float ownSign = ownNegative ? -1.0 : 1.0;
-    bvec4 samePair = equal(t & 0xffffu, uvec4(tk & 0xffffu));
     vec4 side = mix(mix(vec4(ownSign), vec4(1.0), equal(zk, uvec4(pair.y))), vec4(-1.0), equal(zk, uvec4(pair.x)));
-    d = mix(abs(d) * side, d, samePair);
+    d = abs(d) * side;
     distance = mix(mix(d.w, d.z, f.x), mix(d.x, d.y, f.x), f.y) / uZoneMap.z;
 }
 

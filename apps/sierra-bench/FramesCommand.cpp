@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -46,6 +47,7 @@ struct FramesOptions {
     bool compareFull = false;
     bool overlayCosts = false;   // also time each frame without overlays and with each alone
     bool lightingCosts = false;  // also time each frame without shadows and sky light
+    bool surfaceCosts = false;   // also time each frame with the plain colouring, not the zones
     std::string json;
     std::string saveFrames;  // prefix for PNGs of every frame, empty = none
     int pinCpu = -1;         // the CPU the refining (main) thread is kept on, -1 = any
@@ -61,7 +63,13 @@ struct FrameRecord {
     double fullTotal = 0;            // full-grid frame time (compare mode)
     double bare = 0;                 // frame time without overlay passes (--overlay-costs)
     double plain = 0;                // frame time without shadows and sky light (--lighting-costs)
-    std::vector<double> alone;       // frame time with only added pass k (--overlay-costs)
+    double plainSurface = 0;         // frame time with the plain colouring (--surface-costs)
+    // CPU time of the whole process over the frame (every thread: the
+    // driver's rasteriser threads too), ms, and that of the plain-coloured
+    // frame (--surface-costs): on a shared machine the work a frame costs,
+    // whatever share of the cores it was given.
+    double processCpu = 0, plainSurfaceCpu = 0;
+    std::vector<double> alone;  // frame time with only added pass k (--overlay-costs)
 };
 
 struct Stats {
@@ -74,10 +82,18 @@ Stats stats(const std::vector<FrameRecord>& records, double FrameRecord::*field)
     return {median(v), quantile(v, 0.95), quantile(v, 0.99)};
 }
 
+// CPU time used by this process so far, every thread, ms.
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 // Draws one frame and reads it back; fills the timing fields of `record`.
 gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& target,
                       const render::Camera& camera, const render::DrawOptions& draw,
                       FrameRecord& record) {
+    const double cpuStart = processCpuMs();
     Stopwatch frame;
     target.begin(render::TerrainRenderer::clearColour(draw.lighting));
     render::DrawStats s = terrain.draw(camera, target.width(), target.height(), draw);
@@ -89,6 +105,7 @@ gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& tar
     gpu::Image image = gpu::readFramebuffer(target.width(), target.height());
     record.readBack = read.ms();
     record.total = frame.ms();
+    record.processCpu = processCpuMs() - cpuStart;
     terrain.collectGpuTime(s);
     record.refine = s.refineMs;
     record.upload = s.uploadMs;
@@ -186,6 +203,10 @@ void runFrames(const FramesOptions& o) {
         throw UsageError(
             "--lighting-costs compares frames with shadows and sky light against frames "
             "without: leave --shadows or --sky-light on");
+    if (o.surfaceCosts && (sc.zones.map.empty() || !sc.style.overlay.layers.shaded))
+        throw UsageError(
+            "--surface-costs compares frames drawn with the zone surface against the plain "
+            "colouring: give --zones (with a shaded style)");
     render::Lod lod = draw.lod;
     render::DrawOptions fullDraw = draw;
     fullDraw.lod = render::Lod::Full;
@@ -202,6 +223,11 @@ void runFrames(const FramesOptions& o) {
         if (o.lightingCosts) {
             render::DrawOptions plainDraw = draw;
             plainDraw.lighting.shadows = plainDraw.lighting.skyLight = false;
+            timedFrame(terrain, target, cameras.front(), plainDraw, warm);
+        }
+        if (o.surfaceCosts) {
+            render::DrawOptions plainDraw = draw;
+            plainDraw.plainSurface = true;
             timedFrame(terrain, target, cameras.front(), plainDraw, warm);
         }
     }
@@ -221,10 +247,24 @@ void runFrames(const FramesOptions& o) {
         FrameRecord r;
         draw.lighting.sunDirection = suns[k];
         fullDraw.lighting.sunDirection = suns[k];
+        // --surface-costs: the same camera with the plain colouring, before
+        // the frame on odd frames and after it on even ones, so whatever a
+        // camera's first or second draw pays weighs on both alike.
+        render::DrawOptions plainSurfaceDraw = draw;
+        plainSurfaceDraw.plainSurface = true;
+        const bool plainSurfaceFirst = o.surfaceCosts && k % 2 == 1;
+        FrameRecord plainSurface;
+        if (plainSurfaceFirst)
+            timedFrame(terrain, target, cameras[k], plainSurfaceDraw, plainSurface);
         gpu::Image image = timedFrame(terrain, target, cameras[k], draw, r);
+        if (o.surfaceCosts && !plainSurfaceFirst)
+            timedFrame(terrain, target, cameras[k], plainSurfaceDraw, plainSurface);
+        r.plainSurface = plainSurface.total;
+        r.plainSurfaceCpu = plainSurface.processCpu;
         if (!o.saveFrames.empty())
             render::writePng(render::sequencePath(o.saveFrames, first + int(k)), image);
         std::string detail = msg(fixed(r.total, 1), " ms, ", r.triangles, " triangles");
+        if (o.surfaceCosts) detail += msg(", plain colouring ", fixed(r.plainSurface, 1), " ms");
         if (o.compareFull) {
             FrameRecord full;
             gpu::Image reference = timedFrame(terrain, target, cameras[k], fullDraw, full);
@@ -412,6 +452,45 @@ void runFrames(const FramesOptions& o) {
                                {"sky_light", draw.lighting.skyLight},
                                {"relief_ms", terrain.terrain().reliefMs()}};
     }
+    if (o.surfaceCosts) {
+        // Frame by frame (each camera drawn in turn with both surfaces), the
+        // median of the ratios, beside the ratio of the two medians; the
+        // same of the process's CPU time.
+        Stats plain = stats(records, &FrameRecord::plainSurface);
+        Stats zonesCpu = stats(records, &FrameRecord::processCpu);
+        Stats plainCpu = stats(records, &FrameRecord::plainSurfaceCpu);
+        std::vector<double> ratios, cpuRatios;
+        for (const FrameRecord& r : records) {
+            ratios.push_back(r.total / r.plainSurface);
+            cpuRatios.push_back(r.processCpu / r.plainSurfaceCpu);
+        }
+        const double ratio = median(ratios), cpuRatio = median(cpuRatios);
+        std::printf(
+            "surface costs (each camera drawn in turn with and without the zone surface): plain "
+            "colouring %.3f ms, zones %.3f ms (frame medians): x%.3f (%+.1f%%) frame by frame "
+            "(median; p95 x%.3f), x%.3f of the medians\n",
+            plain.median, total.median, ratio, 100.0 * (ratio - 1.0), quantile(ratios, 0.95),
+            total.median / plain.median);
+        std::printf(
+            "surface costs in process CPU time (every thread): plain colouring %.3f ms, zones "
+            "%.3f ms (medians): x%.3f frame by frame (median; p95 x%.3f)\n",
+            plainCpu.median, zonesCpu.median, cpuRatio, quantile(cpuRatios, 0.95));
+        j["surface_costs"] = {
+            {"surface", "zones"},
+            {"zones", sc.zones.map},
+            {"plain_frame", toJson(plain)},
+            {"zones_frame", toJson(total)},
+            {"ratio", ratio},
+            {"ratio_p95", quantile(ratios, 0.95)},
+            {"ratio_of_medians", total.median / plain.median},
+            {"plain_cpu", toJson(plainCpu)},
+            {"zones_cpu", toJson(zonesCpu)},
+            {"cpu_ratio", cpuRatio},
+            {"cpu_ratio_p95", quantile(cpuRatios, 0.95)},
+            {"note",
+             "ratio: the median over frames of zones / plain frame time, each camera drawn in "
+             "turn with both; cpu_ratio: the same of the process's CPU time (all threads)"}};
+    }
     if (o.overlayCosts) {
         // Ratios of medians of frames drawn in turn from the same cameras.
         Stats bare = stats(records, &FrameRecord::bare);
@@ -448,7 +527,12 @@ void runFrames(const FramesOptions& o) {
              {"cpu", r.cpu},
              {"bytes", r.bytes},
              {"psnr", o.compareFull && std::isfinite(r.psnr) ? nlohmann::json(r.psnr)
-                                                             : nlohmann::json(nullptr)}});
+                                                             : nlohmann::json(nullptr)},
+             {"process_cpu", r.processCpu},
+             {"plain_surface",
+              o.surfaceCosts ? nlohmann::json(r.plainSurface) : nlohmann::json(nullptr)},
+             {"plain_surface_cpu",
+              o.surfaceCosts ? nlohmann::json(r.plainSurfaceCpu) : nlohmann::json(nullptr)}});
     j["per_frame"] = perFrame;
     if (!o.json.empty()) {
         writeFileAtomic(o.json, j.dump(2) + "\n");
@@ -483,6 +567,9 @@ void addFramesCommand(CLI::App& app) {
                   "as ratios");
     cmd->add_flag("--lighting-costs", o->lightingCosts,
                   "Also draw each frame without shadows and sky light: their cost as a ratio");
+    cmd->add_flag("--surface-costs", o->surfaceCosts,
+                  "Also draw each frame with the plain colouring instead of the zone surface "
+                  "(--zones): its cost as a ratio, frame by frame");
     cmd->add_option("--json", o->json, "Write all figures and per-frame records as JSON");
     cmd->add_option("--save-frames", o->saveFrames,
                     "Write every frame as PNG (NAME_0000.png, ...)");

@@ -148,6 +148,25 @@ TEST_F(ZoneFrames, SampleMapWithBandsMatchesReferenceNear) {
     checkAgainstGolden(renderFrame(nearCamera(), 4), "zones_map_bands_near.png");
 }
 
+// DrawOptions::plainSurface (sierra-bench frames --surface-costs): the
+// renderer with zones draws the colour ramp it was created with, pixel for
+// pixel the frame of a renderer that never had zones, and the zones again
+// without it.
+TEST_F(ZoneFrames, PlainSurfaceDrawsTheRampBesideTheZones) {
+    useDefaultScene();
+    const gpu::Image ramp = renderFrame(defaultCamera(), 0);
+    setZones({.map = "auto"});
+    const gpu::Image zones = renderFrame(defaultCamera(), 0);
+    target_->begin(render::TerrainRenderer::clearColour({}));
+    terrain_->draw(defaultCamera(), kWidth, kHeight,
+                   {.lod = render::Lod::Sbt, .tau = 1.0f, .plainSurface = true});
+    const gpu::Image plain = target_->read();
+    const gpu::Image zonesAgain = renderFrame(defaultCamera(), 0);
+    EXPECT_TRUE(std::isinf(render::compareImages(plain, ramp).psnr));
+    EXPECT_TRUE(std::isinf(render::compareImages(zonesAgain, zones).psnr));
+    EXPECT_GT(render::compareImages(plain, zones).differingShare, 0.2);
+}
+
 // ------------------------------------------------- debug view against the map
 
 // Flat colours, no shading: ambient 1 lights every face fully and no fog, so

@@ -18,6 +18,7 @@ struct TerrainRenderer::State {
     SbtStream stream;
     FrameUniforms uniforms;
     std::unique_ptr<TerrainPass> shaded;           // replaced by setSurface()
+    std::unique_ptr<TerrainPass> ramp;             // TerrainDesc's ramp once setSurface() ran
     std::unique_ptr<WireframePass> wireframe;      // built on first use
     std::unique_ptr<PointsPass> points;            // built on first use
     std::unique_ptr<DebugColourPass> debugColour;  // built on first use
@@ -117,7 +118,8 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height,
     MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height, lodSettings(options), stats);
     // The relief fields of this frame's sun (computed once per terrain and
     // sun, outside the submit time; TerrainGpu::reliefMs has their cost).
-    const bool relief = options.polygons && options.colourBy == 0 && s.shaded->lit() &&
+    TerrainPass& shadedPass = options.plainSurface && s.ramp ? *s.ramp : *s.shaded;
+    const bool relief = options.polygons && options.colourBy == 0 && shadedPass.lit() &&
                         s.terrain.prepareRelief(reliefRequest(options.lighting));
     Stopwatch submit;
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
@@ -135,8 +137,8 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height,
         shading.relief = relief;
         for (size_t k = 0; k < s.extra.size(); ++k)
             if (k >= 64 || (options.addedPasses >> k & 1u) != 0) s.extra[k]->shadeTerrain(shading);
-        s.shaded->setShading(shading);
-        s.shaded->draw(frame);
+        shadedPass.setShading(shading);
+        shadedPass.draw(frame);
     }
     if (options.points) {
         if (!s.points) s.points = PointsPass::create();
@@ -182,6 +184,7 @@ void TerrainRenderer::collectGpuTime(DrawStats& stats) {
 }
 
 void TerrainRenderer::setSurface(std::unique_ptr<Surface> surface) {
+    if (!state_->ramp) state_->ramp = std::move(state_->shaded);
     state_->shaded = TerrainPass::create(std::move(surface));
 }
 

@@ -68,6 +68,10 @@ struct DrawOptions {
     // the surface function (0 surface, 1 level, 2 error; see DebugColourPass.h).
     int colourBy = 0;
     int threads = 0;  // refinement threads, 0 = default
+    // The terrain pass colours by the ramp of TerrainDesc instead of the
+    // surface given to setSurface() (sierra-bench frames --surface-costs
+    // times the zone surface against it); no effect without setSurface().
+    bool plainSurface = false;
     Lighting lighting;
     // Which passes added with addPass() draw: bit k for the k-th added (all by
     // default; sierra-bench frames --overlay-costs times them apart).
@@ -96,7 +100,8 @@ class TerrainRenderer {
     DrawStats draw(const Camera& camera, int width, int height, const DrawOptions& options);
     // Waits for the GPU timer of the last draw() and stores it in stats.drawMs.
     void collectGpuTime(DrawStats& stats);
-    // The terrain pass's surface (default: the colour ramp of TerrainDesc).
+    // The terrain pass's surface (default: the colour ramp of TerrainDesc,
+    // which stays built for DrawOptions::plainSurface).
     void setSurface(std::unique_ptr<Surface> surface);
     // Runs after the terrain and wireframe passes, in the order added.
     void addPass(std::unique_ptr<Pass> pass);
