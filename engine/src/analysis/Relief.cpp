@@ -254,7 +254,7 @@ void checkHorizons(const Horizons& horizons, const char* caller) {
                  " angles)");
 }
 
-// Sky-view factor (skyLight false) or sky light straight from the sweep:
+// Sky-view factor (light false) or sky light straight from the sweep:
 // one azimuth's angles at a time in a buffer of one field, whose pages are
 // mapped once, then summed as the stored horizons would be.
 std::vector<float> skyFromSweep(const terrain::Heightfield& field, const HorizonOptions& options,
