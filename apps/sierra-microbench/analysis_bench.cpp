@@ -2,7 +2,8 @@
 // fractal grid by each method, and line tracing. items_per_second is grid
 // samples per second. Target: 2049^2 in at most 150 ms with all threads.
 // And the relief fields: horizons in 16 azimuths and the sun's visibility
-// (target: both together for 4097^2 in at most 2 s with all threads).
+// (target: both together for 4097^2 in at most 2 s with all threads,
+// BM_ReliefFields).
 #include <sierra/analysis/Curvature.h>
 #include <sierra/analysis/Lines.h>
 #include <sierra/analysis/Relief.h>
@@ -130,6 +131,40 @@ void BM_SunVisibility(benchmark::State& state) {
 BENCHMARK(BM_SunVisibility)
     ->Args({4097, 0})
     ->Args({4097, 1})
+    ->Args({1025, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The target's work: horizons in 16 azimuths plus the sun's visibility (300
+// degrees, altitude 20) in one iteration (args: size, threads, 0 = all;
+// what is kept: 0 every angle (computeHorizons, 1 GiB at 4097^2), 1 only the
+// sky light, the terrain pass's input, from one azimuth's angles at a time).
+// items_per_second is samples times the 17 sweeps.
+void BM_ReliefFields(benchmark::State& state) {
+    const auto& field = terrain(int(state.range(0)));
+    analysis::HorizonOptions o{.directions = 16, .threads = int(state.range(1))};
+    const bool stored = state.range(2) == 0;
+    analysis::SunDisc sun{.azimuth = 300.0f, .altitude = 20.0f};
+    for (auto _ : state) {
+        if (stored) {
+            auto h = analysis::computeHorizons(field, o);
+            benchmark::DoNotOptimize(h.angle.data());
+        } else {
+            auto light = analysis::skyLight(field, o);
+            benchmark::DoNotOptimize(light.data());
+        }
+        auto v = analysis::sunVisibility(field, sun, o);
+        benchmark::DoNotOptimize(v.data());
+    }
+    state.SetItemsProcessed(state.iterations() * field.sampleCount() * (o.directions + 1));
+    state.SetLabel(stored ? "every angle" : "sky light");
+    state.counters["threads"] = o.threads > 0 ? o.threads : sierra::defaultThreadCount();
+}
+BENCHMARK(BM_ReliefFields)
+    ->Args({4097, 0, 0})
+    ->Args({4097, 0, 1})
+    ->Args({4097, 1, 1})
+    ->Args({1025, 0, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

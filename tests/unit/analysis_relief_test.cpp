@@ -435,6 +435,42 @@ TEST(AnalysisRelief, ThreadCountDoesNotChangeTheBytes) {
     }
 }
 
+TEST(AnalysisRelief, SkyFieldsFromTheSweepEqualThoseFromStoredHorizons) {
+    // From one azimuth's angles at a time every sample adds the same terms in
+    // the same order as from the stored horizons: the same bytes (NaN where
+    // the other is NaN), with no data, padding, a radius, spacings that make
+    // no azimuth a diagonal, and on one thread or two.
+    auto f = randomField(131, 97, 1.3f, 0.8f, 11);
+    std::vector<uint8_t> m(size_t(131) * 97, 1);
+    std::mt19937 rng(5);
+    for (auto& b : m) b = rng() % 9 != 0;
+    f.setMask(m);
+    auto same = [](const std::vector<float>& a, const std::vector<float>& b, const char* what) {
+        ASSERT_EQ(a.size(), b.size()) << what;
+        size_t nan = 0;
+        for (size_t k = 0; k < a.size(); ++k) {
+            if (std::isnan(a[k]) || std::isnan(b[k])) {
+                ASSERT_TRUE(std::isnan(a[k]) && std::isnan(b[k])) << what << " " << k;
+                ++nan;
+                continue;
+            }
+            ASSERT_EQ(0, std::memcmp(&a[k], &b[k], sizeof(float))) << what << " " << k;
+        }
+        EXPECT_LT(nan, a.size() / 2) << what;  // most samples have a value
+    };
+    const HorizonOptions cases[] = {
+        {},
+        {.directions = 12, .firstAzimuth = 7.5f, .validWidth = 120, .validHeight = 90},
+        {.directions = 16, .radius = 9.5f, .threads = 1},
+        {.directions = 5, .firstAzimuth = 200.0f, .threads = 2},
+    };
+    for (const HorizonOptions& o : cases) {
+        const Horizons hz = computeHorizons(f, o);
+        same(skyViewFactor(f, o), skyViewFactor(hz), "sky-view factor");
+        same(skyLight(f, o), skyLight(f, hz), "sky light");
+    }
+}
+
 TEST(AnalysisRelief, BadParametersAreErrors) {
     auto f = randomField(8, 8, 1.0f, 1.0f, 1);
     auto expectError = [](auto&& call, const char* needle) {
@@ -459,6 +495,8 @@ TEST(AnalysisRelief, BadParametersAreErrors) {
     expectError([&] { computeHorizons(f, {.radius = -1.0f}); }, "radius");
     expectError([&] { computeHorizons(f, {.validWidth = 9}); }, "validWidth");
     expectError([&] { computeHorizons(terrain::Heightfield(), {}); }, "empty");
+    expectError([&] { skyLight(f, HorizonOptions{.directions = 0}); }, "skyLight: directions");
+    expectError([&] { skyViewFactor(f, HorizonOptions{.radius = NAN}); }, "skyViewFactor: radius");
     auto hz = computeHorizons(f, {});
     expectError([&] { skyLight(randomField(9, 8, 1.0f, 1.0f, 1), hz); }, "skyLight");
     Horizons broken = hz;

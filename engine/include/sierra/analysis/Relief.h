@@ -102,6 +102,15 @@ std::vector<float> skyViewFactor(const Horizons& horizons);
 // field.
 std::vector<float> skyLight(const terrain::Heightfield& field, const Horizons& horizons);
 
+// The same two fields straight from the heightfield, one azimuth's horizons
+// at a time: one field of angles is kept instead of D (1 GiB for 16 azimuths
+// at 4097^2, whose fresh pages alone cost the kernel about 1 s of CPU to
+// map). Equal, bit for bit, to skyViewFactor(computeHorizons(field,
+// options)) and skyLight(field, computeHorizons(field, options)); the same
+// errors as computeHorizons, naming skyViewFactor or skyLight.
+std::vector<float> skyViewFactor(const terrain::Heightfield& field, const HorizonOptions& options);
+std::vector<float> skyLight(const terrain::Heightfield& field, const HorizonOptions& options);
+
 // Openness (Yokoyama, Shirasawa and Pike, "Visualizing Topography by
 // Openness", 2002), in degrees: positive is the mean zenith angle of the
 // horizon over the D azimuths (90 - elevation), negative the mean nadir angle
