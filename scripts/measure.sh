@@ -38,10 +38,11 @@ with open(sys.argv[1], "w") as fh:
 PY
   while IFS=$'\t' read -r name optional command; do
     eval "words=($command)"
-    # A program of the build, or a script of the repository run by Debian's python3.
+    # A program of the build, a script of scripts/ that runs them ({apps}: their folder),
+    # or a Python script of the repository run by Debian's python3.
     if [[ "${words[0]}" == python3 ]]; then
       words[0]=/usr/bin/python3
-    else
+    elif [[ "${words[0]}" != scripts/* ]]; then
       words[0]="$build/apps/${words[0]}"
     fi
     for k in "${!words[@]}"; do

@@ -231,6 +231,19 @@ def generic_micro_table(run):
     return table
 
 
+def video_table(data):
+    d = data["video_mp4"]
+    rows = [
+        ["sierra-bench frames, whole process", f(d["bench_wall_s"]) + " s"],
+        ["its frame loop (the sum of the frame times)", f(d["bench_frame_loop_s"]) + " s"],
+        [f"sierra-render to mp4 ({d['encoder']}), whole process", f(d["render_mp4_wall_s"]) + " s"],
+        ["ratio to sierra-bench frames (whole processes)", f(d["ratio_to_bench_wall"])],
+        ["ratio to its frame loop", f(d["ratio_to_frame_loop"])],
+        ["video size", f(d["video_bytes"] / 1e6) + " MB"],
+    ]
+    return (["median of " + str(d["rounds"]) + " rounds", "value"], rows)
+
+
 GB_KEYS = {"real_time", "cpu_time", "iterations", "repetitions", "repetition_index", "threads",
            "family_index", "per_family_instance_index", "aggregate_unit"}
 
@@ -319,6 +332,14 @@ FIGURES = [
            {"python_render": ["python3", "python/bench/render_bench.py", "--bench",
                               "{apps}/sierra-bench", "--json", "{json}"]},
            python_table, optional=True),
+    Figure("video", "The 1080p orbit to mp4",
+           "48 frames of the default orbit at 1920x1080 without MSAA, encoded to H.264 at the "
+           "default quality (libx264, crf 23, preset veryfast) as they are rendered, against "
+           "`sierra-bench frames` drawing the same frames; the two programs take turns, 3 rounds.",
+           {"video_mp4": ["scripts/video_bench.py", "{apps}", "{out}", "{json}"]},
+           video_table,
+           after="Encoding runs on the render thread; libx264's own frame threads overlap it with "
+                 "the next frame's rendering."),
 ]
 
 
@@ -327,8 +348,8 @@ FIGURES = [
 def shown(command, folder):
     """The command as a reader would type it: program names without the build folder,
     the JSON path relative to the output folder."""
-    words = [w.replace("{json}", "FILE.json").replace("{out}/", "").replace("{apps}/", "")
-             for w in command]
+    words = [w.replace("{json}", "FILE.json").replace("{out}/", "").replace("{apps}", "build/apps")
+             .replace("{out}", ".") for w in command]
     return shlex.join(words)
 
 

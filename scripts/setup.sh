@@ -17,6 +17,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev glslang-tools clang-format
   libspng-dev libgdal-dev
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   python-matplotlib-data
   python3-dev python3-numpy python3-pytest pybind11-dev
   gdal-bin python3-gdal

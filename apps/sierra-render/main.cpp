@@ -1,4 +1,4 @@
-// sierra-render: renders terrain frames off-screen to PNG files.
+// sierra-render: renders terrain frames off-screen to PNG files or a video.
 // With no arguments it renders the built-in default scene (a generated fractal
 // terrain) to out/frame.png and its debug snapshot to out/debug.png. Every
 // option is also a key of the scene file (--config, --print-config).
@@ -18,6 +18,7 @@
 #include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
+#include <sierra/render/Video.h>
 #include <sierra/scene/Options.h>
 #include <sierra/scene/Terrain.h>
 
@@ -55,6 +56,21 @@ std::string describe(const glm::vec3& v) {
     return msg("(", v.x, ", ", v.y, ", ", v.z, ")");
 }
 
+// The video of a scene whose output is one: a slice (--frames A:B) writes the
+// segment NAME_AAAA.EXT, and the segments in name order join into the whole.
+render::VideoDesc videoDesc(const scene::Scene& s, bool nvidia) {
+    const scene::OutputDesc& o = s.output;
+    return {.path = s.path.range ? render::sequencePath(o.frame, s.path.range->first) : o.frame,
+            .width = o.width,
+            .height = o.height,
+            .fps = o.fps,
+            .codec = o.videoCodec,
+            .crf = o.crf,
+            .bitrate = o.bitrate,
+            .preset = o.videoPreset,
+            .preferNvenc = nvidia};
+}
+
 int run(const scene::Scene& s) {
     const int width = s.output.width, height = s.output.height;
     const int frameCount = s.path.frames;
@@ -64,10 +80,13 @@ int run(const scene::Scene& s) {
     auto framePath = [&](const std::string& base, int k) {
         return sequence ? render::sequencePath(base, k) : base;
     };
+    const bool video = scene::isVideoOutput(s.output.frame);
+    const std::string videoPath = video ? videoDesc(s, false).path : std::string();
 
     // Every output location is checked before any work, so a bad path fails
     // at once rather than after the frames.
-    for (const std::string* path : {&s.output.frame, &s.output.debug, &s.output.depth})
+    for (const std::string* path :
+         {video ? &videoPath : &s.output.frame, &s.output.debug, &s.output.depth})
         if (!path->empty()) ensureWritableLocation(*path);
 
     Stopwatch total;
@@ -76,6 +95,14 @@ int run(const scene::Scene& s) {
     gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
     log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(),
               ")");
+    // Opened before the terrain, so a codec or size it refuses fails at once.
+    std::optional<render::VideoEncoder> encoder;
+    if (video) {
+        const bool nvidia = context.vendor().find("NVIDIA") != std::string::npos ||
+                            context.renderer().find("NVIDIA") != std::string::npos;
+        encoder.emplace(videoDesc(s, nvidia));
+        log::info("video ", videoPath, ": ", encoder->encoderName(), ", ", s.output.fps, " fps");
+    }
     terrain::Heightfield field =
         scene::loadTerrain(s.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
                            render::TerrainGpu::maxGridSide());
@@ -105,8 +132,11 @@ int run(const scene::Scene& s) {
     gpu::Image image;
     int written = first;
     auto writeNext = [&](const gpu::Image& frame) {
-        std::string path = framePath(s.output.frame, written);
-        render::writePng(path, frame, s.output.alpha);
+        std::string path = video ? videoPath : framePath(s.output.frame, written);
+        if (encoder)
+            encoder->write(frame);
+        else
+            render::writePng(path, frame, s.output.alpha);
         if (sequence)
             log::info("frame ", written, " (", written - first + 1, "/", last - first + 1,
                       "): ", fixed(frameMs[size_t(written - first)], 1), " ms -> ", path);
@@ -216,8 +246,15 @@ int run(const scene::Scene& s) {
               " indices (", fixed(stats.indicesPerTriangle()), " per triangle), refine + strip ",
               fixed(stats.refineMs), " ms, upload ", fixed(stats.uploadMs), " ms, draw (GL timer) ",
               fixed(stats.drawMs), " ms, frame ", fixed(frameMs.back(), 1), " ms");
-    log::info("wrote ", framePath(s.output.frame, first),
-              last > first ? " .. " + framePath(s.output.frame, last) : std::string());
+    if (encoder) {
+        encoder->finish();
+        log::info("wrote ", videoPath, ": frames ", first, "..", last, " (",
+                  encoder->framesWritten(), ") at ", s.output.fps, " fps, ",
+                  encoder->encoderName());
+    } else {
+        log::info("wrote ", framePath(s.output.frame, first),
+                  last > first ? " .. " + framePath(s.output.frame, last) : std::string());
+    }
 
     if (!s.output.debug.empty() && s.output.snapshotEvery == 0) snapshot(last, s.output.debug);
     if (!s.output.snapshotOnly.empty()) snapshot(last, s.output.snapshotOnly, true);
@@ -230,7 +267,7 @@ int run(const scene::Scene& s) {
 int main(int argc, char** argv) {
     scene::Scene scene;
     CLI::App app{
-        "Renders terrain off-screen (EGL) to PNG.\n"
+        "Renders terrain off-screen (EGL) to PNG or a video (.mp4, .mov, .mkv, .webm, .gif).\n"
         "With no arguments: a generated 1025x1025 fractal terrain to out/frame.png and an ImGui\n"
         "debug snapshot to out/debug.png. Every option is also a key of a scene file (--config).",
         "sierra-render"};
@@ -238,7 +275,13 @@ int main(int argc, char** argv) {
     bool devices = false;
     app.add_flag("--list-devices", devices, "List the EGL devices and exit");
     return apps::runMain(
-        app, argc, argv, [&] { options.apply(); },
+        app, argc, argv,
+        [&] {
+            options.apply();
+            // A codec, size or rate the encoder refuses is a command-line error.
+            if (scene::isVideoOutput(scene.output.frame))
+                render::checkVideo(videoDesc(scene, false));
+        },
         [&] {
             if (options.printConfigRequested()) return 0;
             if (devices) {

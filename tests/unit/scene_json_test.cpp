@@ -104,7 +104,12 @@ Scene unusualScene() {
                 .frame = "f/x.png",
                 .debug = "",
                 .depth = "d.npy",
-                .alpha = true};
+                .alpha = true,
+                .fps = 24,
+                .videoCodec = "hevc",
+                .crf = 18,
+                .bitrate = 4000000000,  // beyond 32 bits
+                .videoPreset = "slow"};
     s.style = {.wireframe = true};
     return s;
 }
@@ -257,6 +262,14 @@ TEST_F(SceneJson, LoadSceneChecksRanges) {
     EXPECT_THAT(
         loadError(R"({"path": {"type": "keyframes", "keyframes": [{"time": 1}, {"time": 1}]}})"),
         HasSubstr("path.keyframes"));
+    EXPECT_THAT(loadError(R"({"output": {"frame": "a.mp4", "fps": 0}})"),
+                AllOf(HasSubstr("output.fps (--fps)"), HasSubstr("got 0")));
+    EXPECT_THAT(loadError(R"({"output": {"frame": "a.mp4", "crf": 20, "bitrate": 8000000}})"),
+                HasSubstr("excludes output.bitrate"));
+    EXPECT_THAT(loadError(R"({"output": {"frame": "a.webm", "alpha": true}})"),
+                HasSubstr("output.alpha (--alpha)"));
+    EXPECT_THAT(loadError(R"({"output": {"frame": "a.avi"}})"),
+                HasSubstr("a .png file or a video (.mp4, .mov, .mkv, .webm, .gif)"));
 }
 
 }  // namespace

@@ -247,6 +247,31 @@ TEST_F(SceneOptionsTest, FramesRangeTakesItsCountFromConfigOrFrameCount) {
                 HasSubstr("--frame-count goes with"));
 }
 
+TEST_F(SceneOptionsTest, VideoOptionsLandInTheirFieldsAndAreChecked) {
+    const Scene s = parse({"--out", "fly.MP4", "--fps", "24", "--video-codec", "hevc", "--bitrate",
+                           "2.5M", "--video-preset", "slow"});
+    EXPECT_TRUE(isVideoOutput(s.output.frame));
+    EXPECT_EQ(s.output.fps, 24);
+    EXPECT_EQ(s.output.videoCodec, "hevc");
+    EXPECT_EQ(s.output.bitrate, 2500000);
+    EXPECT_EQ(s.output.crf, -1);
+    EXPECT_EQ(s.output.videoPreset, "slow");
+    EXPECT_EQ(parse({"--out", "a.webm", "--crf", "31"}).output.crf, 31);
+    EXPECT_EQ(parse({"--out", "a.gif", "--bitrate", "800k"}).output.bitrate, 800000);
+    EXPECT_FALSE(isVideoOutput("frame.png"));
+    EXPECT_THAT(parseError({"--out", "a.mp4", "--fps", "0"}),
+                AllOf(HasSubstr("output.fps (--fps)"), HasSubstr("1..1000"), HasSubstr("got 0")));
+    EXPECT_THAT(parseError({"--out", "a.mp4", "--fps", "-2"}), HasSubstr("got -2"));
+    EXPECT_THAT(parseError({"--out", "a.mp4", "--fps", "2.5"}), HasSubstr("--fps '2.5'"));
+    EXPECT_THAT(parseError({"--out", "a.mp4", "--crf", "64"}), HasSubstr("output.crf (--crf)"));
+    EXPECT_THAT(parseError({"--out", "a.mp4", "--crf", "20", "--bitrate", "1M"}),
+                HasSubstr("excludes output.bitrate (--bitrate)"));
+    EXPECT_THAT(parseError({"--out", "a.mp4", "--bitrate", "fast"}),
+                AllOf(HasSubstr("--bitrate 'fast'"), HasSubstr("8M")));
+    EXPECT_THAT(parseError({"--out", "a.mov", "--alpha"}),
+                AllOf(HasSubstr("output.alpha (--alpha)"), HasSubstr("a.mov")));
+}
+
 TEST_F(SceneOptionsTest, RawSizeAllowsTheLoadersLimit) {
     Scene s = parse({"--raw-size", "20000x3"});
     EXPECT_EQ(s.terrain.rawWidth, 20000);

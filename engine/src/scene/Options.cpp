@@ -47,6 +47,23 @@ uint64_t parseUnsigned(const std::string& text, const std::string& option) {
     return uint64_t(v);
 }
 
+// Bits per second: an integer, or a number with a k (1e3) or M (1e6) suffix.
+int64_t parseBitrate(const std::string& text, const std::string& option) {
+    const char* expected = "bits per second, e.g. 8000000, 8000k or 8M";
+    double factor = 1.0;
+    std::string number = text;
+    if (!number.empty() && (number.back() == 'k' || number.back() == 'K')) factor = 1e3;
+    if (!number.empty() && number.back() == 'M') factor = 1e6;
+    if (factor > 1.0) number.pop_back();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(number.c_str(), &end) * factor;
+    if (number.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v) || v < 0.0 ||
+        v > 1e12)
+        throw Error(msg(option, " '", text, "': expected ", expected));
+    return int64_t(std::llround(v));
+}
+
 Vec3 parseVec3(const std::vector<std::string>& words, const std::string& option) {
     if (words.size() != 3) throw Error(msg(option, ": expected 3 numbers X Y Z"));
     return {parseFloat(words[0], option, "a number (X)"),
@@ -371,12 +388,34 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
 
     if (groups & kOutputOptions) {
         const std::string g = "Output";
-        add("--out", "Frame PNG (sequences: NAME_0000.png, ...)", g, "FILE.png", d.output.frame, 1,
+        add("--out",
+            "Frame PNG (sequences: NAME_0000.png, ...), or a video of all frames: .mp4, .mov, "
+            ".mkv, .webm or .gif",
+            g, "FILE.png|FILE.mp4", d.output.frame, 1,
             [](Scene& s, Words w) { s.output.frame = w[0]; });
         add("--depth-out", "Linear eye-space depth per pixel, float32 .npy (NaN where no terrain)",
             g, "FILE.npy", d.output.depth, 1, [](Scene& s, Words w) { s.output.depth = w[0]; });
         addFlag("--alpha", "RGBA PNG with a transparent sky", g,
                 [](Scene& s, Words) { s.output.alpha = true; });
+        const std::string v = "Video (--out NAME.mp4|.mov|.mkv|.webm|.gif)";
+        add("--fps", "Video frames per second, 1..1000", v, "N", msg(d.output.fps), 1,
+            [](Scene& s, Words w) { s.output.fps = parseInt(w[0], "--fps"); });
+        add("--crf", "Video constant quality, 0..63, lower is better (default: the codec's)", v,
+            "Q", d.output.crf < 0 ? "" : msg(d.output.crf), 1,
+            [](Scene& s, Words w) { s.output.crf = parseInt(w[0], "--crf", "an integer 0..63"); });
+        add("--bitrate",
+            "Video average bitrate, bits per second (k and M suffixes), not with --crf", v, "BPS",
+            d.output.bitrate > 0 ? msg(d.output.bitrate) : "", 1,
+            [](Scene& s, Words w) { s.output.bitrate = parseBitrate(w[0], "--bitrate"); });
+        add("--video-codec",
+            "h264, hevc, av1, vp9, gif, or an encoder (libx264, h264_nvenc, ...); default: by "
+            "container (H.264; VP9 for .webm)",
+            v, "NAME", d.output.videoCodec, 1,
+            [](Scene& s, Words w) { s.output.videoCodec = w[0]; });
+        add("--video-preset",
+            "Encoder speed preset (libx264: ultrafast..veryslow, default veryfast; NVENC p1..p7)",
+            v, "NAME", d.output.videoPreset, 1,
+            [](Scene& s, Words w) { s.output.videoPreset = w[0]; });
     }
 
     if (groups & kDebugOptions) {

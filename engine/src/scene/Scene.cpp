@@ -219,6 +219,25 @@ void validateLod(const LodDesc& l) {
         fail("lod.threads", "--threads", msg("must be 0..256 (0 = all cores), got ", l.threads));
 }
 
+void validateVideo(const OutputDesc& o) {
+    if (o.fps < 1 || o.fps > 1000)
+        fail("output.fps", "--fps", msg("must be 1..1000 frames per second, got ", o.fps));
+    if (o.crf < -1 || o.crf > 63)
+        fail("output.crf", "--crf",
+             msg("must be 0..63 (lower is better; -1 = the codec's default), got ", o.crf));
+    if (o.bitrate < 0)
+        fail("output.bitrate", "--bitrate",
+             msg("must be >= 0 bits per second (0 = constant quality), got ", o.bitrate));
+    if (o.crf >= 0 && o.bitrate > 0)
+        fail("output.crf", "--crf",
+             "excludes output.bitrate (--bitrate): give constant quality or a bitrate");
+    if (o.alpha && isVideoOutput(o.frame))
+        fail("output.alpha", "--alpha",
+             msg("makes a transparent sky, which video frames cannot hold; write PNG frames for "
+                 "it (got '",
+                 o.frame, "')"));
+}
+
 void validateOutput(const OutputDesc& o) {
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
         fail("output.width/height", "--size",
@@ -228,7 +247,7 @@ void validateOutput(const OutputDesc& o) {
              msg("must be >= 0 (0 = the last frame only), got ", o.snapshotEvery));
     if (o.msaa != 0 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8)
         fail("output.msaa", "--msaa", msg("must be 0 (off), 2, 4 or 8, got ", o.msaa));
-    if (o.frame.empty()) fail("output.frame", "--out", "must name a PNG file");
+    if (o.frame.empty()) fail("output.frame", "--out", "must name a PNG file or a video");
     // Images are written as PNG whatever their name: a name that promises
     // another format (frame.jpg) is refused rather than silently mislabelled.
     auto png = [&](const std::string& path, const char* key, const char* option) {
@@ -236,7 +255,11 @@ void validateOutput(const OutputDesc& o) {
             fail(key, option,
                  msg("must be a .png file (images are written as PNG), got '", path, "'"));
     };
-    png(o.frame, "output.frame", "--out");
+    if (!isVideoOutput(o.frame) && lowerExtension(o.frame) != ".png")
+        fail("output.frame", "--out",
+             msg("must be a .png file or a video (.mp4, .mov, .mkv, .webm, .gif), got '", o.frame,
+                 "'"));
+    validateVideo(o);
     png(o.debug, "output.debug", "--debug-out");
     png(o.snapshotOnly, "output.snapshot_only", "--snapshot-only");
     if (!o.depth.empty() && lowerExtension(o.depth) != ".npy")
@@ -244,6 +267,13 @@ void validateOutput(const OutputDesc& o) {
 }
 
 }  // namespace
+
+bool isVideoOutput(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    for (const char* video : kVideoExtensions)
+        if (ext == video) return true;
+    return false;
+}
 
 Vec3 directionFromAngles(float azimuthDegrees, float altitudeDegrees) {
     const double a = double(azimuthDegrees) * kPi / 180.0,

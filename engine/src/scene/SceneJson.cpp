@@ -3,6 +3,7 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -323,6 +324,16 @@ void readOutput(ObjectReader& r, OutputDesc& o) {
             [&](const Json& v, const std::string& k) { o.snapshotDeterministic = r.toBool(v, k); });
     r.field("depth", [&](const Json& v, const std::string& k) { o.depth = r.toString(v, k); });
     r.field("alpha", [&](const Json& v, const std::string& k) { o.alpha = r.toBool(v, k); });
+    r.field("fps", [&](const Json& v, const std::string& k) { o.fps = r.toInt(v, k); });
+    r.field("video_codec",
+            [&](const Json& v, const std::string& k) { o.videoCodec = r.toString(v, k); });
+    r.field("crf", [&](const Json& v, const std::string& k) { o.crf = r.toInt(v, k); });
+    r.field("bitrate", [&](const Json& v, const std::string& k) {
+        o.bitrate = int64_t(
+            std::min<uint64_t>(r.toUnsigned(v, k), uint64_t(std::numeric_limits<int64_t>::max())));
+    });
+    r.field("video_preset",
+            [&](const Json& v, const std::string& k) { o.videoPreset = r.toString(v, k); });
 }
 
 void readStyle(ObjectReader& r, StyleDesc& s) {
@@ -492,6 +503,11 @@ Json sceneToJson(const Scene& s) {
         {"snapshot_only", o.snapshotOnly},
         {"snapshot_every", o.snapshotEvery},
         {"snapshot_deterministic", o.snapshotDeterministic},
+        {"fps", o.fps},
+        {"video_codec", o.videoCodec},
+        {"crf", o.crf},
+        {"bitrate", o.bitrate},
+        {"video_preset", o.videoPreset},
     };
     Json style = {{"wireframe", s.style.wireframe},        {"tree_line", number(s.style.treeLine)},
                   {"snow_line", number(s.style.snowLine)}, {"cpt", s.style.cpt},

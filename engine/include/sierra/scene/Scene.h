@@ -15,6 +15,7 @@
 #include <sierra/scene/Terrain.h>
 #include <sierra/zones/ZoneMap.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -137,8 +138,10 @@ struct LodDesc {
 struct OutputDesc {
     int width = 1280;  // frame size in pixels, 1..16384
     int height = 720;
-    int msaa = 4;                         // samples per pixel: 0 (off), 2, 4 or 8
-    std::string frame = "out/frame.png";  // frame PNG; sequences: NAME_0000.png, ...
+    int msaa = 4;  // samples per pixel: 0 (off), 2, 4 or 8
+    // Frame PNG (sequences: NAME_0000.png, ...), or a video: one file of all
+    // frames (a slice --frames A:B: NAME_AAAA.EXT, a segment of the whole).
+    std::string frame = "out/frame.png";
     std::string debug =
         "out/debug.png";       // ImGui debug snapshot PNG (UI over the frame); empty = none
     std::string snapshotOnly;  // the debug UI alone on a plain background; empty = none
@@ -147,8 +150,19 @@ struct OutputDesc {
     bool snapshotDeterministic = false;  // snapshots show placeholders instead of measured times
     std::string depth;   // linear eye-space depth .npy (float32, NaN = no terrain); empty = none
     bool alpha = false;  // RGBA PNG with a transparent sky
+    // Video output (frame ending in a kVideoExtensions name; render/Video.h):
+    int fps = 30;             // frames per second, 1..1000
+    std::string videoCodec;   // "" = by container; h264, hevc, av1, vp9, gif or an encoder name
+    int crf = -1;             // constant quality, 0..63 (lower is better); -1 = the codec's default
+    int64_t bitrate = 0;      // bits per second; 0 = none (constant quality); not with crf
+    std::string videoPreset;  // the encoder's speed preset; "" = Sierra's default for it
     bool operator==(const OutputDesc&) const = default;
 };
+
+// The extensions of the video containers output.frame may name (any case).
+inline constexpr const char* kVideoExtensions[] = {".mp4", ".mov", ".mkv", ".webm", ".gif"};
+// True when `path` ends in one of kVideoExtensions: the frames go to one video file.
+bool isVideoOutput(const std::string& path);
 
 struct StyleDesc {
     bool wireframe = false;  // overlay the triangulation
