@@ -239,9 +239,9 @@ PYBIND11_MODULE(_sierra, m) {
                         field, {.azimuth = azimuth, .altitude = altitude, .diameter = sunSize},
                         options);
                 else if (name == "sky-view")
-                    values = analysis::skyViewFactor(analysis::computeHorizons(field, options));
+                    values = analysis::skyViewFactor(field, options);
                 else if (name == "sky-light")
-                    values = analysis::skyLight(field, analysis::computeHorizons(field, options));
+                    values = analysis::skyLight(field, options);
                 else if (name == "openness-positive")
                     values = analysis::opennessPositive(field, options);
                 else if (name == "openness-negative")

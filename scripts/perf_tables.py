@@ -220,17 +220,6 @@ def relief_table(data):
     return (["4097² fractal", "threads", "median, s", "M samples × azimuths / s"], rows)
 
 
-def generic_micro_table(run):
-    """Every benchmark of a run with its median time and counters."""
-    def table(data):
-        benches = micro_medians(data[run])
-        counters = sorted({k for b in benches.values() for k in b
-                           if k not in GB_KEYS and isinstance(b[k], (int, float))})
-        rows = [[f"`{name}`", f(ms(b))] + [f(b.get(c)) for c in counters] for name, b in benches.items()]
-        return (["benchmark", "median, ms"] + counters, rows)
-    return table
-
-
 def video_table(data):
     d = data["video_mp4"]
     rows = [
@@ -242,10 +231,6 @@ def video_table(data):
         ["video size", f(d["video_bytes"] / 1e6) + " MB"],
     ]
     return (["median of " + str(d["rounds"]) + " rounds", "value"], rows)
-
-
-GB_KEYS = {"real_time", "cpu_time", "iterations", "repetitions", "repetition_index", "threads",
-           "family_index", "per_family_instance_index", "aggregate_unit"}
 
 
 FIGURES = [

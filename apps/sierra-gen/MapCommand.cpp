@@ -55,7 +55,7 @@ std::vector<float> lightingField(const terrain::Heightfield& field, const Scheme
         case Kind::OpennessNegative:
             return analysis::opennessNegative(field, horizons);
         default:
-            return analysis::skyViewFactor(analysis::computeHorizons(field, horizons));
+            return analysis::skyViewFactor(field, horizons);
     }
 }
 

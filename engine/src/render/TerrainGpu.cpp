@@ -245,12 +245,12 @@ bool TerrainGpu::prepareRelief(const ReliefRequest& request) {
         auto it = r.skyLight.find(request.radius);
         if (it == r.skyLight.end()) {
             Stopwatch sw;
-            analysis::Horizons horizons = analysis::computeHorizons(s.surface, options);
-            std::vector<float> light = analysis::skyLight(s.surface, horizons);
+            // One azimuth's angles at a time: no 4-bytes-per-sample-per-azimuth field.
+            std::vector<float> light = analysis::skyLight(s.surface, options);
             const double ms = sw.ms();
             r.ms += ms;
             log::info("relief: sky light of ", s.realSamples.x, "x", s.realSamples.y, " samples (",
-                      horizons.directions, " azimuths, horizon radius ",
+                      options.directions, " azimuths, horizon radius ",
                       request.radius > 0.0f ? msg(request.radius) : std::string("the whole grid"),
                       ") computed in ", fixed(ms, 1), " ms");
             it = r.skyLight.emplace(request.radius, std::move(light)).first;
