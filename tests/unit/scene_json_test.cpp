@@ -104,7 +104,10 @@ Scene unusualScene() {
                 .frame = "f/x.png",
                 .debug = "",
                 .depth = "d.npy",
-                .alpha = true};
+                .alpha = true,
+                .pngCompression = PngCompression::Best,
+                .jpegQuality = 42,
+                .maxQueuedFrames = 5};
     s.style = {.wireframe = true};
     return s;
 }

@@ -323,6 +323,13 @@ void readOutput(ObjectReader& r, OutputDesc& o) {
             [&](const Json& v, const std::string& k) { o.snapshotDeterministic = r.toBool(v, k); });
     r.field("depth", [&](const Json& v, const std::string& k) { o.depth = r.toString(v, k); });
     r.field("alpha", [&](const Json& v, const std::string& k) { o.alpha = r.toBool(v, k); });
+    r.field("png_compression", [&](const Json& v, const std::string& k) {
+        o.pngCompression = parsePngCompression(r.toString(v, k), msg(r.source(), ": ", k));
+    });
+    r.field("jpeg_quality",
+            [&](const Json& v, const std::string& k) { o.jpegQuality = r.toInt(v, k); });
+    r.field("max_queued_frames",
+            [&](const Json& v, const std::string& k) { o.maxQueuedFrames = r.toInt(v, k); });
 }
 
 void readStyle(ObjectReader& r, StyleDesc& s) {
@@ -489,6 +496,9 @@ Json sceneToJson(const Scene& s) {
         {"debug", o.debug},
         {"depth", o.depth},
         {"alpha", o.alpha},
+        {"png_compression", toString(o.pngCompression)},
+        {"jpeg_quality", o.jpegQuality},
+        {"max_queued_frames", o.maxQueuedFrames},
         {"snapshot_only", o.snapshotOnly},
         {"snapshot_every", o.snapshotEvery},
         {"snapshot_deterministic", o.snapshotDeterministic},
