@@ -36,10 +36,16 @@ with open(sys.argv[1], "w") as fh:
 PY
   while IFS=$'\t' read -r name optional command; do
     eval "words=($command)"
-    words[0]="$build/apps/${words[0]}"
+    if [[ "${words[0]}" == *.py ]]; then
+      # A script of scripts/ that runs the programs itself ({apps}: their folder).
+      words=(python3 "$root/scripts/${words[0]}" "${words[@]:1}")
+    else
+      words[0]="$build/apps/${words[0]}"
+    fi
     for k in "${!words[@]}"; do
       words[k]="${words[k]//\{json\}/$out/$name.json}"
       words[k]="${words[k]//\{out\}/$out}"
+      words[k]="${words[k]//\{apps\}/$build/apps}"
     done
     if [[ "$optional" == 1 && "${words[0]}" == */sierra-microbench ]]; then
       # A benchmark another build may not have: skip the run when its filter matches nothing.

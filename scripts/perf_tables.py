@@ -192,6 +192,30 @@ def curvature_table(data):
             rows)
 
 
+def capture_table(data):
+    d = data["capture"]
+    enc = micro_medians(data["encode"])
+    rows = [["`sierra-bench frames` (the frame loop, read back, nothing written)",
+             f(d["median_s"]["frame_loop"]) + " s", "1", ""]]
+    for name, label in (("png", "`sierra-render` to PNG, same frames (`--msaa 0`)"),
+                        ("jpeg", "`sierra-render` to JPEG, same frames"),
+                        ("png_msaa4", "`sierra-render` to PNG, its defaults (4x MSAA)")):
+        rows.append([label, f(d["median_s"][name]) + " s", f(d["ratio_to_frame_loop"][name]),
+                     f(d["frame_bytes_median"].get(name, 0) / 1e3)])
+    stb = enc.get("BM_EncodePngStb/real_time")
+    for run, label in (("BM_EncodePngStb/real_time", "one frame's encode: stb's PNG writer"),
+                       ("BM_EncodePng/0/real_time", "one frame's encode: libspng, fast"),
+                       ("BM_EncodePng/1/real_time", "one frame's encode: libspng, default"),
+                       ("BM_EncodePng/2/real_time", "one frame's encode: libspng, best"),
+                       ("BM_EncodeJpeg/90/real_time", "one frame's encode: libjpeg-turbo, quality 90")):
+        b = enc.get(run)
+        if b:
+            rows.append([label, f(b["ms"]) + " ms", f(b["ms"] / stb["ms"]) if stb else "n/a",
+                         f(b["bytes"] / 1e3)])
+    return (["run", "median", "ratio (runs: to the frame loop; encodes: to stb)", "KB per frame"],
+            rows)
+
+
 def generic_micro_table(run):
     """Every benchmark of a run with its median time and counters."""
     def table(data):
@@ -268,6 +292,15 @@ FIGURES = [
            {"curvature": MICRO + ["--benchmark_filter=^BM_Curvature/2049/[0-3]/1/[01]/0/real_time$"
                                   "|^BM_CurvatureGpu/2049/[0-3]/0/0/1/real_time$"]},
            curvature_table),
+    Figure("capture", "Capture",
+           "The orbit's frames at 1920x1080 written to files against the frame loop that renders "
+           "and reads them back, each program's whole run by the wall clock, interleaved, medians of "
+           "5; encoders run on the cores the render leaves (hardware threads less one). Below, one "
+           "1080p frame's encode on one thread (`BM_Encode*`, a synthetic shaded fractal frame).",
+           {"capture": ["capture_timing.py", "--apps", "{apps}", "--frames", "48", "--size", "1920x1080",
+                        "--repeat", "5", "--json", "{json}"],
+            "encode": MICRO + ["--benchmark_filter=^BM_Encode"]},
+           capture_table),
     Figure("horizons", "Horizons",
            "Horizon angles of a heightfield (`BM_Horizons`).",
            {"horizons": MICRO + ["--benchmark_filter=^BM_Horizons"]},
@@ -280,7 +313,10 @@ FIGURES = [
 def shown(command, folder):
     """The command as a reader would type it: program names without the build folder,
     the JSON path relative to the output folder."""
-    words = [w.replace("{json}", "FILE.json").replace("{out}/", "") for w in command]
+    words = [w.replace("{json}", "FILE.json").replace("{out}/", "").replace("{apps}", "build/apps")
+             for w in command]
+    if words and words[0].endswith(".py"):
+        words[0] = "scripts/" + words[0]
     return shlex.join(words)
 
 
