@@ -284,9 +284,9 @@ TEST_F(SceneOptionsTest, BadValuesGiveClearErrors) {
     EXPECT_THAT(parseError({"--size", "0x5"}), HasSubstr("--size"));
     EXPECT_THAT(parseError({"--depth-out", "d.png"}), HasSubstr(".npy"));
     // Frames are PNG or JPEG by their name: another extension is refused.
-    EXPECT_THAT(parseError({"--out", "frame.tif"}),
-                AllOf(HasSubstr("--out"), HasSubstr(".png"), HasSubstr(".jpg"),
-                      HasSubstr("frame.tif")));
+    EXPECT_THAT(
+        parseError({"--out", "frame.tif"}),
+        AllOf(HasSubstr("--out"), HasSubstr(".png"), HasSubstr(".jpg"), HasSubstr("frame.tif")));
     EXPECT_EQ(parseError({"--out", "frame.jpg", "--jpeg-quality", "75"}), "");
     EXPECT_EQ(parseError({"--out", "frame.JPEG"}), "");
     EXPECT_THAT(parseError({"--out", "frame.jpg", "--alpha"}),
