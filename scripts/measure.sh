@@ -38,11 +38,11 @@ with open(sys.argv[1], "w") as fh:
 PY
   while IFS=$'\t' read -r name optional command; do
     eval "words=($command)"
-    # A program of the build, a script of scripts/ that runs them ({apps}: their folder),
-    # or a Python script of the repository run by Debian's python3.
+    # A program of the build, or a Python script of the repository (run by Debian's
+    # python3; a script that runs the programs itself gets their folder as {apps}).
     if [[ "${words[0]}" == python3 ]]; then
       words[0]=/usr/bin/python3
-    elif [[ "${words[0]}" != scripts/* ]]; then
+    else
       words[0]="$build/apps/${words[0]}"
     fi
     for k in "${!words[@]}"; do
@@ -50,7 +50,7 @@ PY
       words[k]="${words[k]//\{out\}/$out}"
       words[k]="${words[k]//\{apps\}/$build/apps}"
     done
-    if [[ "$optional" == 1 && "${words[0]}" == /usr/bin/python3 && ! -d "$build/python/sierra" ]]; then
+    if [[ "$optional" == 1 && "${words[1]:-}" == python/* && ! -d "$build/python/sierra" ]]; then
       echo "measure: $name: no Python module in this build, skipped" >&2
       continue
     fi

@@ -200,6 +200,30 @@ def python_table(data):
              ["ratio", f(d["ratio"]), ""]])
 
 
+def capture_table(data):
+    d = data["capture"]
+    enc = micro_medians(data["encode"])
+    rows = [["`sierra-bench frames` (the frame loop, read back, nothing written)",
+             f(d["median_s"]["frame_loop"]) + " s", "1", ""]]
+    for name, label in (("png", "`sierra-render` to PNG, same frames (`--msaa 0`)"),
+                        ("jpeg", "`sierra-render` to JPEG, same frames"),
+                        ("png_msaa4", "`sierra-render` to PNG, its defaults (4x MSAA)")):
+        rows.append([label, f(d["median_s"][name]) + " s", f(d["ratio_to_frame_loop"][name]),
+                     f(d["frame_bytes_median"].get(name, 0) / 1e3)])
+    stb = enc.get("BM_EncodePngStb/real_time")
+    for run, label in (("BM_EncodePngStb/real_time", "one frame's encode: stb's PNG writer"),
+                       ("BM_EncodePng/0/real_time", "one frame's encode: libspng, fast"),
+                       ("BM_EncodePng/1/real_time", "one frame's encode: libspng, default"),
+                       ("BM_EncodePng/2/real_time", "one frame's encode: libspng, best"),
+                       ("BM_EncodeJpeg/90/real_time", "one frame's encode: libjpeg-turbo, quality 90")):
+        b = enc.get(run)
+        if b:
+            rows.append([label, f(b["ms"]) + " ms", f(b["ms"] / stb["ms"]) if stb else "n/a",
+                         f(b["bytes"] / 1e3)])
+    return (["run", "median", "ratio (runs: to the frame loop; encodes: to stb)", "KB per frame"],
+            rows)
+
+
 def relief_table(data):
     """The relief target's work (BM_ReliefFields) and its parts, 4097² unless the row says."""
     cases = [
@@ -321,10 +345,19 @@ FIGURES = [
            "48 frames of the default orbit at 1920x1080 without MSAA, encoded to H.264 at the "
            "default quality (libx264, crf 23, preset veryfast) as they are rendered, against "
            "`sierra-bench frames` drawing the same frames; the two programs take turns, 3 rounds.",
-           {"video_mp4": ["scripts/video_bench.py", "{apps}", "{out}", "{json}"]},
+           {"video_mp4": ["python3", "scripts/video_bench.py", "{apps}", "{out}", "{json}"]},
            video_table,
            after="Encoding runs on the render thread; libx264's own frame threads overlap it with "
                  "the next frame's rendering."),
+    Figure("capture", "Capture",
+           "The orbit's frames at 1920x1080 written to files against the frame loop that renders "
+           "and reads them back, each program's whole run by the wall clock, interleaved, medians of "
+           "5; encoders run on the cores the render leaves (hardware threads less one). Below, one "
+           "1080p frame's encode on one thread (`BM_Encode*`, a synthetic shaded fractal frame).",
+           {"capture": ["python3", "scripts/capture_timing.py", "--apps", "{apps}", "--frames", "48", "--size", "1920x1080",
+                        "--repeat", "5", "--json", "{json}"],
+            "encode": MICRO + ["--benchmark_filter=^BM_Encode"]},
+           capture_table),
 ]
 
 

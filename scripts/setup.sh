@@ -16,7 +16,7 @@ packages=(
   libglm-dev libstb-dev libimgui-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev glslang-tools clang-format
-  libspng-dev libgdal-dev
+  libspng-dev libjpeg62-turbo-dev libgdal-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   python-matplotlib-data
   python3-dev python3-numpy python3-pytest pybind11-dev

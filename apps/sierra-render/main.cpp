@@ -14,6 +14,7 @@
 #include <sierra/render/Capture.h>
 #include <sierra/render/DebugOverlay.h>
 #include <sierra/render/DebugSnapshot.h>
+#include <sierra/render/FrameQueue.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainGpu.h>
@@ -26,8 +27,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <signal.h>
+
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -71,6 +75,78 @@ render::VideoDesc videoDesc(const scene::Scene& s, bool nvidia) {
             .preferNvenc = nvidia};
 }
 
+// The signal that asked the run to stop (SIGINT, SIGTERM), 0 for none. The
+// frame loop stops submitting, the frames in flight are written, and the
+// program exits 128 + the signal. A second signal kills at once (the
+// handler is reset), as a user pressing Ctrl-C twice expects.
+volatile std::sig_atomic_t stopSignal = 0;
+
+void requestStop(int signal) {
+    stopSignal = signal;
+}
+
+void catchStopSignals() {
+    struct sigaction action {};
+    action.sa_handler = requestStop;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART | SA_RESETHAND;
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+}
+
+// "1:02:03" / "2:03" for a duration in seconds.
+std::string clockTime(double seconds) {
+    const int64_t total = std::isfinite(seconds) ? int64_t(std::max(seconds, 0.0) + 0.5) : 0;
+    const int64_t h = total / 3600, m = total / 60 % 60, sec = total % 60;
+    char text[48];
+    if (h > 0)
+        std::snprintf(text, sizeof text, "%lld:%02lld:%02lld", (long long)h, (long long)m,
+                      (long long)sec);
+    else
+        std::snprintf(text, sizeof text, "%lld:%02lld", (long long)m, (long long)sec);
+    return text;
+}
+
+// The progress of a sequence on stderr: frames rendered, frames per second
+// and the time left, at most kPerSecond times a second (and at the end).
+class SequenceProgress {
+  public:
+    static constexpr double kPerSecond = 4.0;
+    explicit SequenceProgress(int64_t total)
+        : total_(total),
+          progress_(log::level() <= log::Level::Info && total > 1
+                        ? std::make_optional<Progress>("frames", total)
+                        : std::nullopt) {}
+    void update(int64_t done) {
+        if (!progress_) return;
+        const double seconds = clock_.ms() / 1000.0;
+        if (done < total_ && seconds - shown_ < 1.0 / kPerSecond) return;
+        shown_ = seconds;
+        const double rate = seconds > 0.0 ? double(done) / seconds : 0.0;
+        progress_->update(done,
+                          msg(fixed(rate, 1), " frames/s, ",
+                              rate > 0.0 ? clockTime(double(total_ - done) / rate) : "?", " left"));
+    }
+    void finish() {
+        if (progress_) progress_->finish();
+    }
+
+  private:
+    int64_t total_;
+    std::optional<Progress> progress_;
+    Stopwatch clock_;
+    double shown_ = -1.0;
+};
+
+// The last kKept frames' statistics for the debug snapshot, in amortised
+// O(1) per frame: a sequence of any length keeps bounded memory.
+template <typename T>
+void keepRecent(std::vector<T>& values, const T& value) {
+    constexpr size_t kKept = 1000;
+    values.push_back(value);
+    if (values.size() >= 2 * kKept) values.erase(values.begin(), values.end() - long(kKept));
+}
+
 int run(const scene::Scene& s) {
     const int width = s.output.width, height = s.output.height;
     const int frameCount = s.path.frames;
@@ -109,7 +185,7 @@ int run(const scene::Scene& s) {
     float seaLevel = scene::resolveSeaLevel(s.terrain, field);
     log::info("terrain: ", description);
     // Before the terrain's GPU data: a sun time without a place fails at once.
-    const std::vector<glm::vec3> suns = render::sceneSunDirections(s, field);
+    render::describeSceneSun(s, field);
     render::TerrainRenderer terrain =
         render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
     if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
@@ -120,40 +196,56 @@ int run(const scene::Scene& s) {
     const render::OverlayInfo overlays = render::addOverlayPasses(terrain, s);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});
-    std::vector<render::Camera> cameras = render::sceneCameras(s, terrain.bounds());
+    const render::SceneCameraPath cameras(s, terrain.bounds());
     render::DrawOptions draw = render::sceneDrawOptions(s);
     glm::vec4 clear = render::TerrainRenderer::clearColour(draw.lighting);
 
     std::vector<float> frameMs;
     render::DrawStats stats;
     // Sequences read back through pixel-buffer objects: frame k is copied while
-    // frame k + 1 is refined and drawn, and written once it arrives.
+    // frame k + 1 is refined and drawn, and handed to the encoder threads once
+    // it arrives; the render thread waits only when the queue is full.
     gpu::PixelReader reader(width, height);
     gpu::Image image;
-    int written = first;
-    auto writeNext = [&](const gpu::Image& frame) {
-        std::string path = video ? videoPath : framePath(s.output.frame, written);
-        if (encoder)
-            encoder->write(frame);
-        else
-            render::writePng(path, frame, s.output.alpha);
+    const render::ImageEncoding encoding = render::frameEncoding(s.output);
+    render::FrameQueue queue(
+        {.capacity = s.output.maxQueuedFrames > 0
+                         ? s.output.maxQueuedFrames
+                         : render::defaultQueuedFrames(size_t(width) * size_t(height) * 4),
+         .threads = render::defaultEncoderThreads()});
+    if (sequence && !encoder)
+        log::info("frames encoded on ", queue.threads(), " thread(s), at most ", queue.capacity(),
+                  " queued");
+    int submitted = first;
+    auto writeNext = [&]() {
+        if (encoder) {  // a video takes its frames in order, on this thread
+            encoder->write(image);
+            image = {};
+            ++submitted;
+            return;
+        }
+        std::string path = framePath(s.output.frame, submitted);
         if (sequence)
-            log::info("frame ", written, " (", written - first + 1, "/", last - first + 1,
-                      "): ", fixed(frameMs[size_t(written - first)], 1), " ms -> ", path);
-        ++written;
+            log::debug("frame ", submitted, " (", submitted - first + 1, "/", last - first + 1,
+                       ") queued -> ", path);
+        queue.submit(submitted, std::move(image), [path, encoding](const gpu::Image& frame) {
+            render::writeImage(path, frame, encoding);
+        });
+        image = {};
+        ++submitted;
     };
     // Debug snapshots: the frame re-rendered narrower with the UI in a column
     // beside it, or the UI alone on a plain background.
     std::vector<render::DrawStats> history;
     std::unique_ptr<render::DebugOverlay> overlay;
-    std::vector<render::Camera> snapshotCameras;
+    std::optional<render::SceneCameraPath> snapshotCameras;
     auto snapshot = [&](int k, const std::string& path, bool uiOnly = false) {
         if (!overlay) overlay = std::make_unique<render::DebugOverlay>();
         const int column = render::debugColumnWidth(width);
         const int frameWidth = render::snapshotFrameWidth(width, column);
-        if (snapshotCameras.empty())
-            snapshotCameras = render::snapshotCameras(s, terrain.bounds(), frameWidth);
-        const render::Camera& camera = snapshotCameras[size_t(k)];
+        if (!snapshotCameras)
+            snapshotCameras = render::snapshotCameraPath(s, terrain.bounds(), frameWidth);
+        const render::Camera camera = snapshotCameras->at(k);
         render::SnapshotFacts facts{.scene = &s,
                                     .field = &field,
                                     .glRenderer = context.renderer(),
@@ -216,9 +308,12 @@ int run(const scene::Scene& s) {
         render::writePng(path, shot);
         log::info("wrote debug snapshot ", path);
     };
-    for (int k = first; k <= last; ++k) {
-        const render::Camera& camera = cameras[size_t(k)];
-        draw.lighting.sunDirection = suns[size_t(k)];
+    catchStopSignals();
+    SequenceProgress progress(int64_t(last) - first + 1);
+    int rendered = first - 1;
+    for (int k = first; k <= last && stopSignal == 0; ++k) {
+        const render::Camera camera = cameras.at(k);
+        draw.lighting.sunDirection = render::sceneSunDirection(s, field, k);
         Stopwatch frame;
         target.begin(clear);
         stats = terrain.draw(camera, width, height, draw);
@@ -229,9 +324,9 @@ int run(const scene::Scene& s) {
         target.resolve();
         bool ready = reader.start(image);
         terrain.collectGpuTime(stats);
-        frameMs.push_back(float(frame.ms()));
-        history.push_back(stats);
-        if (ready) writeNext(image);
+        keepRecent(frameMs, float(frame.ms()));
+        keepRecent(history, stats);
+        if (ready) writeNext();
         if (!s.output.debug.empty() && s.output.snapshotEvery > 0 &&
             (k - first) % s.output.snapshotEvery == 0)
             snapshot(k, framePath(s.output.debug, k));
@@ -240,8 +335,24 @@ int run(const scene::Scene& s) {
             writeFileAtomic(framePath(s.output.depth, k),
                             encodeNpyFloat32(depth.height, depth.width, depth.depth));
         }
+        rendered = k;
+        progress.update(int64_t(k) - first + 1);
     }
-    if (reader.finish(image)) writeNext(image);
+    // The frames in flight (the last read back, those queued) are written
+    // whether the sequence ended or was stopped.
+    if (reader.finish(image)) writeNext();
+    queue.finish();
+    progress.finish();
+    // A stopped video is finished too: it plays with the frames so far.
+    if (encoder && stopSignal != 0) encoder->finish();
+    if (stopSignal != 0) {
+        const std::string done = rendered >= first ? msg("frames ", first, "..", rendered, " of ",
+                                                         first, "..", last, " written")
+                                                   : std::string("no frame written");
+        std::fprintf(stderr, "sierra-render: stopped by %s: %s\n",
+                     stopSignal == SIGINT ? "SIGINT" : "SIGTERM", done.c_str());
+        return 128 + int(stopSignal);
+    }
     log::info(render::lodName(draw.lod), " frame: ", stats.triangles, " triangles, ", stats.indices,
               " indices (", fixed(stats.indicesPerTriangle()), " per triangle), refine + strip ",
               fixed(stats.refineMs), " ms, upload ", fixed(stats.uploadMs), " ms, draw (GL timer) ",
@@ -267,7 +378,8 @@ int run(const scene::Scene& s) {
 int main(int argc, char** argv) {
     scene::Scene scene;
     CLI::App app{
-        "Renders terrain off-screen (EGL) to PNG or a video (.mp4, .mov, .mkv, .webm, .gif).\n"
+        "Renders terrain off-screen (EGL) to PNG, JPEG or a video (.mp4, .mov, .mkv, .webm, "
+        ".gif).\n"
         "With no arguments: a generated 1025x1025 fractal terrain to out/frame.png and an ImGui\n"
         "debug snapshot to out/debug.png. Every option is also a key of a scene file (--config).",
         "sierra-render"};

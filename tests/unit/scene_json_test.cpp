@@ -109,7 +109,10 @@ Scene unusualScene() {
                 .videoCodec = "hevc",
                 .crf = 18,
                 .bitrate = 4000000000,  // beyond 32 bits
-                .videoPreset = "slow"};
+                .videoPreset = "slow",
+                .pngCompression = PngCompression::Best,
+                .jpegQuality = 42,
+                .maxQueuedFrames = 5};
     s.style = {.wireframe = true};
     return s;
 }
@@ -269,7 +272,7 @@ TEST_F(SceneJson, LoadSceneChecksRanges) {
     EXPECT_THAT(loadError(R"({"output": {"frame": "a.webm", "alpha": true}})"),
                 HasSubstr("output.alpha (--alpha)"));
     EXPECT_THAT(loadError(R"({"output": {"frame": "a.avi"}})"),
-                HasSubstr("a .png file or a video (.mp4, .mov, .mkv, .webm, .gif)"));
+                HasSubstr(".png, .jpg or .jpeg file or a video (.mp4, .mov, .mkv, .webm, .gif"));
 }
 
 }  // namespace

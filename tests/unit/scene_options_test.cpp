@@ -308,9 +308,21 @@ TEST_F(SceneOptionsTest, BadValuesGiveClearErrors) {
     EXPECT_THAT(parseError({"--channel", "alpha"}), HasSubstr("--channel"));
     EXPECT_THAT(parseError({"--size", "0x5"}), HasSubstr("--size"));
     EXPECT_THAT(parseError({"--depth-out", "d.png"}), HasSubstr(".npy"));
-    // Images are PNG whatever their name: another extension is refused.
-    EXPECT_THAT(parseError({"--out", "frame.jpg"}),
-                AllOf(HasSubstr("--out"), HasSubstr(".png"), HasSubstr("frame.jpg")));
+    // Frames are PNG or JPEG by their name: another extension is refused.
+    EXPECT_THAT(
+        parseError({"--out", "frame.tif"}),
+        AllOf(HasSubstr("--out"), HasSubstr(".png"), HasSubstr(".jpg"), HasSubstr("frame.tif")));
+    EXPECT_EQ(parseError({"--out", "frame.jpg", "--jpeg-quality", "75"}), "");
+    EXPECT_EQ(parseError({"--out", "frame.JPEG"}), "");
+    EXPECT_THAT(parseError({"--out", "frame.jpg", "--alpha"}),
+                AllOf(HasSubstr("--alpha"), HasSubstr("JPEG has no alpha channel")));
+    EXPECT_THAT(parseError({"--jpeg-quality", "0"}),
+                AllOf(HasSubstr("--jpeg-quality"), HasSubstr("1..100")));
+    EXPECT_THAT(parseError({"--jpeg-quality", "high"}), HasSubstr("--jpeg-quality 'high'"));
+    EXPECT_THAT(parseError({"--png-compression", "ultra"}),
+                AllOf(HasSubstr("--png-compression"), HasSubstr("fast, default, best")));
+    EXPECT_EQ(parseError({"--png-compression", "best"}), "");
+    EXPECT_THAT(parseError({"--max-queued-frames", "-1"}), HasSubstr("--max-queued-frames"));
     EXPECT_THAT(parseError({"--debug-out", "debug.bmp"}),
                 AllOf(HasSubstr("--debug-out"), HasSubstr(".png")));
     EXPECT_THAT(parseError({"--snapshot-only", "ui"}),

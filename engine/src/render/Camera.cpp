@@ -175,50 +175,84 @@ Camera defaultCamera(const SceneBounds& bounds, float aspect, float fovYDegrees)
     return orbitPath(bounds, 1, aspect, fovYDegrees).front();
 }
 
-std::vector<Camera> orbitPath(const SceneBounds& bounds, int frames, float aspect,
-                              float fovYDegrees, float elevationDeg) {
+namespace {
+
+void checkFrame(int k, int frames) {
     SIERRA_CHECK(frames > 0, "a camera path needs at least one frame, got ", frames);
-    glm::vec3 target = defaultTarget(bounds);
-    auto azimuth = [&](int k) { return 225.0f + 360.0f * float(k) / float(frames); };
-    // One radius for the whole orbit: the largest any of its azimuths needs.
+    SIERRA_CHECK(k >= 0 && k < frames, "frame ", k, " is outside the path's ", frames, " frames");
+}
+
+// Frame k's compass bearing: 225 degrees first, a full turn over the frames,
+// kept in [0, 360) so that long paths keep float precision.
+float orbitAzimuth(int64_t k, int64_t frames) {
+    return float(std::fmod(225.0 + 360.0 * double(k) / double(frames), 360.0));
+}
+
+// t from 0 (first frame) to 1 (last).
+float pathShare(int k, int frames) {
+    return frames == 1 ? 0.0f : float(double(k) / double(frames - 1));
+}
+
+}  // namespace
+
+float orbitDistance(const SceneBounds& bounds, int frames, float aspect, float fovYDegrees,
+                    float elevationDeg) {
+    SIERRA_CHECK(frames > 0, "a camera path needs at least one frame, got ", frames);
+    const glm::vec3 target = defaultTarget(bounds);
+    const int samples = std::min(frames, kOrbitExactFrames);
     float distance = 0.0f;
-    for (int k = 0; k < frames; ++k) {
+    for (int k = 0; k < samples; ++k) {
         Camera c = framedCamera(bounds, {.target = target,
-                                         .azimuthDeg = azimuth(k),
+                                         .azimuthDeg = orbitAzimuth(k, samples),
                                          .elevationDeg = elevationDeg,
                                          .fovYDegrees = fovYDegrees,
                                          .aspect = aspect});
         distance = std::max(distance, glm::distance(c.position, c.target));
     }
+    return samples < frames ? distance * (1.0f + 1e-4f) : distance;
+}
+
+Camera orbitCamera(const SceneBounds& bounds, int k, int frames, float distance, float aspect,
+                   float fovYDegrees, float elevationDeg) {
+    checkFrame(k, frames);
+    return framedCamera(bounds, {.target = defaultTarget(bounds),
+                                 .azimuthDeg = orbitAzimuth(k, frames),
+                                 .elevationDeg = elevationDeg,
+                                 .fovYDegrees = fovYDegrees,
+                                 .aspect = aspect,
+                                 .distance = distance});
+}
+
+std::vector<Camera> orbitPath(const SceneBounds& bounds, int frames, float aspect,
+                              float fovYDegrees, float elevationDeg) {
+    const float distance = orbitDistance(bounds, frames, aspect, fovYDegrees, elevationDeg);
     std::vector<Camera> path;
     path.reserve(size_t(frames));
     for (int k = 0; k < frames; ++k)
-        path.push_back(framedCamera(bounds, {.target = target,
-                                             .azimuthDeg = azimuth(k),
-                                             .elevationDeg = elevationDeg,
-                                             .fovYDegrees = fovYDegrees,
-                                             .aspect = aspect,
-                                             .distance = distance}));
+        path.push_back(orbitCamera(bounds, k, frames, distance, aspect, fovYDegrees, elevationDeg));
     return path;
+}
+
+Camera flyoverCamera(const SceneBounds& bounds, int k, int frames, float fovYDegrees) {
+    checkFrame(k, frames);
+    glm::vec3 s = bounds.size();
+    float height = bounds.max.y + 0.04f * std::max(s.x, s.z);
+    float t = pathShare(k, frames);
+    float z = bounds.max.z - (0.05f + 0.75f * t) * s.z;
+    float x = bounds.min.x + (0.35f + 0.3f * t) * s.x;
+    Camera c;
+    c.position = {x, height, z};
+    c.target = {x + 0.05f * s.x, bounds.min.y + 0.3f * s.y, z - 0.3f * s.z};
+    c.fovYDegrees = fovYDegrees;
+    fitClipPlanes(c, bounds);
+    return c;
 }
 
 std::vector<Camera> flyoverPath(const SceneBounds& bounds, int frames, float fovYDegrees) {
     SIERRA_CHECK(frames > 0, "a camera path needs at least one frame, got ", frames);
-    glm::vec3 s = bounds.size();
-    float height = bounds.max.y + 0.04f * std::max(s.x, s.z);
     std::vector<Camera> path;
     path.reserve(size_t(frames));
-    for (int k = 0; k < frames; ++k) {
-        float t = frames == 1 ? 0.0f : float(k) / float(frames - 1);
-        float z = bounds.max.z - (0.05f + 0.75f * t) * s.z;
-        float x = bounds.min.x + (0.35f + 0.3f * t) * s.x;
-        Camera c;
-        c.position = {x, height, z};
-        c.target = {x + 0.05f * s.x, bounds.min.y + 0.3f * s.y, z - 0.3f * s.z};
-        c.fovYDegrees = fovYDegrees;
-        fitClipPlanes(c, bounds);
-        path.push_back(c);
-    }
+    for (int k = 0; k < frames; ++k) path.push_back(flyoverCamera(bounds, k, frames, fovYDegrees));
     return path;
 }
 
@@ -231,38 +265,50 @@ glm::vec3 catmullRom(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, flo
 }
 }  // namespace
 
-std::vector<Camera> keyframePath(const SceneBounds& bounds, const std::vector<Keyframe>& keys,
-                                 int frames, float fovYDegrees) {
-    SIERRA_CHECK(frames > 0, "a camera path needs at least one frame, got ", frames);
+void checkKeyframes(const std::vector<Keyframe>& keys) {
     SIERRA_CHECK(!keys.empty(), "a keyframe path needs at least one keyframe");
     for (size_t k = 1; k < keys.size(); ++k)
         SIERRA_CHECK(keys[k].time > keys[k - 1].time, "keyframe times must increase: keyframe ", k,
                      " at ", keys[k].time, " follows ", keys[k - 1].time);
+}
+
+Camera keyframeCamera(const SceneBounds& bounds, const std::vector<Keyframe>& keys, int f,
+                      int frames, float fovYDegrees) {
+    checkFrame(f, frames);
+    SIERRA_CHECK(!keys.empty(), "a keyframe path needs at least one keyframe");
+    float u = pathShare(f, frames);
+    float time = keys.front().time + u * (keys.back().time - keys.front().time);
+    const size_t last = keys.size() - 1;
+    Camera c;
+    c.fovYDegrees = fovYDegrees;
+    if (keys.size() == 1) {
+        c.position = keys[0].position;
+        c.target = keys[0].target;
+    } else {
+        // The segment [i, i + 1] holding `time`: the last key at or before it,
+        // but never the last key itself.
+        auto after = std::upper_bound(keys.begin() + 1, keys.begin() + long(last), time,
+                                      [](float t, const Keyframe& k) { return t < k.time; });
+        size_t i = size_t(after - keys.begin()) - 1;
+        float t = std::clamp((time - keys[i].time) / (keys[i + 1].time - keys[i].time), 0.0f, 1.0f);
+        const Keyframe& k0 = keys[i == 0 ? 0 : i - 1];
+        const Keyframe& k3 = keys[std::min(i + 2, last)];
+        c.position =
+            catmullRom(k0.position, keys[i].position, keys[i + 1].position, k3.position, t);
+        c.target = catmullRom(k0.target, keys[i].target, keys[i + 1].target, k3.target, t);
+    }
+    fitClipPlanes(c, bounds);
+    return c;
+}
+
+std::vector<Camera> keyframePath(const SceneBounds& bounds, const std::vector<Keyframe>& keys,
+                                 int frames, float fovYDegrees) {
+    SIERRA_CHECK(frames > 0, "a camera path needs at least one frame, got ", frames);
+    checkKeyframes(keys);
     std::vector<Camera> path;
     path.reserve(size_t(frames));
-    size_t last = keys.size() - 1;
-    for (int f = 0; f < frames; ++f) {
-        float u = frames == 1 ? 0.0f : float(f) / float(frames - 1);
-        float time = keys.front().time + u * (keys.back().time - keys.front().time);
-        size_t i = 0;
-        while (i + 1 < last && keys[i + 1].time <= time) ++i;
-        Camera c;
-        c.fovYDegrees = fovYDegrees;
-        if (keys.size() == 1) {
-            c.position = keys[0].position;
-            c.target = keys[0].target;
-        } else {
-            float t =
-                std::clamp((time - keys[i].time) / (keys[i + 1].time - keys[i].time), 0.0f, 1.0f);
-            const Keyframe& k0 = keys[i == 0 ? 0 : i - 1];
-            const Keyframe& k3 = keys[std::min(i + 2, last)];
-            c.position =
-                catmullRom(k0.position, keys[i].position, keys[i + 1].position, k3.position, t);
-            c.target = catmullRom(k0.target, keys[i].target, keys[i + 1].target, k3.target, t);
-        }
-        fitClipPlanes(c, bounds);
-        path.push_back(c);
-    }
+    for (int f = 0; f < frames; ++f)
+        path.push_back(keyframeCamera(bounds, keys, f, frames, fovYDegrees));
     return path;
 }
 

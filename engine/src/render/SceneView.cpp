@@ -24,79 +24,107 @@ glm::vec3 toGlm(const scene::Vec3& v) {
     return {v.x, v.y, v.z};
 }
 
-std::vector<Camera> sceneCameras(const scene::Scene& s, const SceneBounds& bounds) {
+SceneCameraPath::SceneCameraPath(const scene::Scene& s, const SceneBounds& bounds)
+    : type_(s.path.type),
+      frames_(s.path.frames),
+      bounds_(bounds),
+      aspect_(float(s.output.width) / float(s.output.height)),
+      fov_(s.camera.fov),
+      elevation_(s.camera.elevation.value_or(30.0f)),
+      projection_(s.camera.projection == scene::Projection::Orthographic
+                      ? Projection::Orthographic
+                      : Projection::Perspective) {
     const scene::CameraDesc& c = s.camera;
-    float aspect = float(s.output.width) / float(s.output.height);
-    Projection projection = c.projection == scene::Projection::Orthographic
-                                ? Projection::Orthographic
-                                : Projection::Perspective;
-    glm::vec3 target = c.target ? toGlm(*c.target) : defaultTarget(bounds);
-    int frames = s.path.frames;
-    std::vector<Camera> cameras;
-    switch (s.path.type) {
-        case scene::PathType::Orbit: {
+    SIERRA_CHECK(frames_ > 0, "a camera path needs at least one frame, got ", frames_);
+    target_ = c.target ? toGlm(*c.target) : defaultTarget(bounds);
+    switch (type_) {
+        case scene::PathType::Orbit:
             SIERRA_CHECK(
                 !c.position,
                 "an orbit path sets the camera position itself: leave out the camera position");
-            cameras = orbitPath(bounds, frames, aspect, c.fov, c.elevation.value_or(30.0f));
-            for (Camera& cam : cameras) {
-                if (c.target) {
-                    cam.position += target - cam.target;
-                    cam.target = target;
-                }
-                if (c.distance)
-                    cam.position =
-                        cam.target + glm::normalize(cam.position - cam.target) * *c.distance;
-                cam.projection = projection;
-                if (projection == Projection::Orthographic) {
-                    Camera framed = framedCamera(bounds, {.target = cam.target,
-                                                          .fovYDegrees = c.fov,
-                                                          .projection = projection,
-                                                          .aspect = aspect});
-                    cam.orthoHeight = framed.orthoHeight;
-                }
-                fitClipPlanes(cam, bounds);
-            }
+            moveTarget_ = c.target.has_value();
+            distance_ = c.distance;
+            orbitDistance_ = orbitDistance(bounds, frames_, aspect_, fov_, elevation_);
+            if (projection_ == Projection::Orthographic)
+                orthoHeight_ = framedCamera(bounds, {.target = target_,
+                                                     .fovYDegrees = fov_,
+                                                     .projection = projection_,
+                                                     .aspect = aspect_})
+                                   .orthoHeight;
             break;
-        }
         case scene::PathType::Flyover:
-            cameras = flyoverPath(bounds, frames, c.fov);
             break;
-        case scene::PathType::Keyframes: {
-            std::vector<Keyframe> keys;
+        case scene::PathType::Keyframes:
             for (const scene::Keyframe& k : s.path.keyframes)
-                keys.push_back(
+                keys_.push_back(
                     {.time = k.time, .position = toGlm(k.position), .target = toGlm(k.target)});
-            cameras = keyframePath(bounds, keys, frames, c.fov);
+            checkKeyframes(keys_);
             break;
-        }
-        case scene::PathType::None: {
-            Camera cam;
+        case scene::PathType::None:
             if (c.position) {
-                cam.position = toGlm(*c.position);
-                cam.target = target;
-                cam.fovYDegrees = c.fov;
-                cam.projection = projection;
-                if (projection == Projection::Orthographic)
-                    cam.orthoHeight =
-                        framedCamera(bounds,
-                                     {.target = target, .projection = projection, .aspect = aspect})
-                            .orthoHeight;
-                fitClipPlanes(cam, bounds);
+                still_.position = toGlm(*c.position);
+                still_.target = target_;
+                still_.fovYDegrees = fov_;
+                still_.projection = projection_;
+                if (projection_ == Projection::Orthographic)
+                    still_.orthoHeight = framedCamera(bounds, {.target = target_,
+                                                               .projection = projection_,
+                                                               .aspect = aspect_})
+                                             .orthoHeight;
+                fitClipPlanes(still_, bounds);
             } else {
-                cam = framedCamera(bounds, {.target = target,
-                                            .azimuthDeg = c.azimuth.value_or(225.0f),
-                                            .elevationDeg = c.elevation.value_or(30.0f),
-                                            .fovYDegrees = c.fov,
-                                            .projection = projection,
-                                            .aspect = aspect,
-                                            .distance = c.distance.value_or(0.0f)});
+                still_ = framedCamera(bounds, {.target = target_,
+                                               .azimuthDeg = c.azimuth.value_or(225.0f),
+                                               .elevationDeg = elevation_,
+                                               .fovYDegrees = fov_,
+                                               .projection = projection_,
+                                               .aspect = aspect_,
+                                               .distance = c.distance.value_or(0.0f)});
             }
-            cameras.assign(size_t(frames), cam);
             break;
-        }
     }
-    for (Camera& cam : cameras) cam.forward();  // throws for position == target
+}
+
+Camera SceneCameraPath::at(int k) const {
+    SIERRA_CHECK(k >= 0 && k < frames_, "frame ", k, " is outside the sequence's ", frames_,
+                 " frames");
+    Camera cam;
+    switch (type_) {
+        case scene::PathType::Orbit:
+            cam = orbitCamera(bounds_, k, frames_, orbitDistance_, aspect_, fov_, elevation_);
+            if (moveTarget_) {
+                cam.position += target_ - cam.target;
+                cam.target = target_;
+            }
+            if (distance_)
+                cam.position = cam.target + glm::normalize(cam.position - cam.target) * *distance_;
+            cam.projection = projection_;
+            if (projection_ == Projection::Orthographic) cam.orthoHeight = orthoHeight_;
+            fitClipPlanes(cam, bounds_);
+            break;
+        case scene::PathType::Flyover:
+            cam = flyoverCamera(bounds_, k, frames_, fov_);
+            break;
+        case scene::PathType::Keyframes:
+            cam = keyframeCamera(bounds_, keys_, k, frames_, fov_);
+            break;
+        case scene::PathType::None:
+            cam = still_;
+            break;
+    }
+    cam.forward();  // throws for position == target
+    return cam;
+}
+
+Camera sceneCamera(const scene::Scene& s, const SceneBounds& bounds, int k) {
+    return SceneCameraPath(s, bounds).at(k);
+}
+
+std::vector<Camera> sceneCameras(const scene::Scene& s, const SceneBounds& bounds) {
+    const SceneCameraPath path(s, bounds);
+    std::vector<Camera> cameras;
+    cameras.reserve(size_t(path.frames()));
+    for (int k = 0; k < path.frames(); ++k) cameras.push_back(path.at(k));
     return cameras;
 }
 
@@ -128,30 +156,46 @@ std::string describeSun(const scene::SunAngles& sun) {
 
 }  // namespace
 
-std::vector<glm::vec3> sceneSunDirections(const scene::Scene& s,
-                                          const terrain::Heightfield& field) {
+glm::vec3 sceneSunDirection(const scene::Scene& s, const terrain::Heightfield& field, int k) {
+    const bool moving = s.lighting.sunTime && s.lighting.sunStep != 0.0f && s.path.frames > 1;
+    const scene::SunAngles sun = scene::sceneSun(s, field, moving ? k : 0);
+    return compassDirection(sun.azimuth, sun.altitude);
+}
+
+void describeSceneSun(const scene::Scene& s, const terrain::Heightfield& field) {
     const int frames = s.path.frames;
-    std::vector<glm::vec3> directions;
-    directions.reserve(size_t(frames));
     const bool moving = s.lighting.sunTime && s.lighting.sunStep != 0.0f && frames > 1;
+    const int looked = moving ? std::min(frames, kSunSurveyFrames) : 1;
     int below = 0, firstBelow = -1;
-    for (int k = 0; k < frames; ++k) {
+    for (int i = 0; i < looked; ++i) {
+        // Every frame, or `looked` of them from the first to the last.
+        const int k =
+            looked == frames ? i : int(int64_t(i) * (frames - 1) / std::max(looked - 1, 1));
         const scene::SunAngles sun = scene::sceneSun(s, field, moving ? k : 0);
-        directions.push_back(compassDirection(sun.azimuth, sun.altitude));
-        if (k == 0 || (moving && k == frames - 1))
+        if (i == 0 || (moving && i == looked - 1))
             log::info("sun", moving ? msg(" of frame ", k) : std::string(), ": ", describeSun(sun));
         if (sun.altitude + 0.5f * s.lighting.sunSize <= 0.0f && below++ == 0) firstBelow = k;
-        if (!moving) {
-            directions.resize(size_t(frames), directions.front());
-            below *= frames;
-            break;
-        }
     }
-    if (below > 0)
-        log::warn("the sun is below the horizon in ",
-                  below == frames ? "every frame" : msg(below, " of ", frames, " frames"),
-                  below == frames ? std::string() : msg(" (from frame ", firstBelow, ")"),
-                  ": no direct light, those frames are lit by the sky alone");
+    if (below == 0) return;
+    std::string where = below == looked ? std::string("every frame")
+                        : looked == frames
+                            ? msg(below, " of ", frames, " frames")
+                            : msg("about ", int64_t(below) * frames / looked, " of ", frames,
+                                  " frames (", below, " of the ", looked, " looked at)");
+    log::warn("the sun is below the horizon in ", where,
+              below == looked ? std::string() : msg(" (from frame ", firstBelow, ")"),
+              ": no direct light, those frames are lit by the sky alone");
+}
+
+std::vector<glm::vec3> sceneSunDirections(const scene::Scene& s,
+                                          const terrain::Heightfield& field) {
+    describeSceneSun(s, field);
+    const int frames = s.path.frames;
+    const bool moving = s.lighting.sunTime && s.lighting.sunStep != 0.0f && frames > 1;
+    if (!moving) return std::vector<glm::vec3>(size_t(frames), sceneSunDirection(s, field, 0));
+    std::vector<glm::vec3> directions;
+    directions.reserve(size_t(frames));
+    for (int k = 0; k < frames; ++k) directions.push_back(sceneSunDirection(s, field, k));
     return directions;
 }
 
@@ -194,6 +238,13 @@ TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& 
             .treeLine = s.style.treeLine,
             .snowLine = s.style.snowLine,
             .cpt = s.style.cpt};
+}
+
+SceneCameraPath snapshotCameraPath(const scene::Scene& s, const SceneBounds& bounds,
+                                   int frameWidth) {
+    scene::Scene narrow = s;
+    narrow.output.width = frameWidth;
+    return SceneCameraPath(narrow, bounds);
 }
 
 std::vector<Camera> snapshotCameras(const scene::Scene& s, const SceneBounds& bounds,

@@ -389,14 +389,30 @@ SceneOptions::SceneOptions(CLI::App& app, Scene& scene, unsigned groups)
     if (groups & kOutputOptions) {
         const std::string g = "Output";
         add("--out",
-            "Frame PNG (sequences: NAME_0000.png, ...), or a video of all frames: .mp4, .mov, "
-            ".mkv, .webm or .gif",
+            "Frame PNG, or JPEG for .jpg / .jpeg (sequences: NAME_0000.png, ...), or a video of "
+            "all frames: .mp4, .mov, .mkv, .webm or .gif",
             g, "FILE.png|FILE.mp4", d.output.frame, 1,
             [](Scene& s, Words w) { s.output.frame = w[0]; });
         add("--depth-out", "Linear eye-space depth per pixel, float32 .npy (NaN where no terrain)",
             g, "FILE.npy", d.output.depth, 1, [](Scene& s, Words w) { s.output.depth = w[0]; });
         addFlag("--alpha", "RGBA PNG with a transparent sky", g,
                 [](Scene& s, Words) { s.output.alpha = true; });
+        add("--png-compression",
+            "PNG frames: fast (zlib level 1, run-length matches, one filter), default (level 6) or "
+            "best (level 9), every filter tried per row for the last two",
+            g, "fast|default|best", toString(d.output.pngCompression), 1, [](Scene& s, Words w) {
+                s.output.pngCompression = parsePngCompression(w[0], "--png-compression");
+            });
+        add("--jpeg-quality", "JPEG frames (--out NAME.jpg): quality 1..100", g, "Q",
+            msg(d.output.jpegQuality), 1, [](Scene& s, Words w) {
+                s.output.jpegQuality = parseInt(w[0], "--jpeg-quality", "an integer 1..100");
+            });
+        add("--max-queued-frames",
+            "Sequences: frames read back and waiting for their encoder, at most (0 = from the "
+            "memory available, 2..16)",
+            g, "N", msg(d.output.maxQueuedFrames), 1, [](Scene& s, Words w) {
+                s.output.maxQueuedFrames = parseInt(w[0], "--max-queued-frames", "an integer >= 0");
+            });
         const std::string v = "Video (--out NAME.mp4|.mov|.mkv|.webm|.gif)";
         add("--fps", "Video frames per second, 1..1000", v, "N", msg(d.output.fps), 1,
             [](Scene& s, Words w) { s.output.fps = parseInt(w[0], "--fps"); });

@@ -247,18 +247,31 @@ void validateOutput(const OutputDesc& o) {
              msg("must be >= 0 (0 = the last frame only), got ", o.snapshotEvery));
     if (o.msaa != 0 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8)
         fail("output.msaa", "--msaa", msg("must be 0 (off), 2, 4 or 8, got ", o.msaa));
-    if (o.frame.empty()) fail("output.frame", "--out", "must name a PNG file or a video");
-    // Images are written as PNG whatever their name: a name that promises
-    // another format (frame.jpg) is refused rather than silently mislabelled.
+    if (o.frame.empty()) fail("output.frame", "--out", "must name a PNG or JPEG file or a video");
+    // Images are written as PNG (frames also as JPEG or video) by their name:
+    // a name that promises another format (frame.tif) is refused rather than
+    // silently mislabelled.
     auto png = [&](const std::string& path, const char* key, const char* option) {
         if (!path.empty() && lowerExtension(path) != ".png")
             fail(key, option,
                  msg("must be a .png file (images are written as PNG), got '", path, "'"));
     };
-    if (!isVideoOutput(o.frame) && lowerExtension(o.frame) != ".png")
+    const std::string frameExtension = lowerExtension(o.frame);
+    const bool jpeg = frameExtension == ".jpg" || frameExtension == ".jpeg";
+    if (frameExtension != ".png" && !jpeg && !isVideoOutput(o.frame))
         fail("output.frame", "--out",
-             msg("must be a .png file or a video (.mp4, .mov, .mkv, .webm, .gif), got '", o.frame,
+             msg("must be a .png, .jpg or .jpeg file or a video (.mp4, .mov, .mkv, .webm, .gif; "
+                 "the format follows the name), got '",
+                 o.frame, "'"));
+    if (jpeg && o.alpha)
+        fail("output.alpha", "--alpha",
+             msg("JPEG has no alpha channel: a transparent sky needs a .png frame, got '", o.frame,
                  "'"));
+    if (o.jpegQuality < 1 || o.jpegQuality > 100)
+        fail("output.jpeg_quality", "--jpeg-quality", msg("must be 1..100, got ", o.jpegQuality));
+    if (o.maxQueuedFrames < 0)
+        fail("output.max_queued_frames", "--max-queued-frames",
+             msg("must be >= 0 (0 = from the memory available), got ", o.maxQueuedFrames));
     validateVideo(o);
     png(o.debug, "output.debug", "--debug-out");
     png(o.snapshotOnly, "output.snapshot_only", "--snapshot-only");
@@ -321,6 +334,26 @@ PathType parsePathType(const std::string& text, const std::string& what) {
 LodMode parseLodMode(const std::string& text, const std::string& what) {
     static const std::pair<const char*, LodMode> kNames[] = {{"sbt", LodMode::Sbt},
                                                              {"full", LodMode::Full}};
+    return detail::parseName(text, what, kNames);
+}
+
+const char* toString(PngCompression level) {
+    switch (level) {
+        case PngCompression::Default:
+            return "default";
+        case PngCompression::Best:
+            return "best";
+        case PngCompression::Fast:
+            break;
+    }
+    return "fast";
+}
+
+PngCompression parsePngCompression(const std::string& text, const std::string& what) {
+    static const std::pair<const char*, PngCompression> kNames[] = {
+        {"fast", PngCompression::Fast},
+        {"default", PngCompression::Default},
+        {"best", PngCompression::Best}};
     return detail::parseName(text, what, kNames);
 }
 

@@ -334,6 +334,13 @@ void readOutput(ObjectReader& r, OutputDesc& o) {
     });
     r.field("video_preset",
             [&](const Json& v, const std::string& k) { o.videoPreset = r.toString(v, k); });
+    r.field("png_compression", [&](const Json& v, const std::string& k) {
+        o.pngCompression = parsePngCompression(r.toString(v, k), msg(r.source(), ": ", k));
+    });
+    r.field("jpeg_quality",
+            [&](const Json& v, const std::string& k) { o.jpegQuality = r.toInt(v, k); });
+    r.field("max_queued_frames",
+            [&](const Json& v, const std::string& k) { o.maxQueuedFrames = r.toInt(v, k); });
 }
 
 void readStyle(ObjectReader& r, StyleDesc& s) {
@@ -500,6 +507,9 @@ Json sceneToJson(const Scene& s) {
         {"debug", o.debug},
         {"depth", o.depth},
         {"alpha", o.alpha},
+        {"png_compression", toString(o.pngCompression)},
+        {"jpeg_quality", o.jpegQuality},
+        {"max_queued_frames", o.maxQueuedFrames},
         {"snapshot_only", o.snapshotOnly},
         {"snapshot_every", o.snapshotEvery},
         {"snapshot_deterministic", o.snapshotDeterministic},

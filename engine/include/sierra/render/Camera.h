@@ -112,9 +112,23 @@ Camera defaultCamera(const SceneBounds& bounds, float aspect, float fovYDegrees 
 std::vector<Camera> orbitPath(const SceneBounds& bounds, int frames, float aspect,
                               float fovYDegrees = 45.0f, float elevationDeg = 30.0f);
 
+// The one distance of orbitPath: the largest any of its frames' azimuths
+// needs to frame the terrain. Paths of more than kOrbitExactFrames frames
+// take the largest over that many evenly spaced azimuths, 1e-4 larger (the
+// distance is a maximum of smooth functions of the azimuth, so between
+// samples it exceeds them by far less), so the cost stays bounded.
+inline constexpr int kOrbitExactFrames = 4096;
+float orbitDistance(const SceneBounds& bounds, int frames, float aspect, float fovYDegrees = 45.0f,
+                    float elevationDeg = 30.0f);
+// Frame k (0-based) of orbitPath at `distance` (orbitDistance's), alone.
+Camera orbitCamera(const SceneBounds& bounds, int k, int frames, float distance, float aspect,
+                   float fovYDegrees = 45.0f, float elevationDeg = 30.0f);
+
 // `frames` cameras flying low across the terrain from the south edge towards
 // the north, looking ahead and slightly down.
 std::vector<Camera> flyoverPath(const SceneBounds& bounds, int frames, float fovYDegrees = 45.0f);
+// Frame k (0-based) of flyoverPath, alone.
+Camera flyoverCamera(const SceneBounds& bounds, int k, int frames, float fovYDegrees = 45.0f);
 
 struct Keyframe {
     float time = 0.0f;  // seconds (any unit; only the ratios matter)
@@ -127,5 +141,11 @@ struct Keyframe {
 // the keyframes (times strictly increasing; one keyframe gives a still camera).
 std::vector<Camera> keyframePath(const SceneBounds& bounds, const std::vector<Keyframe>& keys,
                                  int frames, float fovYDegrees = 45.0f);
+// Throws sierra::Error unless `keys` can make a path (at least one, times
+// strictly increasing).
+void checkKeyframes(const std::vector<Keyframe>& keys);
+// Frame f (0-based) of keyframePath, alone, for checked keys: O(log keys).
+Camera keyframeCamera(const SceneBounds& bounds, const std::vector<Keyframe>& keys, int f,
+                      int frames, float fovYDegrees = 45.0f);
 
 }  // namespace sierra::render

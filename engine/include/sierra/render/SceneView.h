@@ -7,19 +7,51 @@
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Scene.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace sierra::render {
 
-// Every camera of the scene's sequence (path.frames of them; the range, if
-// any, is the caller's to pick), for a terrain with `bounds`:
+// The cameras of the scene's sequence (path.frames of them; the range, if
+// any, is the caller's to pick), for a terrain with `bounds`, one frame at a
+// time:
 //   - path none: the scene's camera (position, or azimuth / elevation /
 //     distance around the target; absent values from the default camera,
 //     which frames the whole terrain for the frame's aspect ratio);
 //   - orbit: a full turn around the target at the camera's elevation;
 //   - flyover: low across the terrain from south to north;
 //   - keyframes: the scene's keyframes, interpolated.
+// Construction checks the scene's camera and does the work shared by every
+// frame (an orbit's distance: at most kOrbitExactFrames framings); at(k) is
+// then O(1) (keyframes: O(log keyframes)), so a sequence of any length starts
+// at once.
+class SceneCameraPath {
+  public:
+    SceneCameraPath(const scene::Scene& scene, const SceneBounds& bounds);
+    int frames() const { return frames_; }
+    // Frame k, 0 <= k < frames(); throws sierra::Error for a camera whose
+    // position is its target.
+    Camera at(int k) const;
+
+  private:
+    scene::PathType type_;
+    int frames_;
+    SceneBounds bounds_;
+    float aspect_, fov_, elevation_;
+    Projection projection_;
+    glm::vec3 target_;
+    bool moveTarget_ = false;        // orbit: around the scene's target, not the default
+    std::optional<float> distance_;  // orbit: the scene's distance
+    float orbitDistance_ = 0.0f;     // orbit: the framing distance of the whole path
+    float orthoHeight_ = 0.0f;       // orbit, orthographic: the framed view height
+    std::vector<Keyframe> keys_;
+    Camera still_;  // path none
+};
+
+// Frame k's camera alone (a SceneCameraPath made for it).
+Camera sceneCamera(const scene::Scene& scene, const SceneBounds& bounds, int k);
+// Every camera of the sequence, SceneCameraPath's for each frame.
 std::vector<Camera> sceneCameras(const scene::Scene& scene, const SceneBounds& bounds);
 
 // The cameras of a debug snapshot, whose frame is `frameWidth` pixels wide
@@ -27,18 +59,27 @@ std::vector<Camera> sceneCameras(const scene::Scene& scene, const SceneBounds& b
 // framed automatically keeps the whole terrain in view; a fixed one is unchanged.
 std::vector<Camera> snapshotCameras(const scene::Scene& scene, const SceneBounds& bounds,
                                     int frameWidth);
+SceneCameraPath snapshotCameraPath(const scene::Scene& scene, const SceneBounds& bounds,
+                                   int frameWidth);
 
 // The draw options of the scene; lighting.sunDirection is the scene's fixed
 // sun (lighting.sun_azimuth / sun_altitude): with a sun time, set each
 // frame's from sceneSunDirections.
 DrawOptions sceneDrawOptions(const scene::Scene& scene);
 
-// The direction towards the sun in every frame of the scene's sequence
-// (path.frames of them, scene::sceneSun for each) over `field` as loaded.
+// The direction towards the sun in frame k of the scene's sequence
+// (scene::sceneSun) over `field` as loaded: O(1). Throws sierra::Error as
+// sceneSun does.
+glm::vec3 sceneSunDirection(const scene::Scene& scene, const terrain::Heightfield& field, int k);
 // Says where the sun stands (with a time: when and from where, for the first
 // and the last frame of a moving sun) and warns when a frame's sun is below
-// the horizon (that frame is then lit by the sky alone). Throws sierra::Error
-// as sceneSun does.
+// the horizon (that frame is then lit by the sky alone). A moving sun is
+// looked at in every frame up to kSunSurveyFrames frames, in that many evenly
+// spaced frames beyond. Throws sierra::Error as sceneSun does.
+inline constexpr int kSunSurveyFrames = 100000;
+void describeSceneSun(const scene::Scene& scene, const terrain::Heightfield& field);
+// The direction towards the sun in every frame of the scene's sequence
+// (path.frames of them), after describeSceneSun.
 std::vector<glm::vec3> sceneSunDirections(const scene::Scene& scene,
                                           const terrain::Heightfield& field);
 

@@ -48,7 +48,8 @@ enum OptionGroup : unsigned {
     kLightingOptions = 1u << 3,
     // --lod sbt|full, --tau PX, --no-geomorph, --no-cull, --threads N
     kLodOptions = 1u << 4,
-    // --out FILE.png, --depth-out FILE.npy, --alpha
+    // --out FILE.png|.jpg, --depth-out FILE.npy, --alpha, --png-compression fast|default|best,
+    // --jpeg-quality Q, --max-queued-frames N
     kOutputOptions = 1u << 5,
     // --debug-out FILE.png, --no-debug
     kDebugOptions = 1u << 6,

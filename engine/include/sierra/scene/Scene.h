@@ -135,6 +135,11 @@ struct LodDesc {
     bool operator==(const LodDesc&) const = default;
 };
 
+// How hard PNG frames are compressed: fast (zlib level 1, run-length
+// matches, the Sub filter on every row: several times quicker than the
+// others), default (level 6) or best (level 9), the filter chosen per row.
+enum class PngCompression { Fast, Default, Best };
+
 struct OutputDesc {
     int width = 1280;  // frame size in pixels, 1..16384
     int height = 720;
@@ -156,6 +161,12 @@ struct OutputDesc {
     int crf = -1;             // constant quality, 0..63 (lower is better); -1 = the codec's default
     int64_t bitrate = 0;      // bits per second; 0 = none (constant quality); not with crf
     std::string videoPreset;  // the encoder's speed preset; "" = Sierra's default for it
+    // Frames: PNG, or JPEG for a frame named .jpg / .jpeg.
+    PngCompression pngCompression = PngCompression::Fast;
+    int jpegQuality = 90;  // libjpeg quality 1..100
+    // Sequences: frames read back but not yet written, at most; 0 = automatic
+    // (render::defaultQueuedFrames: from the memory available, 2..16).
+    int maxQueuedFrames = 0;
     bool operator==(const OutputDesc&) const = default;
 };
 
@@ -274,9 +285,11 @@ FogRange automaticFog(float eyeToCentre, float radius);
 const char* toString(Projection projection);  // "perspective" "orthographic"
 const char* toString(PathType type);          // "none" "orbit" "flyover" "keyframes"
 const char* toString(LodMode mode);           // "sbt" "full"
+const char* toString(PngCompression level);   // "fast" "default" "best"
 Projection parseProjection(const std::string& text, const std::string& what);
 PathType parsePathType(const std::string& text, const std::string& what);
 LodMode parseLodMode(const std::string& text, const std::string& what);
+PngCompression parsePngCompression(const std::string& text, const std::string& what);
 
 // Checks the scene as a whole (ranges, and fields that exclude each other);
 // throws sierra::Error with one line saying what is wrong and what would be
