@@ -19,7 +19,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-120}
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap obj vector camera)
+[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap obj vector drape camera)
 
 packages=(clang libclang-rt-14-dev python3)
 missing=()
@@ -146,6 +146,10 @@ put("vector", "track.gpx", '<?xml version="1.0"?><gpx version="1.1" creator="sie
 put("vector", "places.kml", '<?xml version="1.0"?><kml xmlns="http://www.opengis.net/kml/2.2"><Document>'
     '<Placemark><name>Peak</name><Point><coordinates>10.3,46.8,0</coordinates></Point></Placemark>'
     '<Placemark><LineString><coordinates>10.1,46.9 10.2,46.85</coordinates></LineString></Placemark></Document></kml>')
+# Drapes: grey, grey + alpha, RGB and RGBA PNGs (stretched over the grid,
+# having no georeference), 16 x 8 pixels.
+for name, colour, channels in (("grey.png", 0, 1), ("grey_alpha.png", 4, 2), ("rgb.png", 2, 3), ("rgba.png", 6, 4)):
+    put("drape", name, png(16, 8, 8, colour, [bytes((x * 16 + y * 32 + c * 80) % 256 for x in range(16) for c in range(channels)) for y in range(8)]))
 # Cameras: one scene per path type and projection (fuzz_camera follows each to
 # its matrices); the scene seed above as well.
 cameras = {
