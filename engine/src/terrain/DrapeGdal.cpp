@@ -222,11 +222,26 @@ DrapeImage readDrape(const std::string& path, const DrapeOptions& options) {
     const auto fp = footprint(path, *source, target, out.reprojected);
     const auto [tw, th] = drapeSize(fp, *source, target, options, out);
 
-    // The memory raster over the grid's pixel corners: colour bands and alpha.
+    // The memory raster over the grid's pixel corners, its bands the result's
+    // own bytes (no second copy of a large drape): R, G, B and alpha, or grey
+    // in R (copied to G and B after the warp) and alpha.
+    out.width = tw;
+    out.height = th;
+    out.rgba.assign(size_t(tw) * size_t(th) * 4, 0);
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     if (!mem) throw Error("GDAL has no MEM driver");
-    Dataset warped(mem->Create("", tw, th, colourBands + 1, GDT_Byte, nullptr));
+    Dataset warped(mem->Create("", tw, th, 0, GDT_Byte, nullptr));
     if (!warped) throw Error(msg(path, ": GDAL cannot make a ", tw, "x", th, " raster"));
+    for (int b = 0; b <= colourBands; ++b) {
+        const int offset = b == colourBands ? 3 : b;  // alpha last
+        char pointer[64];
+        CPLPrintPointer(pointer, out.rgba.data() + offset, sizeof pointer);
+        const std::string data = std::string("DATAPOINTER=") + pointer;
+        const std::string line = "LINEOFFSET=" + std::to_string(int64_t(tw) * 4);
+        const char* bandOptions[] = {data.c_str(), "PIXELOFFSET=4", line.c_str(), nullptr};
+        if (warped->AddBand(GDT_Byte, const_cast<char**>(bandOptions)) != CE_None)
+            throw Error(msg(path, ": GDAL cannot make the drape's bands: ", CPLGetLastErrorMsg()));
+    }
     GeoTransform dst{
         target.geo[0], target.geo[1] * target.width / tw, target.geo[2] * target.height / th,
         target.geo[3], target.geo[4] * target.width / tw, target.geo[5] * target.height / th};
@@ -244,18 +259,10 @@ DrapeImage readDrape(const std::string& path, const DrapeOptions& options) {
                                    warpOptions, &usageError);
     GDALWarpAppOptionsFree(warpOptions);
     if (!result) throw Error(msg(path, ": GDAL cannot warp the drape: ", CPLGetLastErrorMsg()));
-
-    out.width = tw;
-    out.height = th;
-    out.rgba.assign(size_t(tw) * size_t(th) * 4, 0);
-    // Grey fills R, G and B from band 1; the last band is alpha.
-    for (int c = 0; c < 4; ++c) {
-        const int band = c == 3 ? colourBands + 1 : (colourBands == 3 ? c + 1 : 1);
-        if (warped->GetRasterBand(band)->RasterIO(GF_Read, 0, 0, tw, th, out.rgba.data() + c, tw,
-                                                  th, GDT_Byte, 4, GSpacing(4) * tw,
-                                                  nullptr) != CE_None)
-            throw Error(msg(path, ": GDAL cannot read the warped drape: ", CPLGetLastErrorMsg()));
-    }
+    warped->FlushCache();
+    if (colourBands == 1)
+        for (size_t k = 0; k < out.rgba.size(); k += 4)
+            out.rgba[k + 1] = out.rgba[k + 2] = out.rgba[k];
     size_t reached = 0;
     for (size_t k = 3; k < out.rgba.size(); k += 4) reached += out.rgba[k] > 0;
     out.coverage = double(reached) / (double(tw) * th);
