@@ -135,6 +135,20 @@ TEST_F(VectorLayers, WithoutPlacementCoordinatesAreSamples) {
     EXPECT_EQ(layer.features[0].parts[0][0], (terrain::GridPoint{3.5, 7.25}));
 }
 
+TEST(GeographicPositions, LongitudeLatitudeToSamples) {
+    // 15 E, 45 N on the UTM zone 33 N grid of the reprojection test.
+    GridPlacement utm{{499000.0, 100.0, 0.0, 4984000.0, 0.0, -100.0}, wktOf(32633), 41, 41};
+    const auto p = terrain::geographicToSamples(utm, 15.0, 45.0);
+    EXPECT_NEAR(p.i, 9.5, 0.01);
+    EXPECT_NEAR(p.j, (4984000.0 - 4982950.4) / 100.0 - 0.5, 0.01);
+    const auto q = terrain::geographicToSamples(geographicGrid(), 10.205, 46.895);
+    EXPECT_NEAR(q.i, 20.0, 1e-6);
+    EXPECT_NEAR(q.j, 10.0, 1e-6);
+    GridPlacement none{{0.0, 1.0, 0.0, 0.0, 0.0, 1.0}, "", 10, 10};
+    EXPECT_THROW(terrain::geographicToSamples(none, 15.0, 45.0), Error);
+    EXPECT_THROW(terrain::geographicToSamples(utm, 15.0, 95.0), Error);
+}
+
 TEST_F(VectorLayers, BadFilesAreClearErrors) {
     const VectorReadOptions options{.placement = geographicGrid()};
     auto error = [&](const std::string& file, VectorReadOptions o) {

@@ -227,6 +227,28 @@ VectorLayer readVectorLayer(const std::string& path, const VectorReadOptions& op
         for (const auto& part : f.parts) result.vertices += int64_t(part.size());
     return result;
 }
+
+GridPoint geographicToSamples(const GridPlacement& placement, double longitude, double latitude) {
+    if (placement.crsWkt.empty())
+        throw Error(msg("a position at ", longitude, ", ", latitude,
+                        " (longitude, latitude) needs a terrain with a reference system"));
+    if (!(std::abs(latitude) <= 90.0 && std::isfinite(longitude)))
+        throw Error(msg("latitude ", latitude, " is not within -90..90 degrees"));
+    OGRSpatialReference wgs84, grid;
+    wgs84.SetWellKnownGeogCS("WGS84");
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    if (grid.importFromWkt(placement.crsWkt.c_str()) != OGRERR_NONE)
+        throw Error("the terrain's reference system is not valid WKT");
+    grid.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> t(
+        OGRCreateCoordinateTransformation(&wgs84, &grid));
+    double x = longitude, y = latitude;
+    if (!t || !t->Transform(1, &x, &y))
+        throw Error(msg("longitude ", longitude, ", latitude ", latitude,
+                        " has no place in the terrain's reference system"));
+    VectorReadOptions options{.placement = placement};
+    return Converter(options).sample(x, y);
+}
 #endif
 
 }  // namespace sierra::terrain

@@ -66,4 +66,9 @@ struct VectorLayer {
 // throws saying so.
 VectorLayer readVectorLayer(const std::string& path, const VectorReadOptions& options);
 
+// The sample coordinates of WGS 84 longitude and latitude (degrees) on a
+// grid placed in a reference system (labels at @LON,LAT). Throws
+// sierra::Error when the grid has no system or the point has no place in it.
+GridPoint geographicToSamples(const GridPlacement& placement, double longitude, double latitude);
+
 }  // namespace sierra::terrain
