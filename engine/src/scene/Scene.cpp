@@ -358,6 +358,7 @@ PngCompression parsePngCompression(const std::string& text, const std::string& w
 }
 
 void validateScene(const Scene& scene) {
+    validateMapLayers(scene.layers);
     validateTerrain(scene.terrain);
     validateCamera(scene.camera);
     validatePath(scene.path, scene.camera);

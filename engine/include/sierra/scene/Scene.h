@@ -12,6 +12,7 @@
 // horizon) is (sin a cos e, sin e, -cos a cos e).
 
 #include <sierra/analysis/Style.h>
+#include <sierra/scene/MapLayers.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/zones/ZoneMap.h>
 
@@ -241,6 +242,7 @@ struct Scene {
     OutputDesc output;
     StyleDesc style;
     ZonesDesc zones;
+    MapLayersDesc layers;  // drapes, vector layers, labels, map furniture
     bool operator==(const Scene&) const = default;
 };
 
