@@ -12,10 +12,10 @@
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Options.h>
@@ -177,14 +177,14 @@ void runFrames(const FramesOptions& o) {
                            render::TerrainGpu::maxGridSide());
     float seaLevel = scene::resolveSeaLevel(sc.terrain, field);
     std::fprintf(stderr, "terrain: %s\n", description.c_str());
-    const std::vector<glm::vec3> allSuns = render::sceneSunDirections(sc, field);
+    const std::vector<glm::vec3> allSuns = facade::sceneSunDirections(sc, field);
     render::TerrainRenderer terrain =
-        render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
-    if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
+        render::TerrainRenderer::create(facade::sceneTerrainDesc(sc, field, seaLevel));
+    if (std::string zones = facade::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
         std::fprintf(stderr, "%s\n", zones.c_str());
-    if (std::string mesh = render::applySceneMesh(terrain, sc, field); !mesh.empty())
+    if (std::string mesh = facade::applySceneMesh(terrain, sc, field); !mesh.empty())
         std::fprintf(stderr, "%s\n", mesh.c_str());
-    render::addOverlayPasses(terrain, sc);
+    facade::addOverlayPasses(terrain, sc);
     const std::vector<std::string> passNames = terrain.addedPassNames();
     if (o.overlayCosts && passNames.empty())
         throw UsageError(
@@ -192,12 +192,12 @@ void runFrames(const FramesOptions& o) {
             "--preset");
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
-    std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());
+    std::vector<render::Camera> all = facade::sceneCameras(sc, terrain.bounds());
     const int first = sc.path.range ? sc.path.range->first : 0;
     const int last = sc.path.range ? sc.path.range->last : int(all.size()) - 1;
     std::vector<render::Camera> cameras(all.begin() + first, all.begin() + last + 1);
     const std::vector<glm::vec3> suns(allSuns.begin() + first, allSuns.begin() + last + 1);
-    render::DrawOptions draw = render::sceneDrawOptions(sc);
+    render::DrawOptions draw = facade::sceneDrawOptions(sc);
     draw.lighting.sunDirection = suns.front();
     if (o.lightingCosts && !draw.lighting.shadows && !draw.lighting.skyLight)
         throw UsageError(

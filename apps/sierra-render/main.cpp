@@ -9,14 +9,14 @@
 #include <sierra/core/Npy.h>
 #include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
+#include <sierra/facade/DebugSnapshot.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/gpu/Gl.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/DebugOverlay.h>
-#include <sierra/render/DebugSnapshot.h>
 #include <sierra/render/FrameQueue.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/render/Video.h>
@@ -185,19 +185,19 @@ int run(const scene::Scene& s) {
     float seaLevel = scene::resolveSeaLevel(s.terrain, field);
     log::info("terrain: ", description);
     // Before the terrain's GPU data: a sun time without a place fails at once.
-    render::describeSceneSun(s, field);
+    facade::describeSceneSun(s, field);
     render::TerrainRenderer terrain =
-        render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
-    if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
+        render::TerrainRenderer::create(facade::sceneTerrainDesc(s, field, seaLevel));
+    if (std::string zones = facade::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
         log::info(zones);
-    if (std::string mesh = render::applySceneMesh(terrain, s, field); !mesh.empty())
+    if (std::string mesh = facade::applySceneMesh(terrain, s, field); !mesh.empty())
         log::info(mesh);
     log::info("terrain on the GPU: ", terrain.summary());
-    const render::OverlayInfo overlays = render::addOverlayPasses(terrain, s);
+    const facade::OverlayInfo overlays = facade::addOverlayPasses(terrain, s);
     render::FrameTarget target =
         render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});
-    const render::SceneCameraPath cameras(s, terrain.bounds());
-    render::DrawOptions draw = render::sceneDrawOptions(s);
+    const facade::SceneCameraPath cameras(s, terrain.bounds());
+    render::DrawOptions draw = facade::sceneDrawOptions(s);
     glm::vec4 clear = render::TerrainRenderer::clearColour(draw.lighting);
 
     std::vector<float> frameMs;
@@ -207,7 +207,7 @@ int run(const scene::Scene& s) {
     // it arrives; the render thread waits only when the queue is full.
     gpu::PixelReader reader(width, height);
     gpu::Image image;
-    const render::ImageEncoding encoding = render::frameEncoding(s.output);
+    const render::ImageEncoding encoding = facade::frameEncoding(s.output);
     render::FrameQueue queue(
         {.capacity = s.output.maxQueuedFrames > 0
                          ? s.output.maxQueuedFrames
@@ -238,15 +238,15 @@ int run(const scene::Scene& s) {
     // beside it, or the UI alone on a plain background.
     std::vector<render::DrawStats> history;
     std::unique_ptr<render::DebugOverlay> overlay;
-    std::optional<render::SceneCameraPath> snapshotCameras;
+    std::optional<facade::SceneCameraPath> snapshotCameras;
     auto snapshot = [&](int k, const std::string& path, bool uiOnly = false) {
         if (!overlay) overlay = std::make_unique<render::DebugOverlay>();
-        const int column = render::debugColumnWidth(width);
+        const int column = facade::debugColumnWidth(width);
         const int frameWidth = render::snapshotFrameWidth(width, column);
         if (!snapshotCameras)
-            snapshotCameras = render::snapshotCameraPath(s, terrain.bounds(), frameWidth);
+            snapshotCameras = facade::snapshotCameraPath(s, terrain.bounds(), frameWidth);
         const render::Camera camera = snapshotCameras->at(k);
-        render::SnapshotFacts facts{.scene = &s,
+        facade::SnapshotFacts facts{.scene = &s,
                                     .field = &field,
                                     .glRenderer = context.renderer(),
                                     .glVersion = context.version(),
@@ -259,7 +259,7 @@ int run(const scene::Scene& s) {
                                     .frames = history,
                                     .frameMs = frameMs,
                                     .overlays = overlays};
-        render::DebugPanel panel = render::buildDebugPanel(facts, s.output.snapshotDeterministic);
+        render::DebugPanel panel = facade::buildDebugPanel(facts, s.output.snapshotDeterministic);
         panel.columnWidth = uiOnly ? column : width - frameWidth;
         const int shotWidth = uiOnly ? column : width;
         // A frame too short for the whole panel gets a taller snapshot (the
@@ -313,7 +313,7 @@ int run(const scene::Scene& s) {
     int rendered = first - 1;
     for (int k = first; k <= last && stopSignal == 0; ++k) {
         const render::Camera camera = cameras.at(k);
-        draw.lighting.sunDirection = render::sceneSunDirection(s, field, k);
+        draw.lighting.sunDirection = facade::sceneSunDirection(s, field, k);
         Stopwatch frame;
         target.begin(clear);
         stats = terrain.draw(camera, width, height, draw);

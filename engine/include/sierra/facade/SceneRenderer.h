@@ -7,7 +7,7 @@
 //
 //   sierra::scene::Scene scene;
 //   scene.terrain.heightmap = "dem.tif";
-//   auto renderer = sierra::render::SceneRenderer::create(scene);
+//   auto renderer = sierra::facade::SceneRenderer::create(scene);
 //   sierra::render::writePng("frame.png", renderer.frame());
 //
 // Each call makes the renderer's context current on the calling thread, so a
@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-namespace sierra::render {
+namespace sierra::facade {
 
 class SceneRenderer {
   public:
@@ -46,21 +46,21 @@ class SceneRenderer {
     // first. Blocks until the frame is read back.
     gpu::Image frame(int k = 0);
     // Linear eye-space depth of frame k (world units, NaN where no terrain).
-    DepthImage depth(int k = 0);
+    render::DepthImage depth(int k = 0);
 
     int frameCount() const { return int(cameras_.size()); }
-    const Camera& camera(int k) const { return cameras_.at(size_t(k)); }
+    const render::Camera& camera(int k) const { return cameras_.at(size_t(k)); }
     // The statistics of the last frame drawn (triangles, stage times).
-    const DrawStats& lastStats() const { return stats_; }
+    const render::DrawStats& lastStats() const { return stats_; }
     // One line on what was loaded and built (terrain, surface, mesh).
     const std::string& description() const { return description_; }
 
     const scene::Scene& scene() const { return scene_; }
     const terrain::Heightfield& field() const { return field_; }
-    TerrainRenderer& terrain() { return *terrain_; }
+    render::TerrainRenderer& terrain() { return *terrain_; }
     gpu::EglContext& context() { return *context_; }
-    const DrawOptions& drawOptions() const { return draw_; }
-    FrameTarget& target() { return target_; }
+    const render::DrawOptions& drawOptions() const { return draw_; }
+    render::FrameTarget& target() { return target_; }
 
   private:
     SceneRenderer(scene::Scene scene, std::shared_ptr<gpu::EglContext> context);
@@ -68,12 +68,12 @@ class SceneRenderer {
     scene::Scene scene_;
     std::shared_ptr<gpu::EglContext> context_;
     terrain::Heightfield field_;
-    std::unique_ptr<TerrainRenderer> terrain_;
-    FrameTarget target_;
-    std::vector<Camera> cameras_;
-    DrawOptions draw_;
-    DrawStats stats_;
+    std::unique_ptr<render::TerrainRenderer> terrain_;
+    render::FrameTarget target_;
+    std::vector<render::Camera> cameras_;
+    render::DrawOptions draw_;
+    render::DrawStats stats_;
     std::string description_;
 };
 
-}  // namespace sierra::render
+}  // namespace sierra::facade

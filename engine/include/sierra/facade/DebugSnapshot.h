@@ -5,9 +5,9 @@
 // the renderer holds (the mesh is measured again on the CPU, see
 // MeshInspector.h).
 
+#include <sierra/facade/SceneView.h>
 #include <sierra/render/Camera.h>
 #include <sierra/render/DebugOverlay.h>
-#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Scene.h>
 #include <sierra/terrain/Heightfield.h>
@@ -15,20 +15,20 @@
 #include <string>
 #include <vector>
 
-namespace sierra::render {
+namespace sierra::facade {
 
 struct SnapshotFacts {
     const scene::Scene* scene = nullptr;
     const terrain::Heightfield* field = nullptr;  // as loaded and padded
     std::string glRenderer, glVersion, eglPlatform;
-    TerrainRenderer* renderer = nullptr;
-    Camera camera;       // of the frame shown
-    int frameWidth = 0;  // the frame's viewport beside the column, pixels
+    render::TerrainRenderer* renderer = nullptr;
+    render::Camera camera;  // of the frame shown
+    int frameWidth = 0;     // the frame's viewport beside the column, pixels
     int height = 0;
-    DrawOptions draw;
-    std::vector<DrawStats> frames;  // every frame so far, oldest first
-    std::vector<float> frameMs;     // wall-clock ms per frame, same order
-    OverlayInfo overlays;           // what addOverlayPasses added (the scene's overlay style)
+    render::DrawOptions draw;
+    std::vector<render::DrawStats> frames;  // every frame so far, oldest first
+    std::vector<float> frameMs;             // wall-clock ms per frame, same order
+    OverlayInfo overlays;  // what addOverlayPasses added (the scene's overlay style)
 };
 
 // Width of the debug column (two halves of sections) for a snapshot `width`
@@ -37,6 +37,6 @@ struct SnapshotFacts {
 int debugColumnWidth(int width);
 
 // The panels. `deterministic` replaces measured times by placeholders.
-DebugPanel buildDebugPanel(const SnapshotFacts& facts, bool deterministic);
+render::DebugPanel buildDebugPanel(const SnapshotFacts& facts, bool deterministic);
 
-}  // namespace sierra::render
+}  // namespace sierra::facade

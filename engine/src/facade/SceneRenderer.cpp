@@ -1,11 +1,13 @@
-#include <sierra/render/SceneRenderer.h>
+#include <sierra/facade/SceneRenderer.h>
 
 #include <sierra/core/Log.h>
-#include <sierra/render/SceneView.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/scene/Terrain.h>
 
-namespace sierra::render {
+namespace sierra::facade {
+
+using namespace sierra::render;
 
 SceneRenderer::SceneRenderer(scene::Scene scene, std::shared_ptr<gpu::EglContext> context)
     : scene_(std::move(scene)),
@@ -64,4 +66,4 @@ DepthImage SceneRenderer::depth(int k) {
     return terrain_->renderDepth(cameras_[size_t(k)], target_.width(), target_.height(), draw_);
 }
 
-}  // namespace sierra::render
+}  // namespace sierra::facade
