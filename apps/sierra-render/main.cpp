@@ -10,18 +10,13 @@
 #include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
 #include <sierra/facade/DebugSnapshot.h>
+#include <sierra/facade/SceneRenderer.h>
 #include <sierra/facade/SceneView.h>
 #include <sierra/gpu/EglContext.h>
-#include <sierra/gpu/Gl.h>
 #include <sierra/render/Capture.h>
-#include <sierra/render/DebugOverlay.h>
 #include <sierra/render/FrameQueue.h>
-#include <sierra/render/FrameTarget.h>
-#include <sierra/render/TerrainGpu.h>
-#include <sierra/render/TerrainRenderer.h>
 #include <sierra/render/Video.h>
 #include <sierra/scene/Options.h>
-#include <sierra/scene/Terrain.h>
 
 #include "AppMain.h"
 
@@ -166,46 +161,28 @@ int run(const scene::Scene& s) {
         if (!path->empty()) ensureWritableLocation(*path);
 
     Stopwatch total;
-    std::string description;
     // The context comes first: its texture limit bounds the grid the loader takes.
-    gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
-    log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(),
+    auto context = std::make_shared<gpu::EglContext>(
+        gpu::EglContext::create({.width = width, .height = height}));
+    log::info("OpenGL ", context->version(), " on ", context->renderer(), " (", context->platform(),
               ")");
     // Opened before the terrain, so a codec or size it refuses fails at once.
     std::optional<render::VideoEncoder> encoder;
     if (video) {
-        const bool nvidia = context.vendor().find("NVIDIA") != std::string::npos ||
-                            context.renderer().find("NVIDIA") != std::string::npos;
+        const bool nvidia = context->vendor().find("NVIDIA") != std::string::npos ||
+                            context->renderer().find("NVIDIA") != std::string::npos;
         encoder.emplace(videoDesc(s, nvidia));
         log::info("video ", videoPath, ": ", encoder->encoderName(), ", ", s.output.fps, " fps");
     }
-    terrain::Heightfield field =
-        scene::loadTerrain(s.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
-                           render::TerrainGpu::maxGridSide());
-    float seaLevel = scene::resolveSeaLevel(s.terrain, field);
-    log::info("terrain: ", description);
     // Before the terrain's GPU data: a sun time without a place fails at once.
-    facade::describeSceneSun(s, field);
-    render::TerrainRenderer terrain =
-        render::TerrainRenderer::create(facade::sceneTerrainDesc(s, field, seaLevel));
-    if (std::string zones = facade::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
-        log::info(zones);
-    if (std::string mesh = facade::applySceneMesh(terrain, s, field); !mesh.empty())
-        log::info(mesh);
-    log::info("terrain on the GPU: ", terrain.summary());
-    const facade::OverlayInfo overlays = facade::addOverlayPasses(terrain, s);
-    render::FrameTarget target =
-        render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});
-    const facade::SceneCameraPath cameras(s, terrain.bounds());
-    render::DrawOptions draw = facade::sceneDrawOptions(s);
-    glm::vec4 clear = render::TerrainRenderer::clearColour(draw.lighting);
+    facade::SceneRenderer r = facade::SceneRenderer::create(
+        s, context, nullptr,
+        {.report = [](const std::string& line) { log::info(line); }, .describeSun = true});
 
     std::vector<float> frameMs;
-    render::DrawStats stats;
-    // Sequences read back through pixel-buffer objects: frame k is copied while
-    // frame k + 1 is refined and drawn, and handed to the encoder threads once
-    // it arrives; the render thread waits only when the queue is full.
-    gpu::PixelReader reader(width, height);
+    // Sequences read back through pixel-buffer objects (SceneRenderer::submitFrame):
+    // each frame is handed to the encoder threads once it arrives; the render
+    // thread waits only when the queue is full.
     gpu::Image image;
     const render::ImageEncoding encoding = facade::frameEncoding(s.output);
     render::FrameQueue queue(
@@ -237,93 +214,24 @@ int run(const scene::Scene& s) {
     // Debug snapshots: the frame re-rendered narrower with the UI in a column
     // beside it, or the UI alone on a plain background.
     std::vector<render::DrawStats> history;
-    std::unique_ptr<render::DebugOverlay> overlay;
-    std::optional<facade::SceneCameraPath> snapshotCameras;
+    facade::SnapshotRenderer snapshots(r);
     auto snapshot = [&](int k, const std::string& path, bool uiOnly = false) {
-        if (!overlay) overlay = std::make_unique<render::DebugOverlay>();
-        const int column = facade::debugColumnWidth(width);
-        const int frameWidth = render::snapshotFrameWidth(width, column);
-        if (!snapshotCameras)
-            snapshotCameras = facade::snapshotCameraPath(s, terrain.bounds(), frameWidth);
-        const render::Camera camera = snapshotCameras->at(k);
-        facade::SnapshotFacts facts{.scene = &s,
-                                    .field = &field,
-                                    .glRenderer = context.renderer(),
-                                    .glVersion = context.version(),
-                                    .eglPlatform = context.platform(),
-                                    .renderer = &terrain,
-                                    .camera = camera,
-                                    .frameWidth = frameWidth,
-                                    .height = height,
-                                    .draw = draw,
-                                    .frames = history,
-                                    .frameMs = frameMs,
-                                    .overlays = overlays};
-        render::DebugPanel panel = facade::buildDebugPanel(facts, s.output.snapshotDeterministic);
-        panel.columnWidth = uiOnly ? column : width - frameWidth;
-        const int shotWidth = uiOnly ? column : width;
-        // A frame too short for the whole panel gets a taller snapshot (the
-        // frame at its top, the UI's background below it) rather than a
-        // column cut off by a scroll bar.
-        int shotHeight = std::max(height, overlay->contentHeight(panel, shotWidth, height));
-        // Measured again at that height: without the scroll bar the text
-        // wraps less and the column is shorter.
-        if (shotHeight > height)
-            shotHeight = std::max(height, overlay->contentHeight(panel, shotWidth, shotHeight));
-        std::optional<render::FrameTarget> tall;
-        if (shotHeight > height)
-            tall.emplace(render::FrameTarget::create({.width = shotWidth,
-                                                      .height = shotHeight,
-                                                      // the UI alone draws no terrain
-                                                      .samples = uiOnly ? 0 : s.output.msaa,
-                                                      .offscreen = true}));
-        const glm::vec4 uiBackground{0.2f, 0.2f, 0.22f, 1.0f};
-        if (uiOnly) {
-            if (tall) {
-                tall->begin(uiBackground);
-                tall->resolve();
-            } else {
-                glBindFramebuffer(GL_FRAMEBUFFER, 0);
-                glViewport(0, 0, column, height);
-                glClearColor(uiBackground.r, uiBackground.g, uiBackground.b, uiBackground.a);
-                glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-            }
-        } else {
-            render::FrameTarget& into = tall ? *tall : target;
-            into.begin(clear);
-            if (tall) {  // below the frame: the UI's background (GL's rows run bottom-up)
-                glEnable(GL_SCISSOR_TEST);
-                glScissor(0, 0, frameWidth, shotHeight - height);
-                glClearColor(uiBackground.r, uiBackground.g, uiBackground.b, uiBackground.a);
-                glClear(GL_COLOR_BUFFER_BIT);
-                glDisable(GL_SCISSOR_TEST);
-            }
-            glViewport(0, shotHeight - height, frameWidth, height);
-            terrain.draw(camera, frameWidth, height, draw);
-            into.resolve();
-        }
-        overlay->draw(panel, shotWidth, shotHeight);
-        const gpu::Image shot = gpu::readFramebuffer(shotWidth, shotHeight);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        render::writePng(path, shot);
+        render::writePng(path, snapshots.render(k, uiOnly, history, frameMs));
         log::info("wrote debug snapshot ", path);
     };
     catchStopSignals();
     SequenceProgress progress(int64_t(last) - first + 1);
     int rendered = first - 1;
     for (int k = first; k <= last && stopSignal == 0; ++k) {
-        const render::Camera camera = cameras.at(k);
-        draw.lighting.sunDirection = facade::sceneSunDirection(s, field, k);
         Stopwatch frame;
-        target.begin(clear);
-        stats = terrain.draw(camera, width, height, draw);
-        if (stats.triangles == 0)
+        const bool ready = r.submitFrame(k, image);
+        const render::DrawStats& stats = r.lastStats();
+        if (stats.triangles == 0) {
+            const render::Camera camera = r.camera(k);
             log::warn("frame ", k, ": no terrain triangle is in view of the camera at ",
                       describe(camera.position), " looking at ", describe(camera.target),
                       " (the frame is sky only)");
-        target.resolve();
-        bool ready = reader.start(image);
-        terrain.collectGpuTime(stats);
+        }
         keepRecent(frameMs, float(frame.ms()));
         keepRecent(history, stats);
         if (ready) writeNext();
@@ -331,7 +239,7 @@ int run(const scene::Scene& s) {
             (k - first) % s.output.snapshotEvery == 0)
             snapshot(k, framePath(s.output.debug, k));
         if (!s.output.depth.empty()) {
-            render::DepthImage depth = terrain.renderDepth(camera, width, height, draw);
+            render::DepthImage depth = r.depth(k);
             writeFileAtomic(framePath(s.output.depth, k),
                             encodeNpyFloat32(depth.height, depth.width, depth.depth));
         }
@@ -340,7 +248,7 @@ int run(const scene::Scene& s) {
     }
     // The frames in flight (the last read back, those queued) are written
     // whether the sequence ended or was stopped.
-    if (reader.finish(image)) writeNext();
+    if (r.finishFrames(image)) writeNext();
     queue.finish();
     progress.finish();
     // A stopped video is finished too: it plays with the frames so far.
@@ -353,10 +261,12 @@ int run(const scene::Scene& s) {
                      stopSignal == SIGINT ? "SIGINT" : "SIGTERM", done.c_str());
         return 128 + int(stopSignal);
     }
-    log::info(render::lodName(draw.lod), " frame: ", stats.triangles, " triangles, ", stats.indices,
-              " indices (", fixed(stats.indicesPerTriangle()), " per triangle), refine + strip ",
-              fixed(stats.refineMs), " ms, upload ", fixed(stats.uploadMs), " ms, draw (GL timer) ",
-              fixed(stats.drawMs), " ms, frame ", fixed(frameMs.back(), 1), " ms");
+    const render::DrawStats& stats = r.lastStats();
+    log::info(render::lodName(r.drawOptions().lod), " frame: ", stats.triangles, " triangles, ",
+              stats.indices, " indices (", fixed(stats.indicesPerTriangle()),
+              " per triangle), refine + strip ", fixed(stats.refineMs), " ms, upload ",
+              fixed(stats.uploadMs), " ms, draw (GL timer) ", fixed(stats.drawMs), " ms, frame ",
+              fixed(frameMs.back(), 1), " ms");
     if (encoder) {
         encoder->finish();
         log::info("wrote ", videoPath, ": frames ", first, "..", last, " (",

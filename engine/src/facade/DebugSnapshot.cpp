@@ -2,6 +2,7 @@
 
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Progress.h>
+#include <sierra/gpu/Gl.h>
 #include <sierra/gpu/StreamRing.h>
 #include <sierra/render/MeshInspector.h>
 #include <sierra/render/TerrainGpu.h>
@@ -287,6 +288,79 @@ DebugPanel buildDebugPanel(const SnapshotFacts& f, bool deterministic) {
         sourceSection(f), rendererSection(f), cameraSection(f), timesSection(f, deterministic),
         meshSection(f),   memorySection(f),   styleSection(f)};
     return panel;
+}
+
+SnapshotRenderer::SnapshotRenderer(SceneRenderer& renderer) : renderer_(renderer) {}
+SnapshotRenderer::~SnapshotRenderer() = default;
+
+gpu::Image SnapshotRenderer::render(int k, bool uiOnly, const std::vector<DrawStats>& frames,
+                                    const std::vector<float>& frameMs) {
+    const scene::Scene& s = renderer_.scene();
+    const int width = s.output.width, height = s.output.height;
+    renderer_.context().makeCurrent();
+    if (!overlay_) overlay_ = std::make_unique<DebugOverlay>();
+    const int column = debugColumnWidth(width);
+    const int frameWidth = snapshotFrameWidth(width, column);
+    if (!cameras_) cameras_ = snapshotCameraPath(s, renderer_.terrain().bounds(), frameWidth);
+    const Camera camera = cameras_->at(k);
+    const DrawOptions draw = renderer_.drawOptions(k);
+    SnapshotFacts facts{.scene = &s,
+                        .field = &renderer_.field(),
+                        .glRenderer = renderer_.context().renderer(),
+                        .glVersion = renderer_.context().version(),
+                        .eglPlatform = renderer_.context().platform(),
+                        .renderer = &renderer_.terrain(),
+                        .camera = camera,
+                        .frameWidth = frameWidth,
+                        .height = height,
+                        .draw = draw,
+                        .frames = frames,
+                        .frameMs = frameMs,
+                        .overlays = renderer_.overlays()};
+    DebugPanel panel = buildDebugPanel(facts, s.output.snapshotDeterministic);
+    panel.columnWidth = uiOnly ? column : width - frameWidth;
+    const int shotWidth = uiOnly ? column : width;
+    int shotHeight = std::max(height, overlay_->contentHeight(panel, shotWidth, height));
+    // Measured again at that height: without the scroll bar the text wraps
+    // less and the column is shorter.
+    if (shotHeight > height)
+        shotHeight = std::max(height, overlay_->contentHeight(panel, shotWidth, shotHeight));
+    std::optional<FrameTarget> tall;
+    if (shotHeight > height)
+        tall.emplace(FrameTarget::create({.width = shotWidth,
+                                          .height = shotHeight,
+                                          // the UI alone draws no terrain
+                                          .samples = uiOnly ? 0 : s.output.msaa,
+                                          .offscreen = true}));
+    const glm::vec4 uiBackground{0.2f, 0.2f, 0.22f, 1.0f};
+    if (uiOnly) {
+        if (tall) {
+            tall->begin(uiBackground);
+            tall->resolve();
+        } else {
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glViewport(0, 0, column, height);
+            glClearColor(uiBackground.r, uiBackground.g, uiBackground.b, uiBackground.a);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        }
+    } else {
+        FrameTarget& into = tall ? *tall : renderer_.target();
+        into.begin(TerrainRenderer::clearColour(draw.lighting));
+        if (tall) {  // below the frame: the UI's background (GL's rows run bottom-up)
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(0, 0, frameWidth, shotHeight - height);
+            glClearColor(uiBackground.r, uiBackground.g, uiBackground.b, uiBackground.a);
+            glClear(GL_COLOR_BUFFER_BIT);
+            glDisable(GL_SCISSOR_TEST);
+        }
+        glViewport(0, shotHeight - height, frameWidth, height);
+        renderer_.terrain().draw(camera, frameWidth, height, draw);
+        into.resolve();
+    }
+    overlay_->draw(panel, shotWidth, shotHeight);
+    gpu::Image shot = gpu::readFramebuffer(shotWidth, shotHeight);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return shot;
 }
 
 }  // namespace sierra::facade

@@ -5,6 +5,7 @@
 // the renderer holds (the mesh is measured again on the CPU, see
 // MeshInspector.h).
 
+#include <sierra/facade/SceneRenderer.h>
 #include <sierra/facade/SceneView.h>
 #include <sierra/render/Camera.h>
 #include <sierra/render/DebugOverlay.h>
@@ -12,6 +13,8 @@
 #include <sierra/scene/Scene.h>
 #include <sierra/terrain/Heightfield.h>
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,5 +41,25 @@ int debugColumnWidth(int width);
 
 // The panels. `deterministic` replaces measured times by placeholders.
 render::DebugPanel buildDebugPanel(const SnapshotFacts& facts, bool deterministic);
+
+// Debug snapshots of a SceneRenderer's frames: frame k drawn again narrower
+// with the panels in a column beside it, or the panels alone on the UI's
+// background. A frame too short for the whole panel gets a taller snapshot
+// (the frame at its top, the UI's background below it) rather than a column
+// cut off by a scroll bar.
+class SnapshotRenderer {
+  public:
+    explicit SnapshotRenderer(SceneRenderer& renderer);
+    ~SnapshotRenderer();
+    // The snapshot of frame k, RGBA8, top row first; `frames` and `frameMs`
+    // are the statistics of the frames so far, oldest first (not empty).
+    gpu::Image render(int k, bool uiOnly, const std::vector<render::DrawStats>& frames,
+                      const std::vector<float>& frameMs);
+
+  private:
+    SceneRenderer& renderer_;
+    std::unique_ptr<render::DebugOverlay> overlay_;  // made by the first snapshot
+    std::optional<SceneCameraPath> cameras_;         // for the narrower frame
+};
 
 }  // namespace sierra::facade

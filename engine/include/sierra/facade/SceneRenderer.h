@@ -14,6 +14,7 @@
 // renderer can be used from any thread, one call at a time (the caller keeps
 // it to one: nothing here locks).
 
+#include <sierra/facade/SceneView.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/gpu/ReadBack.h>
 #include <sierra/render/Camera.h>
@@ -22,11 +23,24 @@
 #include <sierra/scene/Scene.h>
 #include <sierra/terrain/Heightfield.h>
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
-#include <vector>
 
 namespace sierra::facade {
+
+// What create() says as it works, for programs that log their set-up.
+struct SetupHooks {
+    // Called with each line on what was loaded and built, in order:
+    // "terrain: ...", the surface and the TIN when the scene has them, then
+    // "terrain on the GPU: ...". Nothing is called when it is empty.
+    std::function<void(const std::string&)> report;
+    // Says where the sun stands (describeSceneSun) once the terrain is loaded
+    // and before its GPU data is built, so a sun time without a place fails
+    // before that work.
+    bool describeSun = false;
+};
 
 class SceneRenderer {
   public:
@@ -40,7 +54,8 @@ class SceneRenderer {
     // read, with their spacing and no-data mask, prepared as
     // scene::prepareTerrain does (scene.terrain.heightmap names it).
     static SceneRenderer create(const scene::Scene& scene, std::shared_ptr<gpu::EglContext> context,
-                                const terrain::Heightfield* grid = nullptr);
+                                const terrain::Heightfield* grid = nullptr,
+                                const SetupHooks& hooks = {});
 
     // Frame k of the scene's sequence (0 .. frameCount() - 1), RGBA8, top row
     // first. Blocks until the frame is read back.
@@ -48,12 +63,33 @@ class SceneRenderer {
     // Linear eye-space depth of frame k (world units, NaN where no terrain).
     render::DepthImage depth(int k = 0);
 
-    int frameCount() const { return int(cameras_.size()); }
-    const render::Camera& camera(int k) const { return cameras_.at(size_t(k)); }
-    // The statistics of the last frame drawn (triangles, stage times).
+    // Frame k drawn into the frame target and resolved, its read-back started
+    // through pixel-buffer objects (frame k is copied while frame k + 1 is
+    // drawn). Returns true with the frame submitted before it in `ready`;
+    // lastStats() are frame k's. Frames come back in the order submitted.
+    bool submitFrame(int k, gpu::Image& ready);
+    // The last frame submitted, if one is still in flight (end of a sequence).
+    bool finishFrames(gpu::Image& ready);
+    // Binds the frame target, clears it and draws `camera` with `options`
+    // (not resolved: target().resolve() or read() follow). The renderer's
+    // context must be current on this thread (create, frame and depth make
+    // it so).
+    render::DrawStats drawFrame(const render::Camera& camera, const render::DrawOptions& options);
+
+    int frameCount() const { return cameras_->frames(); }
+    // Frame k's camera, O(1) (SceneCameraPath): 0 <= k < frameCount().
+    render::Camera camera(int k) const;
+    // The draw options of frame k: drawOptions() with that frame's sun.
+    render::DrawOptions drawOptions(int k) const;
+    // The statistics of the last frame drawn by frame() or submitFrame()
+    // (triangles, stage times).
     const render::DrawStats& lastStats() const { return stats_; }
     // One line on what was loaded and built (terrain, surface, mesh).
     const std::string& description() const { return description_; }
+    // What the terrain loader said it loaded (the first part of description()).
+    const std::string& terrainDescription() const { return loaded_; }
+    // What addOverlayPasses added for the scene's style.
+    const OverlayInfo& overlays() const { return overlays_; }
 
     const scene::Scene& scene() const { return scene_; }
     const terrain::Heightfield& field() const { return field_; }
@@ -70,10 +106,12 @@ class SceneRenderer {
     terrain::Heightfield field_;
     std::unique_ptr<render::TerrainRenderer> terrain_;
     render::FrameTarget target_;
-    std::vector<render::Camera> cameras_;
+    std::optional<SceneCameraPath> cameras_;
     render::DrawOptions draw_;
     render::DrawStats stats_;
-    std::string description_;
+    std::string description_, loaded_;
+    OverlayInfo overlays_;
+    std::unique_ptr<gpu::PixelReader> reader_;  // made by the first submitFrame
 };
 
 }  // namespace sierra::facade
