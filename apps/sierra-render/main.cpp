@@ -142,15 +142,66 @@ void keepRecent(std::vector<T>& values, const T& value) {
     if (values.size() >= 2 * kKept) values.erase(values.begin(), values.end() - long(kKept));
 }
 
+// The file of frame k for `base`: base itself for a single frame, its
+// sequence name (base_0007.png) for a sequence.
+std::string sequenceFile(const scene::Scene& s, const std::string& base, int k) {
+    return s.path.frames > 1 ? render::sequencePath(base, k) : base;
+}
+
+// Where the frames go, in the order they are read back: to the video
+// encoder on this thread, or to the encoder queue's threads as image files.
+class FrameWriter {
+  public:
+    FrameWriter(const scene::Scene& s, render::VideoEncoder* encoder, int first, int last)
+        : s_(s),
+          encoder_(encoder),
+          first_(first),
+          last_(last),
+          next_(first),
+          encoding_(facade::frameEncoding(s.output)),
+          queue_({.capacity = s.output.maxQueuedFrames > 0
+                                  ? s.output.maxQueuedFrames
+                                  : render::defaultQueuedFrames(size_t(s.output.width) *
+                                                                size_t(s.output.height) * 4),
+                  .threads = render::defaultEncoderThreads()}) {
+        if (s.path.frames > 1 && !encoder)
+            log::info("frames encoded on ", queue_.threads(), " thread(s), at most ",
+                      queue_.capacity(), " queued");
+    }
+    // Takes the next frame (`image` is left empty).
+    void write(gpu::Image& image) {
+        if (encoder_) {  // a video takes its frames in order, on this thread
+            encoder_->write(image);
+        } else {
+            std::string path = sequenceFile(s_, s_.output.frame, next_);
+            if (s_.path.frames > 1)
+                log::debug("frame ", next_, " (", next_ - first_ + 1, "/", last_ - first_ + 1,
+                           ") queued -> ", path);
+            queue_.submit(next_, std::move(image),
+                          [path, encoding = encoding_](const gpu::Image& frame) {
+                              render::writeImage(path, frame, encoding);
+                          });
+        }
+        image = {};
+        ++next_;
+    }
+    // Waits for the queued files.
+    void finish() { queue_.finish(); }
+
+  private:
+    const scene::Scene& s_;
+    render::VideoEncoder* encoder_;
+    int first_, last_, next_;
+    render::ImageEncoding encoding_;
+    render::FrameQueue queue_;
+};
+
 int run(const scene::Scene& s) {
     const int width = s.output.width, height = s.output.height;
     const int frameCount = s.path.frames;
     const int first = s.path.range ? s.path.range->first : 0;
     const int last = s.path.range ? s.path.range->last : frameCount - 1;
-    const bool sequence = frameCount > 1;
-    auto framePath = [&](const std::string& base, int k) {
-        return sequence ? render::sequencePath(base, k) : base;
-    };
+    auto framePath = [&](const std::string& base, int k) { return sequenceFile(s, base, k); };
     const bool video = scene::isVideoOutput(s.output.frame);
     const std::string videoPath = video ? videoDesc(s, false).path : std::string();
 
@@ -184,33 +235,7 @@ int run(const scene::Scene& s) {
     // each frame is handed to the encoder threads once it arrives; the render
     // thread waits only when the queue is full.
     gpu::Image image;
-    const render::ImageEncoding encoding = facade::frameEncoding(s.output);
-    render::FrameQueue queue(
-        {.capacity = s.output.maxQueuedFrames > 0
-                         ? s.output.maxQueuedFrames
-                         : render::defaultQueuedFrames(size_t(width) * size_t(height) * 4),
-         .threads = render::defaultEncoderThreads()});
-    if (sequence && !encoder)
-        log::info("frames encoded on ", queue.threads(), " thread(s), at most ", queue.capacity(),
-                  " queued");
-    int submitted = first;
-    auto writeNext = [&]() {
-        if (encoder) {  // a video takes its frames in order, on this thread
-            encoder->write(image);
-            image = {};
-            ++submitted;
-            return;
-        }
-        std::string path = framePath(s.output.frame, submitted);
-        if (sequence)
-            log::debug("frame ", submitted, " (", submitted - first + 1, "/", last - first + 1,
-                       ") queued -> ", path);
-        queue.submit(submitted, std::move(image), [path, encoding](const gpu::Image& frame) {
-            render::writeImage(path, frame, encoding);
-        });
-        image = {};
-        ++submitted;
-    };
+    FrameWriter writer(s, encoder ? &*encoder : nullptr, first, last);
     // Debug snapshots: the frame re-rendered narrower with the UI in a column
     // beside it, or the UI alone on a plain background.
     std::vector<render::DrawStats> history;
@@ -234,7 +259,7 @@ int run(const scene::Scene& s) {
         }
         keepRecent(frameMs, float(frame.ms()));
         keepRecent(history, stats);
-        if (ready) writeNext();
+        if (ready) writer.write(image);
         if (!s.output.debug.empty() && s.output.snapshotEvery > 0 &&
             (k - first) % s.output.snapshotEvery == 0)
             snapshot(k, framePath(s.output.debug, k));
@@ -248,8 +273,8 @@ int run(const scene::Scene& s) {
     }
     // The frames in flight (the last read back, those queued) are written
     // whether the sequence ended or was stopped.
-    if (r.finishFrames(image)) writeNext();
-    queue.finish();
+    if (r.finishFrames(image)) writer.write(image);
+    writer.finish();
     progress.finish();
     // A stopped video is finished too: it plays with the frames so far.
     if (encoder && stopSignal != 0) encoder->finish();
