@@ -108,3 +108,25 @@ TEST(SceneCameraPath, KeyframesAreCheckedOnce) {
     s.path.keyframes[2].time = 0.5f;  // goes back in time
     EXPECT_THROW(facade::SceneCameraPath(s, kBounds), Error);
 }
+
+namespace {
+
+// The scene's output settings become the render module's image encoding.
+TEST(FrameEncoding, FollowsTheSceneOutput) {
+    scene::OutputDesc output;
+    const std::pair<scene::PngCompression, render::PngCompression> levels[] = {
+        {scene::PngCompression::Fast, render::PngCompression::Fast},
+        {scene::PngCompression::Default, render::PngCompression::Default},
+        {scene::PngCompression::Best, render::PngCompression::Best}};
+    for (auto [from, to] : levels) {
+        output.pngCompression = from;
+        EXPECT_EQ(facade::frameEncoding(output).png, to);
+    }
+    output.jpegQuality = 37;
+    output.alpha = true;
+    const render::ImageEncoding encoding = facade::frameEncoding(output);
+    EXPECT_EQ(encoding.jpegQuality, 37);
+    EXPECT_TRUE(encoding.alpha);
+}
+
+}  // namespace
