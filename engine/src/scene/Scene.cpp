@@ -390,15 +390,6 @@ SunAngles sceneSun(const Scene& scene, const terrain::Heightfield& field, int fr
     return sun;
 }
 
-FogRange automaticFog(float eyeToCentre, float radius) {
-    if (!(radius > 0.0f) || !std::isfinite(radius) || !std::isfinite(eyeToCentre)) return {};
-    const float start = std::max(eyeToCentre - radius, 0.0f);
-    const float far = std::max(eyeToCentre + radius, 0.0f);
-    // fog(d) = 1 - exp(-density * (d - start)) is kAutoFogFarEdge at `far`.
-    return {.density = -std::log(1.0f - kAutoFogFarEdge) / std::max(far - start, 1e-6f),
-            .start = start};
-}
-
 std::string presetPath(const std::string& name) {
     const bool line =
         name.size() == 5 && name.rfind("fig3", 0) == 0 && name[4] >= 'a' && name[4] <= 'n';
