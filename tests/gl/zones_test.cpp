@@ -15,6 +15,7 @@
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/render/ZoneSurface.h>
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/zones/BorderField.h>
 #include <sierra/zones/Borderlines.h>
@@ -254,7 +255,7 @@ void checkDebugViewAgainstMap(const gpu::Image& frame, const std::vector<float>&
 TEST_F(ZoneFrames, DebugViewZonesAgreesWithAutoZoneMap) {
     useDefaultScene();
     setZones({.map = "auto", .debugView = render::ZoneDebugView::Zones});
-    const zones::Palette palette = zones::loadPalette(assetPath("palettes/default.json"));
+    const zones::Palette palette = scene::loadPalette(assetPath("palettes/default.json"));
     zones::AutoZoneDesc autoDesc;
     autoDesc.seaLevel = seaLevel_;
     const zones::ZoneMap map =
@@ -274,7 +275,7 @@ TEST_F(ZoneFrames, DebugViewZonesAgreesWithSampleMapNear) {
     setZones({.map = assetPath("zones/default_zones.png"),
               .band = 4.0f,
               .debugView = render::ZoneDebugView::Zones});
-    const zones::Palette palette = zones::loadPalette(assetPath("palettes/default.json"));
+    const zones::Palette palette = scene::loadPalette(assetPath("palettes/default.json"));
     const zones::ZoneMap map = zones::loadZoneMap(assetPath("zones/default_zones.png"), palette);
     const render::Camera camera = nearCamera();
     const gpu::Image frame = renderFrame(camera, 0, flatLighting());
@@ -318,9 +319,9 @@ class ZoneSampling : public ZoneFrames {
             render::writePng(dir_ + "/" + names[k] + ".png", tile);
         }
         std::ofstream(dir_ + "/palette.json") << R"({"zones": [
-                {"name": "red",   "colour": "#c00000", "tile": "red.png",   "heightBlend": 0},
-                {"name": "green", "colour": "#00c000", "tile": "green.png", "heightBlend": 0},
-                {"name": "blue",  "colour": "#0000c0", "tile": "blue.png",  "heightBlend": 0}]})";
+                {"name": "red",   "colour": "#c00000", "tile": "red.png",   "height_blend": 0},
+                {"name": "green", "colour": "#00c000", "tile": "green.png", "height_blend": 0},
+                {"name": "blue",  "colour": "#0000c0", "tile": "blue.png",  "height_blend": 0}]})";
         gpu::Image map{.width = kMap, .height = kMap};
         map.rgba.assign(size_t(kMap) * kMap * 4, 255);
         for (int j = 0; j < kMap; ++j)
@@ -331,7 +332,7 @@ class ZoneSampling : public ZoneFrames {
                 p[2] = zone == 2 ? 0xc0 : 0;
             }
         render::writePng(dir_ + "/map.png", map);
-        palette_ = zones::loadPalette(dir_ + "/palette.json");
+        palette_ = scene::loadPalette(dir_ + "/palette.json");
         lines_ = zones::buildBorderlines(zones::loadZoneMap(dir_ + "/map.png", palette_), palette_,
                                          {.epsilon = 0.5, .bandWidth = 0.0});
     }

@@ -4,6 +4,7 @@
 #include <sierra/core/Timer.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/TerrainGpu.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/zones/BorderField.h>
 #include <sierra/zones/Borderlines.h>
 #include <sierra/zones/Palette.h>
@@ -95,7 +96,7 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
                                          const terrain::Heightfield& field,
                                          const ZoneSurfaceDesc& desc, ZoneSurfaceInfo* info) {
     Stopwatch sw;
-    zones::Palette palette = zones::loadPalette(desc.palette);
+    zones::Palette palette = scene::loadPalette(desc.palette);
     SIERRA_CHECK(!palette.surfaces.empty() && palette.surfaces.size() <= size_t(kMaxZones),
                  desc.palette, ": ", palette.surfaces.size(),
                  " surface types; the renderer takes 1..", kMaxZones);

@@ -2,6 +2,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
+#include <sierra/scene/StyleJson.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,113 +42,15 @@ Json optional(const std::optional<T>& value, F write) {
 
 // ---- reading --------------------------------------------------------------
 
-const char* typeName(const Json& j) {
-    switch (j.type()) {
-        case Json::value_t::null:
-            return "null";
-        case Json::value_t::object:
-            return "an object";
-        case Json::value_t::array:
-            return "an array";
-        case Json::value_t::string:
-            return "a string";
-        case Json::value_t::boolean:
-            return "a boolean";
-        case Json::value_t::number_integer:
-        case Json::value_t::number_unsigned:
-            return "an integer";
-        case Json::value_t::number_float:
-            return "a number with a fraction";
-        default:
-            return "something else";
-    }
-}
-
-// One JSON object being read: each known key is read by a call to one of the
-// typed readers; finish() rejects any key that none of them asked for.
-class ObjectReader {
+// A JsonObject with the scene's one compound value type.
+class ObjectReader : public JsonObject {
   public:
-    ObjectReader(const Json& json, std::string path, const std::string& source)
-        : json_(json), path_(std::move(path)), source_(source) {
-        if (!json_.is_object())
-            wrongType(json_, path_.empty() ? "the top level" : path_, "an object");
-    }
+    using JsonObject::JsonObject;
 
-    // Calls read(value, keyPath) when `key` is present.
-    template <typename F>
-    void field(const char* key, F read) {
-        known_.push_back(key);
-        auto it = json_.find(key);
-        if (it != json_.end()) read(*it, keyPath(key));
-    }
-
-    void finish() const {
-        for (auto it = json_.begin(); it != json_.end(); ++it) {
-            bool found = false;
-            for (const char* k : known_) found = found || it.key() == k;
-            if (!found) {
-                std::string names;
-                for (const char* k : known_) names += msg(names.empty() ? "" : ", ", k);
-                throw Error(msg(source_, ": unknown key ", keyPath(it.key()),
-                                " (expected one of: ", names, ")"));
-            }
-        }
-    }
-
-    [[noreturn]] void wrongType(const Json& value, const std::string& key,
-                                const char* expected) const {
-        throw Error(msg(source_, ": ", key, ": expected ", expected, ", got ", typeName(value)));
-    }
-
-    [[noreturn]] void badValue(const std::string& key, const std::string& what) const {
-        throw Error(msg(source_, ": ", key, ": ", what));
-    }
-
-    const std::string& source() const { return source_; }
-
-    std::string keyPath(const std::string& key) const {
-        return path_.empty() ? key : path_ + "." + key;
-    }
-
-    // Typed values; each throws naming the key and the expected type.
-    float toFloat(const Json& v, const std::string& key, const char* expected = "a number") const {
-        if (!v.is_number()) wrongType(v, key, expected);
-        double d = v.get<double>();
-        if (!std::isfinite(d) || std::abs(d) > double(std::numeric_limits<float>::max()))
-            badValue(key, msg("number ", d, " is out of the float range"));
-        return float(d);
-    }
-    int toInt(const Json& v, const std::string& key) const {
-        if (!v.is_number_integer()) wrongType(v, key, "an integer");
-        if (v.is_number_unsigned() ? v.get<uint64_t>() > uint64_t(std::numeric_limits<int>::max())
-                                   : (v.get<int64_t>() > std::numeric_limits<int>::max() ||
-                                      v.get<int64_t>() < std::numeric_limits<int>::min()))
-            badValue(key, msg("integer ", v.dump(), " is out of range"));
-        return v.get<int>();
-    }
-    uint64_t toUnsigned(const Json& v, const std::string& key) const {
-        if (!v.is_number_integer() || (!v.is_number_unsigned() && v.get<int64_t>() < 0))
-            wrongType(v, key, "an integer >= 0");
-        return v.get<uint64_t>();
-    }
-    bool toBool(const Json& v, const std::string& key) const {
-        if (!v.is_boolean()) wrongType(v, key, "true or false");
-        return v.get<bool>();
-    }
-    std::string toString(const Json& v, const std::string& key) const {
-        if (!v.is_string()) wrongType(v, key, "a string");
-        return v.get<std::string>();
-    }
     Vec3 toVec3(const Json& v, const std::string& key) const {
         if (!v.is_array() || v.size() != 3) wrongType(v, key, "an array of 3 numbers [x, y, z]");
         return {toFloat(v[0], key + "[0]"), toFloat(v[1], key + "[1]"), toFloat(v[2], key + "[2]")};
     }
-
-  private:
-    const Json& json_;
-    std::string path_;
-    const std::string& source_;
-    std::vector<const char*> known_;
 };
 
 template <typename T, typename F>
@@ -366,9 +269,9 @@ void readStyle(ObjectReader& r, StyleDesc& s) {
         r.field(key, [&, key](const Json& v, const std::string&) { keys[key] = v; });
     if (preset) s.overlay = loadPreset(s.preset);
     if (!keys.empty()) {
-        Json merged = preset ? Json(analysis::styleToJson(s.overlay)) : Json::object();
+        Json merged = preset ? styleToJson(s.overlay) : Json::object();
         merged.merge_patch(keys);
-        s.overlay = analysis::styleFromJson(nlohmann::json(merged), r.source());
+        s.overlay = styleFromJson(merged, r.source());
     }
 }
 
@@ -394,25 +297,6 @@ void readZones(ObjectReader& r, ZonesDesc& z) {
 }
 
 }  // namespace
-
-Json parseJson(std::string_view text, const std::string& source) {
-    try {
-        return Json::parse(text.begin(), text.end());
-    } catch (const Json::exception& e) {
-        // Parse errors and numbers out of range alike; what() is
-        // "[json.exception.parse_error.101] parse error at line L, column C: ...".
-        std::string_view what = e.what();
-        size_t start = what.find("] ");
-        throw Error(msg(source, ": not a JSON scene file: ",
-                        start == what.npos ? what : what.substr(start + 2)));
-    }
-}
-
-Json readJsonFile(const std::string& path) {
-    const std::vector<uint8_t> bytes = readFileBytes(path);
-    return parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-                     path);
-}
 
 Scene sceneFromJson(const Json& json, const std::string& source, const Scene& base) {
     Scene scene = base;
@@ -537,7 +421,7 @@ Json sceneToJson(const Scene& s) {
                   {"snow_line", number(z.snowLine)},
                   {"rock_slope", number(z.rockSlope)}};
     if (!s.style.preset.empty()) style["preset"] = s.style.preset;
-    style.update(Json(analysis::styleToJson(s.style.overlay)));
+    style.update(styleToJson(s.style.overlay));
     return {{"terrain", terrain}, {"camera", camera}, {"path", path},   {"lighting", lighting},
             {"lod", lod},         {"output", output}, {"style", style}, {"zones", zones}};
 }
