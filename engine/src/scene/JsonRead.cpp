@@ -138,7 +138,9 @@ std::string JsonObject::keyPath(const std::string& key) const {
 float JsonObject::toFloat(const Json& v, const std::string& key, const char* expected) const {
     if (!v.is_number()) wrongType(v, key, expected);
     double d = v.get<double>();
-    if (!std::isfinite(d) || std::abs(d) > double(std::numeric_limits<float>::max()))
+    // A document built in memory (not parsed text) may hold NaN or an infinity.
+    if (!std::isfinite(d)) badValue(key, msg("expected a finite number, got ", d));
+    if (std::abs(d) > double(std::numeric_limits<float>::max()))
         badValue(key, msg("number ", v.dump(), " is out of the float range"));
     return float(d);
 }

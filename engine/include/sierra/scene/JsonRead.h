@@ -8,8 +8,8 @@
 //   key whose snake_case form is allowed is named with that form.
 // - One number rule: an integer field takes a JSON number only when it is
 //   integral (5 and 5.0 alike; 5.5 is refused); a float field takes any finite
-//   number within float range. NaN and infinities are not JSON and are refused
-//   by the parser.
+//   number within float range. NaN and infinities are refused (the parser
+//   refuses them as text, the readers in a document built in memory).
 // - Messages are one line: "SOURCE: KEY.PATH: expected WHAT, got WHAT".
 
 #include <nlohmann/json.hpp>
