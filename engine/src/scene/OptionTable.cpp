@@ -37,67 +37,10 @@ Json jsonNumber(float f) {
 
 namespace detail {
 
-void terrainEntries(std::vector<OptionEntry>& out) {
-    Builder b(out, kTerrainOptions, "Terrain");
-    OptionEntry& heightmap = b.string(
-        {"--heightmap", "FILE", "terrain.heightmap", "string",
-         "Heightmap to load: .png (8/16-bit grey), .pgm, .r16/.r32 (with --raw-size), .hgt, .npy, "
-         ".npz (.tif with GDAL)",
-         "heightmap file; `\"\"` = generate"},
-        [](Scene& s) -> std::string& { return s.terrain.heightmap; });
-    heightmap.existingFile = true;
-    OptionEntry& generate = b.integer(
-        {"--generate", "N", "terrain.generate", "integer",
-         "Generate a diamond-square terrain of N x N samples, N = 2^n + 1"},
-        [](Scene& s) -> int& { return s.terrain.generateSize; }, "an integer 2^n + 1");
-    generate.excludes = {"--heightmap"};
-    generate.fromWords = [](Scene& s, Words w) {
-        s.terrain.heightmap.clear();
-        s.terrain.generateSize = parseInt(w[0], "--generate", "an integer 2^n + 1");
-    };
-    OptionEntry& seed =
-        b.entry({"--seed", "S", "terrain.seed", "integer >= 0", "Seed of the generated terrain",
-                 "generator seed (64-bit): same seed, same terrain"},
-                1);
-    seed.shown = [](const Scene& s) { return msg(s.terrain.seed); };
-    seed.fromWords = [](Scene& s, Words w) { s.terrain.seed = parseUnsigned(w[0], "--seed"); };
-    seed.toJson = [](const Scene& s) { return Json(s.terrain.seed); };
-    seed.fromJson = [](Scene& s, const JsonObject& r, const Json& v, const std::string& k) {
-        s.terrain.seed = r.toUnsigned(v, k);
-    };
-    b.number({"--roughness", "R", "terrain.roughness", "number > 0",
-              "Amplitude factor of the generator's random offsets (> 0)"},
-             [](Scene& s) -> float& { return s.terrain.roughness; });
-    b.optionalNumber(
-        {"--hurst", "H", "terrain.hurst", "number or null",
-         "Generator's per-level amplitude factor 2^-H (default: the generator's own scaling)"},
-        [](Scene& s) -> std::optional<float>& { return s.terrain.hurst; }, "");
-    OptionEntry& raw =
-        b.entry({"--raw-size", "WxH", "", "",
-                 "Samples per row and rows of a .r16/.r32 heightmap (each 1..65537)"},
-                1);
-    raw.shown = [](const Scene& s) {
-        return s.terrain.rawWidth ? msg(s.terrain.rawWidth, "x", s.terrain.rawHeight)
-                                  : std::string();
-    };
-    raw.fromWords = [](Scene& s, Words w) {
-        auto [width, height] = parseRawSize(w[0], "--raw-size");
-        s.terrain.rawWidth = width;
-        s.terrain.rawHeight = height;
-    };
-    const char* rawDoc = "size of a raw `.r16`/`.r32` file, each 1..65537; both 0 = guess a square";
-    b.integer({"", "", "terrain.raw_width", "integer", "", rawDoc, "--raw-size WxH"},
-              [](Scene& s) -> int& { return s.terrain.rawWidth; });
-    b.integer({"", "", "terrain.raw_height", "integer", "", rawDoc, "--raw-size WxH"},
-              [](Scene& s) -> int& { return s.terrain.rawHeight; });
-    b.number({"--spacing", "S", "terrain.spacing", "number >= 0",
-              "World units between samples (0 = the file's: 1, or metres for SRTM, GeoTIFF and "
-              "georeferenced .npz)"},
-             [](Scene& s) -> float& { return s.terrain.spacing; });
-    b.number({"--vertical-scale", "V", "terrain.vertical_scale", "number >= 0",
-              "Stored height to world height (0 = automatic: 1 for metres, else relief 20% of the "
-              "extent)"},
-             [](Scene& s) -> float& { return s.terrain.verticalScale; });
+namespace {
+
+// --sea-level H|auto|none <-> terrain.sea_level: a height, "auto" or "none".
+void addSeaLevel(Builder& b) {
     OptionEntry& sea = b.entry(
         {"--sea-level", "H|auto|none", "terrain.sea_level", "number, `\"auto\"` or `\"none\"`",
          "Water level in stored height units, 'auto' (from the data) or 'none'",
@@ -136,15 +79,94 @@ void terrainEntries(std::vector<OptionEntry>& out) {
                        msg("'", v.get<std::string>(), "' is not one of auto, none (or a height)"));
         }
     };
+}
+
+}  // namespace
+
+void terrainEntries(std::vector<OptionEntry>& out) {
+    Builder b(out, kTerrainOptions, "Terrain");
+    OptionEntry& heightmap = b.string(
+        {"--heightmap", "FILE", "terrain.heightmap", "string",
+         "Heightmap to load: .png (8/16-bit grey), .pgm, .r16/.r32 (with --raw-size), .hgt, .npy, "
+         ".npz (.tif with GDAL)",
+         "heightmap file; `\"\"` = generate. Formats: `.png` `.pgm` `.r16` `.r32` `.hgt` `.npy` "
+         "`.npz` (`.tif` with GDAL)"},
+        [](Scene& s) -> std::string& { return s.terrain.heightmap; });
+    heightmap.existingFile = true;
+    OptionEntry& generate = b.integer(
+        {"--generate", "N", "terrain.generate", "integer",
+         "Generate a diamond-square terrain of N x N samples, N = 2^n + 1",
+         "samples per side of a generated (diamond-square) terrain, 2^n + 1"},
+        [](Scene& s) -> int& { return s.terrain.generateSize; }, "an integer 2^n + 1");
+    generate.excludes = {"--heightmap"};
+    generate.fromWords = [](Scene& s, Words w) {
+        s.terrain.heightmap.clear();
+        s.terrain.generateSize = parseInt(w[0], "--generate", "an integer 2^n + 1");
+    };
+    OptionEntry& seed =
+        b.entry({"--seed", "S", "terrain.seed", "integer >= 0", "Seed of the generated terrain",
+                 "generator seed (64-bit): same seed, same terrain"},
+                1);
+    seed.shown = [](const Scene& s) { return msg(s.terrain.seed); };
+    seed.fromWords = [](Scene& s, Words w) { s.terrain.seed = parseUnsigned(w[0], "--seed"); };
+    seed.toJson = [](const Scene& s) { return Json(s.terrain.seed); };
+    seed.fromJson = [](Scene& s, const JsonObject& r, const Json& v, const std::string& k) {
+        s.terrain.seed = r.toUnsigned(v, k);
+    };
+    b.number({"--roughness", "R", "terrain.roughness", "number > 0",
+              "Amplitude factor of the generator's random offsets (> 0)",
+              "amplitude factor of the generator's random offsets"},
+             [](Scene& s) -> float& { return s.terrain.roughness; });
+    b.optionalNumber(
+        {"--hurst", "H", "terrain.hurst", "number or null",
+         "Generator's per-level amplitude factor 2^-H (default: the generator's own scaling)",
+         "per-level amplitude factor 2^-H of the generator; null = the generator's default "
+         "scaling"},
+        [](Scene& s) -> std::optional<float>& { return s.terrain.hurst; }, "");
+    OptionEntry& raw =
+        b.entry({"--raw-size", "WxH", "", "",
+                 "Samples per row and rows of a .r16/.r32 heightmap (each 1..65537)"},
+                1);
+    raw.shown = [](const Scene& s) {
+        return s.terrain.rawWidth ? msg(s.terrain.rawWidth, "x", s.terrain.rawHeight)
+                                  : std::string();
+    };
+    raw.fromWords = [](Scene& s, Words w) {
+        auto [width, height] = parseRawSize(w[0], "--raw-size");
+        s.terrain.rawWidth = width;
+        s.terrain.rawHeight = height;
+    };
+    const char* rawDoc = "size of a raw `.r16`/`.r32` file, each 1..65537; both 0 = guess a square";
+    b.integer({"", "", "terrain.raw_width", "integer", "", rawDoc, "--raw-size WxH"},
+              [](Scene& s) -> int& { return s.terrain.rawWidth; });
+    b.integer({"", "", "terrain.raw_height", "integer", "", rawDoc, "--raw-size WxH"},
+              [](Scene& s) -> int& { return s.terrain.rawHeight; });
+    b.number(
+        {"--spacing", "S", "terrain.spacing", "number >= 0",
+         "World units between samples (0 = the file's: 1, or metres for SRTM, GeoTIFF and "
+         "georeferenced .npz)",
+         "world units between samples; 0 = the file's (1 for images and arrays; metres for SRTM "
+         "(at the latitude its name gives), GeoTIFF and `.npz` with geographic coordinates)"},
+        [](Scene& s) -> float& { return s.terrain.spacing; });
+    b.number({"--vertical-scale", "V", "terrain.vertical_scale", "number >= 0",
+              "Stored height to world height (0 = automatic: 1 for metres, else relief 20% of the "
+              "extent)",
+              "stored height -> world height; 0 = automatic: 1 for metric heights, else the relief "
+              "is 20% of the horizontal extent"},
+             [](Scene& s) -> float& { return s.terrain.verticalScale; });
+    addSeaLevel(b);
     b.choice<HeightUnits>(
         {"--height-units", "auto|m|none", "terrain.height_units", "`\"auto\"`, `\"m\"`, `\"none\"`",
          "What heights measure: auto (metres for SRTM, GeoTIFF and .npz with geographic "
-         "coordinates), m (metres) or none"},
+         "coordinates), m (metres) or none",
+         "what heights measure: auto = metres for SRTM, GeoTIFF and `.npz` archives with "
+         "geographic coordinates, unitless otherwise; `\"metres\"` is read as `\"m\"`"},
         [](Scene& s) -> HeightUnits& { return s.terrain.heightUnits; }, parseHeightUnits, toString);
     OptionEntry& channel = b.choice<Channel>(
         {"--channel", "NAME", "terrain.channel",
          "`\"grey\"`, `\"luminance\"`, `\"r\"`, `\"g\"`, `\"b\"`",
-         "Height channel of a colour image: luminance, r, g or b (default: grey images only)"},
+         "Height channel of a colour image: luminance, r, g or b (default: grey images only)",
+         "the height channel of a colour image; grey = grey images only"},
         [](Scene& s) -> Channel& { return s.terrain.channel; }, parseChannel, toString);
     channel.shown = [](const Scene& s) {
         return s.terrain.channel == Channel::Grey ? std::string() : toString(s.terrain.channel);
@@ -171,7 +193,8 @@ void cameraEntries(std::vector<OptionEntry>& out) {
     };
     OptionEntry& pos =
         vec3({"--camera-pos", "X Y Z", "camera.position", "[x, y, z] or null",
-              "Camera position X Y Z in world units (default: fits the whole terrain)"},
+              "Camera position X Y Z in world units (default: fits the whole terrain)",
+              "camera position; null = automatic, fitting the whole terrain in the frame"},
              [](Scene& s) -> std::optional<Vec3>& { return s.camera.position; });
     pos.fromWords = [](Scene& s, Words w) {
         s.camera.position = parseVec3(w, "--camera-pos");
@@ -182,7 +205,8 @@ void cameraEntries(std::vector<OptionEntry>& out) {
     };
     pos.excludes = {"--azimuth", "--elevation", "--distance"};
     vec3({"--camera-target", "X Y Z", "camera.target", "[x, y, z] or null",
-          "Point the camera looks at, X Y Z (default: the terrain's centre)"},
+          "Point the camera looks at, X Y Z (default: the terrain's centre)",
+          "point looked at; null = the terrain's centre"},
          [](Scene& s) -> std::optional<Vec3>& { return s.camera.target; });
     // The three angles replace a scene file's position, as --camera-pos replaces them.
     auto angle = [&](const Text& t, Ref<std::optional<float>> ref) {
@@ -194,20 +218,24 @@ void cameraEntries(std::vector<OptionEntry>& out) {
         };
     };
     angle({"--azimuth", "DEG", "camera.azimuth", "number or null",
-           "Camera bearing from the target, degrees clockwise from north (-z)"},
+           "Camera bearing from the target, degrees clockwise from north (-z)",
+           "bearing of the camera seen from the target (alternative to `position`)"},
           [](Scene& s) -> std::optional<float>& { return s.camera.azimuth; });
     angle({"--elevation", "DEG", "camera.elevation", "number or null",
-           "Camera elevation above the horizon seen from the target, degrees"},
+           "Camera elevation above the horizon seen from the target, degrees",
+           "camera height above the horizon seen from the target, -90..90"},
           [](Scene& s) -> std::optional<float>& { return s.camera.elevation; });
     angle({"--distance", "D", "camera.distance", "number or null",
-           "Camera distance from the target, world units"},
+           "Camera distance from the target, world units",
+           "camera distance from the target, world units > 0"},
           [](Scene& s) -> std::optional<float>& { return s.camera.distance; });
-    b.number(
-        {"--fov", "DEG", "camera.fov", "number", "Vertical field of view in degrees, (0, 180)"},
-        [](Scene& s) -> float& { return s.camera.fov; });
+    b.number({"--fov", "DEG", "camera.fov", "number", "Vertical field of view in degrees, (0, 180)",
+              "vertical field of view, (0, 180) degrees (perspective)"},
+             [](Scene& s) -> float& { return s.camera.fov; });
     OptionEntry& ortho = b.choice<Projection>(
         {"--ortho", "", "camera.projection", "`\"perspective\"`, `\"orthographic\"`",
-         "Orthographic projection (map-like); tau stays in pixels"},
+         "Orthographic projection (map-like); tau stays in pixels",
+         "orthographic gives map-like renders; tau stays in pixels"},
         [](Scene& s) -> Projection& { return s.camera.projection; }, parseProjection, toString);
     ortho.count = 0;
     ortho.shown = nullptr;
@@ -219,7 +247,8 @@ void pathEntries(std::vector<OptionEntry>& out) {
     b.choice<PathType>(
         {"--path", "none|orbit|flyover|keyframes", "path.type",
          "`\"none\"`, `\"orbit\"`, `\"flyover\"`, `\"keyframes\"`",
-         "Camera path over the frames: none, orbit, flyover or keyframes (from --config)"},
+         "Camera path over the frames: none, orbit, flyover or keyframes (from --config)",
+         "how the camera moves over the frames"},
         [](Scene& s) -> PathType& { return s.path.type; }, parsePathType, toString);
     OptionEntry& frames = b.entry(
         {"--frames", "N|A:B", "", "",
@@ -332,8 +361,10 @@ void lightingEntries(std::vector<OptionEntry>& out) {
         else
             s.lighting.fog = parseFloat(w[0], "--fog", "a density >= 0 or 'auto'");
     };
-    OptionEntry& sky = b.entry(
-        {"--sky", "R,G,B", "lighting.sky", "[r, g, b]", "Sky and fog colour, each 0..1"}, 1);
+    OptionEntry& sky =
+        b.entry({"--sky", "R,G,B", "lighting.sky", "[r, g, b]", "Sky and fog colour, each 0..1",
+                 "background and fog colour, each 0..1"},
+                1);
     sky.shown = [](const Scene& s) {
         return msg(s.lighting.sky.r, ",", s.lighting.sky.g, ",", s.lighting.sky.b);
     };
@@ -348,23 +379,30 @@ void lightingEntries(std::vector<OptionEntry>& out) {
                           r.toFloat(v[2], k + "[2]")};
     };
     b.onOff({"--shadows", "on|off", "lighting.shadows", "boolean",
-             "Soft shadows the terrain casts from the sun"},
+             "Soft shadows the terrain casts from the sun",
+             "soft shadows the terrain casts: the share of the sun's disc each point sees"},
             [](Scene& s) -> bool& { return s.lighting.shadows; });
     b.onOff({"--sky-light", "on|off", "lighting.sky_light", "boolean",
-             "Ambient light scaled by the share of the sky each point sees (darker valleys)"},
+             "Ambient light scaled by the share of the sky each point sees (darker valleys)",
+             "the ambient term times the sky light each point receives past its horizons (darker "
+             "valleys)"},
             [](Scene& s) -> bool& { return s.lighting.skyLight; });
     b.number({"--sun-size", "DEG", "lighting.sun_size", "number",
               "Angular diameter of the sun, degrees (the penumbra's width), > 0",
               "the sun's angular diameter, (0, 20] degrees: the width of the penumbra"},
              [](Scene& s) -> float& { return s.lighting.sunSize; });
-    b.number({"--horizon-radius", "D", "lighting.horizon_radius", "number",
-              "How far shadows and sky light search for the horizon, world units (0 = the whole "
-              "grid)"},
-             [](Scene& s) -> float& { return s.lighting.horizonRadius; });
+    b.number(
+        {"--horizon-radius", "D", "lighting.horizon_radius", "number",
+         "How far shadows and sky light search for the horizon, world units (0 = the whole "
+         "grid)",
+         "how far shadows and sky light look for the horizon, world units; 0 = the whole grid"},
+        [](Scene& s) -> float& { return s.lighting.horizonRadius; });
     OptionEntry& time =
         b.entry({"--sun-time", "TIME", "lighting.sun_time", "string or null",
                  "Place the sun at this time over the DEM's centre (ISO 8601 with zone, e.g. "
-                 "2026-06-21T17:30:00Z); replaces --sun-azimuth and --sun-altitude"},
+                 "2026-06-21T17:30:00Z); replaces --sun-azimuth and --sun-altitude",
+                 "place the sun at this ISO 8601 time (with `Z` or `+hh:mm`) over the DEM; "
+                 "replaces `sun_azimuth` and `sun_altitude`"},
                 1);
     time.excludes = {"--sun-azimuth", "--sun-altitude"};
     time.shown = [](const Scene& s) { return s.lighting.sunTime.value_or(""); };
@@ -383,26 +421,32 @@ void lightingEntries(std::vector<OptionEntry>& out) {
     };
     b.optionalNumber(
         {"--latitude", "DEG", "lighting.latitude", "number or null",
-         "Latitude of --sun-time, degrees north (default: the DEM's centre)"},
+         "Latitude of --sun-time, degrees north (default: the DEM's centre)",
+         "the place of `sun_time`, degrees north; null = the DEM's centre"},
         [](Scene& s) -> std::optional<float>& { return s.lighting.latitude; }, "DEM");
     b.optionalNumber(
         {"--longitude", "DEG", "lighting.longitude", "number or null",
-         "Longitude of --sun-time, degrees east (default: the DEM's centre)"},
+         "Longitude of --sun-time, degrees east (default: the DEM's centre)",
+         "the place of `sun_time`, degrees east; null = the DEM's centre"},
         [](Scene& s) -> std::optional<float>& { return s.lighting.longitude; }, "DEM");
-    b.number({"--sun-step", "S", "lighting.sun_step", "number",
-              "Seconds of --sun-time between frames of a sequence (0 = a fixed sun)"},
-             [](Scene& s) -> float& { return s.lighting.sunStep; });
+    b.number(
+        {"--sun-step", "S", "lighting.sun_step", "number",
+         "Seconds of --sun-time between frames of a sequence (0 = a fixed sun)",
+         "seconds of `sun_time` between the frames of a sequence; 0 = the same sun in every frame"},
+        [](Scene& s) -> float& { return s.lighting.sunStep; });
 }
 
 void lodEntries(std::vector<OptionEntry>& out) {
     Builder b(out, kLodOptions, "Level of detail");
     b.choice<LodMode>(
         {"--lod", "sbt|full", "lod.mode", "`\"sbt\"`, `\"full\"`",
-         "Level of detail: sbt (view-dependent) or full (every grid cell)"},
+         "Level of detail: sbt (view-dependent) or full (every grid cell)",
+         "view-dependent SBT mesh, or every grid cell"},
         [](Scene& s) -> LodMode& { return s.lod.mode; }, parseLodMode, toString);
-    b.number({"--tau", "PX", "lod.tau", "number > 0",
-              "SBT screen-space error threshold in pixels (> 0)"},
-             [](Scene& s) -> float& { return s.lod.tau; });
+    b.number(
+        {"--tau", "PX", "lod.tau", "number > 0", "SBT screen-space error threshold in pixels (> 0)",
+         "SBT screen-space error threshold in pixels"},
+        [](Scene& s) -> float& { return s.lod.tau; });
     b.flag(
         {"--no-geomorph", "", "lod.geomorph", "boolean", "Do not blend newly active vertices in",
          "blend newly active vertices in, so none pops"},
@@ -413,7 +457,9 @@ void lodEntries(std::vector<OptionEntry>& out) {
         [](Scene& s) -> bool& { return s.lod.cull; }, false);
     b.integer({"--threads", "N", "lod.threads", "integer 0..256",
                "CPU threads (0 = all cores; the SBT refinement then runs on one or all, whichever "
-               "it measures faster)"},
+               "it measures faster)",
+               "CPU threads; 0 = all cores (the SBT refinement then runs on one or all, whichever "
+               "it measures faster: `docs/refinement.md`)"},
               [](Scene& s) -> int& { return s.lod.threads; });
     b.string({"--mesh", "MESH.obj", "lod.mesh", "string",
               "Draw this TIN (an OBJ from sierra-tin of the same terrain) instead of the SBT",

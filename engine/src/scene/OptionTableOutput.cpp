@@ -22,7 +22,8 @@ void frameEntries(std::vector<OptionEntry>& out) {
         {"", "", "output.height", "integer 1..16384", "", "frame height in pixels", "--size WxH"},
         [](Scene& s) -> int& { return s.output.height; });
     b.integer(
-        {"--msaa", "N", "output.msaa", "0, 2, 4 or 8", "Samples per pixel: 0 (off), 2, 4 or 8"},
+        {"--msaa", "N", "output.msaa", "0, 2, 4 or 8", "Samples per pixel: 0 (off), 2, 4 or 8",
+         "samples per pixel; 0 = off"},
         [](Scene& s) -> int& { return s.output.msaa; }, "0, 2, 4 or 8");
 }
 
@@ -55,15 +56,18 @@ void outputEntries(std::vector<OptionEntry>& out) {
         toString);
     b.integer(
         {"--jpeg-quality", "Q", "output.jpeg_quality", "integer 1..100",
-         "JPEG frames (--out NAME.jpg): quality 1..100"},
+         "JPEG frames (--out NAME.jpg): quality 1..100", "quality of JPEG frames"},
         [](Scene& s) -> int& { return s.output.jpegQuality; }, "an integer 1..100");
     b.integer(
         {"--max-queued-frames", "N", "output.max_queued_frames", "integer >= 0",
          "Sequences: frames read back and waiting for their encoder, at most (0 = from the "
-         "memory available, 2..16)"},
+         "memory available, 2..16)",
+         "sequences: frames waiting for an encoder thread, at most; 0 = from the available memory "
+         "(2..16)"},
         [](Scene& s) -> int& { return s.output.maxQueuedFrames; }, "an integer >= 0");
     b.heading("Video (--out NAME.mp4|.mov|.mkv|.webm|.gif)");
-    b.integer({"--fps", "N", "output.fps", "integer 1..1000", "Video frames per second, 1..1000"},
+    b.integer({"--fps", "N", "output.fps", "integer 1..1000", "Video frames per second, 1..1000",
+               "video frames per second"},
               [](Scene& s) -> int& { return s.output.fps; });
     OptionEntry& crf = b.integer(
         {"--crf", "Q", "output.crf", "integer -1..63",
@@ -87,11 +91,14 @@ void outputEntries(std::vector<OptionEntry>& out) {
     };
     b.string({"--video-codec", "NAME", "output.video_codec", "string",
               "h264, hevc, av1, vp9, gif, or an encoder (libx264, h264_nvenc, ...); default: by "
-              "container (H.264; VP9 for .webm)"},
+              "container (H.264; VP9 for .webm)",
+              "`\"\"` = by container (H.264; VP9 for `.webm`, GIF for `.gif`); `h264`, `hevc`, "
+              "`av1`, `vp9`, `gif` or an encoder by name (`docs/options.md`)"},
              [](Scene& s) -> std::string& { return s.output.videoCodec; });
     b.string({"--video-preset", "NAME", "output.video_preset", "string",
               "Encoder speed preset (libx264: ultrafast..veryslow, default veryfast; NVENC "
-              "p1..p7)"},
+              "p1..p7)",
+              "the encoder's speed preset; `\"\"` = Sierra's default (`veryfast` for libx264)"},
              [](Scene& s) -> std::string& { return s.output.videoPreset; });
 }
 
@@ -146,29 +153,36 @@ void zoneEntries(std::vector<OptionEntry>& out) {
         return s.zones.band < 0.0f ? std::string("palette") : msg(s.zones.band);
     };
     b.number({"--zone-epsilon", "E", "zones.epsilon", "number >= 0",
-              "Borderline simplification distance, zone-map pixels"},
+              "Borderline simplification distance, zone-map pixels",
+              "borderline simplification distance, zone-map pixels (rule 3)"},
              [](Scene& s) -> float& { return s.zones.epsilon; });
     // Auto-zoning thresholds (--zones auto).
     b.number({"--deep-water", "F", "zones.deep_water", "number 0..1",
-              "Auto-zones: deep water below this fraction of the depth range, 0..1"},
+              "Auto-zones: deep water below this fraction of the depth range, 0..1",
+              "auto zones: deep water below this fraction of the depth range"},
              [](Scene& s) -> float& { return s.zones.deepWater; });
     b.number({"--sand-top", "F", "zones.sand_top", "number 0..1",
-              "Auto-zones: sand up to this fraction of the land relief, 0..1"},
+              "Auto-zones: sand up to this fraction of the land relief, 0..1",
+              "auto zones: sand up to this fraction of the land relief"},
              [](Scene& s) -> float& { return s.zones.sandTop; });
     b.number({"--zone-snow-line", "F", "zones.snow_line", "number 0..1",
-              "Auto-zones: snow above this fraction of the land relief, 0..1"},
+              "Auto-zones: snow above this fraction of the land relief, 0..1",
+              "auto zones: snow above this fraction of the land relief"},
              [](Scene& s) -> float& { return s.zones.snowLine; });
     b.number({"--rock-slope", "DEG", "zones.rock_slope", "degrees, (0, 90)",
-              "Auto-zones: rock steeper than this, degrees (0, 90)"},
+              "Auto-zones: rock steeper than this, degrees (0, 90)",
+              "auto zones: rock on slopes steeper than this"},
              [](Scene& s) -> float& { return s.zones.rockSlope; });
 
     Builder shading(out, kZoneShadingOptions, "Zones");
     shading.string({"--blend", "linear|height", "zones.blend", "`\"linear\"`, `\"height\"`",
-                    "Blend across a band: linear (by distance) or height (tile heights move it)"},
+                    "Blend across a band: linear (by distance) or height (tile heights move it)",
+                    "across a band: by distance, or moved by the tiles' height channels"},
                    [](Scene& s) -> std::string& { return s.zones.blend; });
     shading.flag(
         {"--triplanar", "", "zones.triplanar", "boolean",
-         "Project tiles along the normal's axes on steep slopes"},
+         "Project tiles along the normal's axes on steep slopes",
+         "project tiles along the normal's axes on steep slopes"},
         [](Scene& s) -> bool& { return s.zones.triplanar; }, true);
     shading.flag(
         {"--no-tile-variation", "", "zones.variation", "boolean",
@@ -177,7 +191,8 @@ void zoneEntries(std::vector<OptionEntry>& out) {
         [](Scene& s) -> bool& { return s.zones.variation; }, false);
     shading.string({"--debug-view", "none|zones|bands", "zones.debug_view",
                     "`\"none\"`, `\"zones\"`, `\"bands\"`",
-                    "Flat zone colours (zones) or the band blend weight (bands)"},
+                    "Flat zone colours (zones) or the band blend weight (bands)",
+                    "flat zone colours, or the band blend weight"},
                    [](Scene& s) -> std::string& { return s.zones.debugView; });
 }
 

@@ -2,7 +2,8 @@
 // The one table of Sierra's scene options: for each, the command-line flag,
 // the scene file's key path, the types, the help and docs text, and how it is
 // read from and written to a Scene. SceneOptions (Options.h) registers the
-// command line from it, SceneJson reads and writes every key it lists.
+// command line from it, SceneJson reads and writes every key it lists, and
+// docs/scene.md is generated from it (sceneDocsMarkdown).
 //
 // An entry has a flag, a key or both: "--fov" <-> "camera.fov" share one entry;
 // "--size WxH" is command-line only (it sets output.width and output.height,
@@ -96,5 +97,9 @@ inline constexpr const char* kSceneParts[] = {"terrain", "camera", "path",  "lig
 // The shortest decimal (at most 9 significant digits) that reads back as `f`;
 // null for a value that is not finite.
 Json jsonNumber(float f);
+
+// docs/scene.md: `templateText` with each line "@table PART@" replaced by the
+// table of that part's keys (key, type, default, option, meaning).
+std::string sceneDocsMarkdown(const std::string& templateText);
 
 }  // namespace sierra::scene
