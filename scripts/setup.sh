@@ -19,6 +19,7 @@ packages=(
   libspng-dev libjpeg62-turbo-dev libgdal-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   python-matplotlib-data
+  fonts-dejavu-core
   python3-dev python3-numpy python3-pytest pybind11-dev
   gdal-bin python3-gdal
 )

@@ -11,7 +11,6 @@
 
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/Scene.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/render/ZoneSurface.h>
 #include <sierra/scene/Assets.h>
@@ -71,7 +70,7 @@ class ZoneFrames : public test::GlTest {
 
     // The default scene (the terrain sierra-render draws with no arguments).
     void useDefaultScene() {
-        field_ = render::loadTerrain({});
+        field_ = scene::loadTerrain({});
         seaLevel_ = scene::heightQuantile(field_, 0.3);
         terrain_.emplace(
             render::TerrainRenderer::create({.field = &field_, .seaLevel = seaLevel_}));
@@ -84,7 +83,10 @@ class ZoneFrames : public test::GlTest {
     }
 
     render::ZoneSurfaceInfo setZones(render::ZoneSurfaceDesc desc) {
-        if (desc.palette.empty()) desc.palette = assetPath("palettes/default.json");
+        if (desc.palette.surfaces.empty()) {
+            desc.paletteName = assetPath("palettes/default.json");
+            desc.palette = scene::loadPalette(desc.paletteName);
+        }
         desc.autoZones.seaLevel = seaLevel_;
         render::ZoneSurfaceInfo info;
         terrain_->setSurface(render::makeZoneSurface(terrain_->terrain(), field_, desc, &info));
@@ -380,7 +382,8 @@ float smoothStep(float a, float b, float x) {
 TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
     const float band = 6.0f;  // zone-map pixels
     render::ZoneSurfaceInfo info = setZones({.map = dir_ + "/map.png",
-                                             .palette = dir_ + "/palette.json",
+                                             .palette = palette_,
+                                             .paletteName = dir_ + "/palette.json",
                                              .band = band,
                                              .heightBlend = false});
     const zones::BorderField field =
@@ -449,7 +452,8 @@ TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
 // bring in a third tile, nor a second one away from the band.
 TEST_F(ZoneSampling, HeightBlendKeepsAtMostTwoTiles) {
     setZones({.map = dir_ + "/map.png",
-              .palette = dir_ + "/palette.json",
+              .palette = palette_,
+              .paletteName = dir_ + "/palette.json",
               .band = 6.0f,
               .heightBlend = true,
               .variation = true});

@@ -1,4 +1,4 @@
-#include <sierra/render/SceneView.h>
+#include <sierra/facade/SceneView.h>
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Log.h>
@@ -9,6 +9,7 @@
 #include <sierra/render/passes/HatchPass.h>
 #include <sierra/render/passes/LinePass.h>
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/terrain/SunPosition.h>
 #include <sierra/tin/Export.h>
@@ -18,7 +19,27 @@
 #include <memory>
 #include <vector>
 
-namespace sierra::render {
+namespace sierra::facade {
+
+using namespace sierra::render;
+
+render::PngCompression pngCompression(scene::PngCompression compression) {
+    switch (compression) {
+        case scene::PngCompression::Default:
+            return render::PngCompression::Default;
+        case scene::PngCompression::Best:
+            return render::PngCompression::Best;
+        case scene::PngCompression::Fast:
+            break;
+    }
+    return render::PngCompression::Fast;
+}
+
+ImageEncoding frameEncoding(const scene::OutputDesc& output) {
+    return {.png = pngCompression(output.pngCompression),
+            .jpegQuality = output.jpegQuality,
+            .alpha = output.alpha};
+}
 
 glm::vec3 toGlm(const scene::Vec3& v) {
     return {v.x, v.y, v.z};
@@ -211,7 +232,8 @@ std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s,
     if (z.map.empty()) return {};
     ZoneSurfaceDesc desc;
     desc.map = z.map;
-    desc.palette = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+    desc.paletteName = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+    desc.palette = scene::loadPalette(desc.paletteName);
     desc.band = z.band;
     desc.epsilon = z.epsilon;
     desc.heightBlend = z.blend == "height";
@@ -434,4 +456,4 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s) {
     return info;
 }
 
-}  // namespace sierra::render
+}  // namespace sierra::facade
