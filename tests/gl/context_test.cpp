@@ -122,8 +122,11 @@ TEST_F(GlContext, EveryShaderFileCompilesAndLinks) {
             EXPECT_NO_THROW(gpu::Program::create(desc)) << name;
         } else {
             for (const std::string& surface : surfaces) {
-                gpu::IncludeAlias alias{"surface.glsl", surface};
-                desc.aliases = std::span<const gpu::IncludeAlias>(&alias, 1);
+                // A surface over another one (the drape) includes "surface_base.glsl",
+                // which the terrain pass maps to the base surface's file.
+                const gpu::IncludeAlias aliases[] = {
+                    {"surface.glsl", surface}, {"surface_base.glsl", "surface_hypsometric.glsl"}};
+                desc.aliases = std::span<const gpu::IncludeAlias>(aliases);
                 EXPECT_NO_THROW(gpu::Program::create(desc)) << name << " with " << surface;
             }
         }
