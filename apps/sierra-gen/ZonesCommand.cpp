@@ -21,7 +21,9 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/BorderlinesJson.h>
 #include <sierra/scene/Options.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/zones/BorderField.h>
 #include <sierra/zones/Borderlines.h>
@@ -54,7 +56,7 @@ void runZones(const ZonesOptions& o) {
     const scene::ZonesDesc& z = o.scene.zones;
     const std::string paletteFile =
         z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
-    zones::Palette palette = zones::loadPalette(paletteFile);
+    zones::Palette palette = scene::loadPalette(paletteFile);
     zones::ZoneMap map;
     std::string source;
     if (z.map == "auto") {
@@ -87,7 +89,7 @@ void runZones(const ZonesOptions& o) {
     double fieldMs = msSince(t0);
     zones::doubleBorderlines(lines, band);
 
-    writeFileAtomic(o.json, std::string_view(zones::borderlinesToJson(lines)));
+    writeFileAtomic(o.json, std::string_view(scene::borderlinesToJson(lines)));
     if (!o.svg.empty())
         writeFileAtomic(o.svg,
                         std::string_view(zones::borderlinesToSvg(

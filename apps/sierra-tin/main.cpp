@@ -25,6 +25,7 @@
 #include <sierra/core/Timer.h>
 #include <sierra/scene/Assets.h>
 #include <sierra/scene/Options.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/tin/Export.h>
 #include <sierra/tin/Tin.h>
@@ -82,7 +83,7 @@ ZoneInput loadZones(const scene::Scene& s, const terrain::Heightfield& field) {
     Stopwatch clock;
     ZoneInput z;
     const scene::ZonesDesc& d = s.zones;
-    z.palette = zones::loadPalette(d.palette.empty() ? scene::assetPath("palettes/default.json")
+    z.palette = scene::loadPalette(d.palette.empty() ? scene::assetPath("palettes/default.json")
                                                      : d.palette);
     if (d.map == "auto") {
         const zones::AutoZoneDesc a =

@@ -88,7 +88,7 @@ expect_different(${WORK_DIR}/plain.png ${WORK_DIR}/rock.png "--rock-slope 5")
 
 # Bad input: exit 1 with one clear message.
 file(WRITE ${WORK_DIR}/bad.json "{\"zones\": [oops")
-run_app(palette_not_json EXPECT_FAIL MESSAGE "is not JSON" COMMAND ${GEN} zones --zones ${MAP} --palette bad.json --json x.json)
+run_app(palette_not_json EXPECT_FAIL MESSAGE "not a JSON file" COMMAND ${GEN} zones --zones ${MAP} --palette bad.json --json x.json)
 expect_exit(palette_not_json_exit 1 ${GEN} zones --zones ${MAP} --palette bad.json --json x.json)
 file(WRITE ${WORK_DIR}/missing_tile.json "{\"zones\": [{\"name\": \"a\", \"colour\": \"#ff0000\", \"tile\": \"none.png\"}]}")
 run_app(missing_tile EXPECT_FAIL MESSAGE "does not exist" COMMAND ${GEN} zones --zones ${MAP} --palette missing_tile.json --json x.json)

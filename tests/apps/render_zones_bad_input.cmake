@@ -53,7 +53,7 @@ run_bad(map_too_small 1 "tiny.pgm" --zones tiny.pgm --palette p/grey.json)
 
 # Palettes.
 file(WRITE ${WORK_DIR}/bad.json "{\"zones\": [oops")
-run_bad(palette_not_json 1 "is not JSON" --zones auto --palette bad.json)
+run_bad(palette_not_json 1 "not a JSON file" --zones auto --palette bad.json)
 run_bad(palette_missing 1 "nowhere.json" --zones auto --palette nowhere.json)
 file(WRITE ${WORK_DIR}/p/missing_tile.json "{\"zones\": [{\"name\": \"a\", \"colour\": \"#ff0000\", \"tile\": \"none.png\"}]}")
 run_bad(palette_missing_tile 1 "does not exist" --zones auto --palette p/missing_tile.json)

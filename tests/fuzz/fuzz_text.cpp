@@ -4,12 +4,12 @@
 // zone map PNG decoder. A sierra::Error is the expected answer to bad input;
 // anything else is a finding.
 
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/scene/Scene.h>
 #include <sierra/scene/SceneJson.h>
 #include <sierra/terrain/Cpt.h>
 #include <sierra/terrain/HeightfieldIO.h>
 #include <sierra/terrain/Maps.h>
-#include <sierra/zones/Palette.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -22,7 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 #if SIERRA_FUZZ_TARGET == 1
         sierra::terrain::parseCpt(text, "fuzz.cpt");
 #elif SIERRA_FUZZ_TARGET == 2
-        sierra::zones::parsePalette(text, "/nonexistent", "fuzz.json", false);
+        sierra::scene::parsePalette(text, "/nonexistent", "fuzz.json", false);
 #elif SIERRA_FUZZ_TARGET == 3
         sierra::scene::validateScene(
             sierra::scene::sceneFromJson(sierra::scene::parseJson(text, "fuzz.json"), "fuzz.json"));

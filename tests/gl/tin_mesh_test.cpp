@@ -14,6 +14,7 @@
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/tin/Export.h>
 #include <sierra/tin/Tin.h>
@@ -37,7 +38,7 @@ constexpr int kHeight = 180;
 // The TIN sierra-tin writes for `scene` with --zones auto --max-error-rel 0.01.
 std::string writeTin(const scene::Scene& s, const std::string& name, size_t* triangles) {
     const terrain::Heightfield field = scene::loadTerrain(s.terrain, nullptr, scene::Padding::None);
-    const zones::Palette palette = zones::loadPalette(scene::assetPath("palettes/default.json"));
+    const zones::Palette palette = scene::loadPalette(scene::assetPath("palettes/default.json"));
     zones::AutoZoneDesc a;
     const float sea = scene::resolveSeaLevel(s.terrain, field);
     a.seaLevel = std::isnan(sea) ? field.range().first - 1.0f : sea;

@@ -14,6 +14,7 @@
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/render/ZoneSurface.h>
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/zones/BorderField.h>
 #include <sierra/zones/Borderlines.h>
@@ -82,7 +83,10 @@ class ZoneFrames : public test::GlTest {
     }
 
     render::ZoneSurfaceInfo setZones(render::ZoneSurfaceDesc desc) {
-        if (desc.palette.empty()) desc.palette = assetPath("palettes/default.json");
+        if (desc.palette.surfaces.empty()) {
+            desc.paletteName = assetPath("palettes/default.json");
+            desc.palette = scene::loadPalette(desc.paletteName);
+        }
         desc.autoZones.seaLevel = seaLevel_;
         render::ZoneSurfaceInfo info;
         terrain_->setSurface(render::makeZoneSurface(terrain_->terrain(), field_, desc, &info));
@@ -253,7 +257,7 @@ void checkDebugViewAgainstMap(const gpu::Image& frame, const std::vector<float>&
 TEST_F(ZoneFrames, DebugViewZonesAgreesWithAutoZoneMap) {
     useDefaultScene();
     setZones({.map = "auto", .debugView = render::ZoneDebugView::Zones});
-    const zones::Palette palette = zones::loadPalette(assetPath("palettes/default.json"));
+    const zones::Palette palette = scene::loadPalette(assetPath("palettes/default.json"));
     zones::AutoZoneDesc autoDesc;
     autoDesc.seaLevel = seaLevel_;
     const zones::ZoneMap map =
@@ -273,7 +277,7 @@ TEST_F(ZoneFrames, DebugViewZonesAgreesWithSampleMapNear) {
     setZones({.map = assetPath("zones/default_zones.png"),
               .band = 4.0f,
               .debugView = render::ZoneDebugView::Zones});
-    const zones::Palette palette = zones::loadPalette(assetPath("palettes/default.json"));
+    const zones::Palette palette = scene::loadPalette(assetPath("palettes/default.json"));
     const zones::ZoneMap map = zones::loadZoneMap(assetPath("zones/default_zones.png"), palette);
     const render::Camera camera = nearCamera();
     const gpu::Image frame = renderFrame(camera, 0, flatLighting());
@@ -317,9 +321,9 @@ class ZoneSampling : public ZoneFrames {
             render::writePng(dir_ + "/" + names[k] + ".png", tile);
         }
         std::ofstream(dir_ + "/palette.json") << R"({"zones": [
-                {"name": "red",   "colour": "#c00000", "tile": "red.png",   "heightBlend": 0},
-                {"name": "green", "colour": "#00c000", "tile": "green.png", "heightBlend": 0},
-                {"name": "blue",  "colour": "#0000c0", "tile": "blue.png",  "heightBlend": 0}]})";
+                {"name": "red",   "colour": "#c00000", "tile": "red.png",   "height_blend": 0},
+                {"name": "green", "colour": "#00c000", "tile": "green.png", "height_blend": 0},
+                {"name": "blue",  "colour": "#0000c0", "tile": "blue.png",  "height_blend": 0}]})";
         gpu::Image map{.width = kMap, .height = kMap};
         map.rgba.assign(size_t(kMap) * kMap * 4, 255);
         for (int j = 0; j < kMap; ++j)
@@ -330,7 +334,7 @@ class ZoneSampling : public ZoneFrames {
                 p[2] = zone == 2 ? 0xc0 : 0;
             }
         render::writePng(dir_ + "/map.png", map);
-        palette_ = zones::loadPalette(dir_ + "/palette.json");
+        palette_ = scene::loadPalette(dir_ + "/palette.json");
         lines_ = zones::buildBorderlines(zones::loadZoneMap(dir_ + "/map.png", palette_), palette_,
                                          {.epsilon = 0.5, .bandWidth = 0.0});
     }
@@ -378,7 +382,8 @@ float smoothStep(float a, float b, float x) {
 TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
     const float band = 6.0f;  // zone-map pixels
     render::ZoneSurfaceInfo info = setZones({.map = dir_ + "/map.png",
-                                             .palette = dir_ + "/palette.json",
+                                             .palette = palette_,
+                                             .paletteName = dir_ + "/palette.json",
                                              .band = band,
                                              .heightBlend = false});
     const zones::BorderField field =
@@ -447,7 +452,8 @@ TEST_F(ZoneSampling, OneTileAwayFromBordersTwoBlendedByDistanceInABand) {
 // bring in a third tile, nor a second one away from the band.
 TEST_F(ZoneSampling, HeightBlendKeepsAtMostTwoTiles) {
     setZones({.map = dir_ + "/map.png",
-              .palette = dir_ + "/palette.json",
+              .palette = palette_,
+              .paletteName = dir_ + "/palette.json",
               .band = 6.0f,
               .heightBlend = true,
               .variation = true});

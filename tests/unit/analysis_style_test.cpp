@@ -2,9 +2,9 @@
 // values, and bad parameters give one clear error.
 #include <sierra/analysis/Style.h>
 #include <sierra/core/Error.h>
+#include <sierra/scene/StyleJson.h>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -12,7 +12,11 @@
 
 using namespace sierra;
 using namespace sierra::analysis;
-using nlohmann::json;
+using sierra::scene::Json;
+using sierra::scene::loadStyleFile;
+using sierra::scene::styleFromJson;
+using sierra::scene::styleToJson;
+using json = sierra::scene::Json;
 
 namespace {
 
@@ -132,13 +136,14 @@ TEST(AnalysisStyle, RoundTripAndDefaults) {
 }
 
 TEST(AnalysisStyle, BadParametersGiveClearErrors) {
-    EXPECT_EQ(errorOf(json::parse(R"({"curvature": {"method": "three-normal", "distance": 0}})")),
-              "test.json: style.curvature.distance must be an integer >= 1 (1 = no reinforcement), "
-              "got 0");
+    EXPECT_EQ(
+        errorOf(json::parse(R"({"curvature": {"method": "three-normal", "distance": 0}})")),
+        "test.json: style.curvature.distance: must be an integer >= 1 (1 = no reinforcement), "
+        "got 0");
     EXPECT_EQ(errorOf(json::parse(R"({"curvature": {"scale": -2}})")),
-              "test.json: style.curvature.scale must be >= 0, got -2");
+              "test.json: style.curvature.scale: must be >= 0, got -2");
     EXPECT_EQ(errorOf(json::parse(R"({"curvature": {"method": "four-normal"}})")),
-              "test.json: style.curvature.method unknown curvature method 'four-normal' (expected "
+              "test.json: style.curvature.method: unknown curvature method 'four-normal' (expected "
               "two-normal, "
               "three-normal, three-vertex or edge-angle)");
     auto has = [](const std::string& text, const std::string& words) {
@@ -146,30 +151,31 @@ TEST(AnalysisStyle, BadParametersGiveClearErrors) {
     };
     EXPECT_TRUE(
         has(errorOf(json::parse(R"({"curvature": {"method": "two-normal", "distance": 2}})")),
-            "style.curvature.distance must be 1 for two-normal"));
+            "style.curvature.distance: must be 1 for two-normal"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"distance": 1.5}})")),
-                    "must be an integer >= 1"));
+                    "expected an integer >= 1"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"scale": "big"}})")),
-                    "style.curvature.scale must be a number"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"dist": 2}})")), "unknown key 'dist'"));
+                    "style.curvature.scale: must be a number"));
+    EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"dist": 2}})")),
+                    "unknown key style.curvature.dist"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"lines": {"min_length": 1}})")),
-                    "style.lines.min_length must be an integer >= 2"));
+                    "style.lines.min_length: must be an integer >= 2"));
     EXPECT_TRUE(
-        has(errorOf(json::parse(R"({"lines": {"width": 0}})")), "style.lines.width must be > 0"));
+        has(errorOf(json::parse(R"({"lines": {"width": 0}})")), "style.lines.width: must be > 0"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"hatch": {"direction": "with"}})")),
                     "unknown hatch direction 'with'"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"hatch": {"length": -1}})")),
-                    "style.hatch.length must be > 0"));
+                    "style.hatch.length: must be > 0"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"styles": ["lines", "watercolour"]})")),
                     "unknown style \"watercolour\""));
     EXPECT_TRUE(
-        has(errorOf(json::parse(R"({"styles": "lines"})")), "style.styles must be an array"));
+        has(errorOf(json::parse(R"({"styles": "lines"})")), "style.styles: expected an array"));
     EXPECT_TRUE(has(errorOf(json::parse(R"({"styles": ["contours"], "contours": false})")),
-                    "style.contours is false but \"styles\" lists contours"));
+                    "style.contours: is false but \"styles\" lists contours"));
     EXPECT_TRUE(
         has(errorOf(json::parse(R"({"curvature": {"levels": {"black": 0.5, "white": 0.2}}})")),
-            "style.curvature.levels.white must be above the black point"));
-    EXPECT_TRUE(has(errorOf(json::parse(R"([1, 2])")), "style must be an object"));
+            "style.curvature.levels.white: must be above the black point"));
+    EXPECT_TRUE(has(errorOf(json::parse(R"([1, 2])")), "style: expected an object"));
 
     auto dir = std::filesystem::temp_directory_path() / "sierra_analysis_style_test";
     std::filesystem::create_directories(dir);
@@ -179,7 +185,7 @@ TEST(AnalysisStyle, BadParametersGiveClearErrors) {
         loadStyleFile(bad);
         ADD_FAILURE() << "no error for broken JSON";
     } catch (const Error& e) {
-        EXPECT_TRUE(has(e.what(), bad + ": not valid JSON")) << e.what();
+        EXPECT_TRUE(has(e.what(), bad + ": not a JSON file")) << e.what();
     }
     auto noStyle = (dir / "nostyle.json").string();
     std::ofstream(noStyle) << "{\"camera\": {}}";
@@ -199,10 +205,10 @@ TEST(AnalysisStyle, AutoScaleReadsAndWritesBack) {
         return text.find(words) != std::string::npos;
     };
     EXPECT_TRUE(has(errorOf(json::parse(R"({"curvature": {"scale": "twice"}})")),
-                    R"(style.curvature.scale must be a number >= 0 or "auto", got "twice")"));
+                    R"(style.curvature.scale: must be a number >= 0 or "auto", got "twice")"));
     EXPECT_TRUE(
         has(errorOf(json::parse(R"({"curvature": {"scale": "auto", "levels": {"white": 0.5}}})")),
-            R"(style.curvature.scale is "auto", which picks the scale from the values)"));
+            R"(style.curvature.scale: is "auto", which picks the scale from the values)"));
 }
 
 // A row of 101 samples whose largest magnitudes are 0, 0.02, ..., 2 (in

@@ -2,6 +2,7 @@
 // ones give one clear message.
 #include "temp_dir_test_util.h"
 
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/zones/Palette.h>
 #include <sierra/zones/Tiles.h>
 #include <sierra/zones/ZoneMap.h>
@@ -20,6 +21,9 @@ namespace sierra::zones {
 namespace {
 
 namespace fs = std::filesystem;
+using scene::loadPalette;
+using scene::paletteToJson;
+using scene::parsePalette;
 
 class ZonesIo : public sierra::test::TempDirTest {
   protected:
@@ -33,8 +37,8 @@ class ZonesIo : public sierra::test::TempDirTest {
         return TempDirTest::errorOf(f, "(no error)");
     }
     const std::string kGood = R"({"zones": [
-        {"name": "a", "colour": "#ff0000", "tile": "tiles/a.png", "tileSize": 8},
-        {"name": "b", "colour": "#00FF00", "tile": "tiles/b.png", "heightBlend": 0.25}]})";
+        {"name": "a", "colour": "#ff0000", "tile": "tiles/a.png", "tile_size": 8},
+        {"name": "b", "colour": "#00FF00", "tile": "tiles/b.png", "height_blend": 0.25}]})";
 };
 
 TEST_F(ZonesIo, PaletteReadsFieldsAndResolvesTiles) {
@@ -51,12 +55,12 @@ TEST_F(ZonesIo, PaletteReadsFieldsAndResolvesTiles) {
 }
 
 TEST_F(ZonesIo, BadPalettesSayWhy) {
-    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", "{zones: oops")); }).find("is not JSON"),
+    EXPECT_NE(errorOf([&] { loadPalette(write("p.json", "{zones: oops")); }).find("not a JSON"),
               std::string::npos);
     // A number beyond double's range (found by fuzzing): a clear error, not an escaped exception.
     EXPECT_NE(errorOf([&] {
                   loadPalette(write("p.json", R"({"zones": [], "x": 3e58836})"));
-              }).find("is not JSON"),
+              }).find("not a JSON"),
               std::string::npos);
     std::string missing =
         R"({"zones": [{"name": "a", "colour": "#ff0000", "tile": "tiles/none.png"}]})";

@@ -9,6 +9,7 @@
 #include <sierra/render/passes/HatchPass.h>
 #include <sierra/render/passes/LinePass.h>
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/terrain/SunPosition.h>
 #include <sierra/tin/Export.h>
@@ -231,7 +232,8 @@ std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s,
     if (z.map.empty()) return {};
     ZoneSurfaceDesc desc;
     desc.map = z.map;
-    desc.palette = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+    desc.paletteName = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+    desc.palette = scene::loadPalette(desc.paletteName);
     desc.band = z.band;
     desc.epsilon = z.epsilon;
     desc.heightBlend = z.blend == "height";

@@ -84,9 +84,9 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
                                          const terrain::Heightfield& field,
                                          const ZoneSurfaceDesc& desc, ZoneSurfaceInfo* info) {
     Stopwatch sw;
-    zones::Palette palette = zones::loadPalette(desc.palette);
+    const zones::Palette& palette = desc.palette;
     SIERRA_CHECK(!palette.surfaces.empty() && palette.surfaces.size() <= size_t(kMaxZones),
-                 desc.palette, ": ", palette.surfaces.size(),
+                 desc.paletteName, ": ", palette.surfaces.size(),
                  " surface types; the renderer takes 1..", kMaxZones);
     zones::ZoneMap map;
     if (desc.map == "auto")
@@ -130,8 +130,8 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
         gpu::Image image = readPng(s.tile);
         if (tileSize == 0) tileSize = image.width;
         SIERRA_CHECK(image.width == tileSize && image.height == tileSize, "tile ", s.tile, " is ",
-                     image.width, "x", image.height, "; every tile of ", desc.palette, " must be ",
-                     tileSize, "x", tileSize);
+                     image.width, "x", image.height, "; every tile of ", desc.paletteName,
+                     " must be ", tileSize, "x", tileSize);
         images.push_back(std::move(image));
     }
     int levels = 1;

@@ -1,6 +1,7 @@
 #include <sierra/scene/Scene.h>
 
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/StyleJson.h>
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
@@ -401,7 +402,7 @@ std::string presetPath(const std::string& name) {
 }
 
 analysis::StyleParams loadPreset(const std::string& name) {
-    return analysis::loadStyleFile(presetPath(name));
+    return loadStyleFile(presetPath(name));
 }
 
 zones::AutoZoneDesc autoZoneDesc(const ZonesDesc& zones, float seaLevel,

@@ -1,14 +1,12 @@
 // The borderlines of a zone map (Borderlines.h): the arcs doubled into bands
 // of a given width (doubleBorderlines), the whole pipeline (buildBorderlines:
 // vectorise in Vectorise.cpp, the arc passes in Arcs.cpp, then the bands),
-// and the outputs: zone areas, JSON, SVG.
+// and the outputs: zone areas, SVG (the JSON form is scene/BorderlinesJson.h).
 #include <sierra/zones/Borderlines.h>
 
 #include "zones/Arcs.h"
 
 #include <sierra/core/Error.h>
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -238,25 +236,6 @@ std::vector<double> zoneAreas(const Borderlines& lines) {
         if (e.right >= 0) area[size_t(e.right)] += c / 2;
     }
     return area;
-}
-
-std::string borderlinesToJson(const Borderlines& lines) {
-    nlohmann::json doc;
-    doc["width"] = lines.mapWidth;
-    doc["height"] = lines.mapHeight;
-    doc["layout"] = lines.layout == ZoneLayout::Touching ? "touching" : "borderlines";
-    doc["frame"] = {lines.frameX0, lines.frameY0, lines.frameX1, lines.frameY1};
-    auto& vertices = doc["vertices"] = nlohmann::json::array();
-    for (const Vertex& v : lines.vertices) vertices.push_back({v.x, v.y});
-    auto& edges = doc["edges"] = nlohmann::json::array();
-    for (const Edge& e : lines.edges) edges.push_back({e.from, e.to, e.left, e.right});
-    auto& zones = doc["zones"] = nlohmann::json::array();
-    for (const Zone& z : lines.zones) {
-        nlohmann::json entry{{"id", z.id}, {"name", z.name}, {"colour", colourHex(z.colour)}};
-        if (z.bandOf[0] >= 0) entry["bandOf"] = {z.bandOf[0], z.bandOf[1]};
-        zones.push_back(entry);
-    }
-    return doc.dump() + "\n";
 }
 
 std::string borderlinesToSvg(const Borderlines& lines, const std::string& imageHref) {

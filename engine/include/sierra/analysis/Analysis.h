@@ -11,11 +11,11 @@
 //   Lines.h      polylines through high curvature (once per terrain and style)
 //   Hatch.h      per-vertex stroke direction and opacity (what the hatch
 //                shader computes)
-//   Style.h      StyleParams and the JSON "style" object of scene files and
-//                of the presets assets/presets/fig3a..fig3n, fig4a..fig4h
+//   Style.h      StyleParams: the layers and parameters of a style (its
+//                JSON form and the presets are scene/StyleJson.h's)
 //
 // Typical use:
-//   auto style = sierra::analysis::loadStyleFile("assets/presets/fig3a.json");
+//   auto style = sierra::scene::loadStyleFile("assets/presets/fig3a.json");  // programs' layer
 //   auto field = sierra::analysis::computeCurvature(heightfield, style.curvature);
 //   auto lines = sierra::analysis::traceLines(field, sierra::analysis::lineOptions(style));
 //   // lines.vertices (x = column, z = row, alpha) and lines.offsets go to a

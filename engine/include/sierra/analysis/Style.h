@@ -5,35 +5,12 @@
 // presets assets/presets/fig3a.json ... fig3n.json (line shading) and
 // fig4a.json ... fig4h.json (hatch shading) are such fragments.
 //
-// JSON form (every key optional; unknown keys are errors, to catch typos):
-//   "style": {
-//     "description": "free text",
-//     "styles": ["shaded", "lines", "hatch", "contours"],   // any combination
-//     "curvature": {"method": "two-normal" | "three-normal" | "three-vertex" | "edge-angle",
-//                   "distance": 1,          // reinforcement distance, integer >= 1 (1 = none)
-//                   "scale": 1.0,           // >= 0, or "auto" (StyleParams::autoScale)
-//                   "normals": "quad",      // "edge" | "triangle" | "quad"
-//                   "signed": false,
-//                   "levels": {"black": 0, "white": 1, "gamma": 1}},   // present = on
-//     "lines": {"min_length": 5,            // vertices, >= 2
-//               "width": 1.0,               // pixels, > 0
-//               "threshold": 0.5,           // curvature needed, >= 0
-//               "polarity": "any",          // "any" | "ridges" | "valleys"
-//               "blended": false},          // the refinement of Lines.h
-//     "hatch": {"length": 0.75,             // grid units, > 0
-//               "width": 1.0,               // pixels, > 0
-//               "direction": "along"},      // "along" | "across"
-//     "contours": false
-//   }
-// Without "styles", the layers are "shaded" plus "lines" / "hatch" where their
-// objects are present; "contours": true adds contour edges either way
-// (contradicting "styles" is an error).
+// Their JSON form, and the presets' files, are read and written by the
+// programs' layer (scene/StyleJson.h); this module holds the data alone.
 
 #include <sierra/analysis/Curvature.h>
 #include <sierra/analysis/Hatch.h>
 #include <sierra/analysis/Lines.h>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include <string>
 #include <string_view>
@@ -99,18 +76,5 @@ float autoCurvatureTarget(const StyleParams& style);
 // again at the returned scale has its top 5% there. style.curvature.scale
 // itself when that value is 0 (a flat terrain, or no data) or the scale is 0.
 float autoCurvatureScale(const CurvatureField& field, const StyleParams& style);
-
-// Reads a "style" object. `source` names it in errors (a file name, or
-// "style"). Throws sierra::Error with one message naming the source, the key
-// path and what would be right, e.g.
-// "fig3a.json: style.curvature.distance must be an integer >= 1 (1 = no reinforcement), got 0".
-StyleParams styleFromJson(const nlohmann::json& style, const std::string& source = "style");
-
-// Reads a scene-file fragment {"style": {...}} from a file (a preset).
-StyleParams loadStyleFile(const std::string& path);
-
-// The "style" object of a StyleParams (every key written); styleFromJson of
-// it gives the same StyleParams back.
-nlohmann::json styleToJson(const StyleParams& style);
 
 }  // namespace sierra::analysis

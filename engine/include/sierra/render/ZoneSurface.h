@@ -22,6 +22,7 @@
 
 #include <sierra/render/Surface.h>
 #include <sierra/terrain/Heightfield.h>
+#include <sierra/zones/Palette.h>
 #include <sierra/zones/ZoneMap.h>
 
 #include <memory>
@@ -33,12 +34,15 @@ enum class ZoneDebugView { None, Zones, Bands };
 
 struct ZoneSurfaceDesc {
     std::string map = "auto";  // "auto" or a zone-map PNG
-    std::string palette;       // palette JSON (tile paths relative to it)
-    float band = -1.0f;        // band width in zone-map pixels; < 0 = the palette's; 0 = none
-    float epsilon = 0.5f;      // borderline simplification, zone-map pixels
-    bool heightBlend = true;   // tile heights move the transition inside a band
-    bool triplanar = false;    // tiles projected along the normal's axes on steep slopes
-    bool variation = true;     // a slow warp of the tile coordinates against visible repetition
+    // The surface types and their tiles (the programs read a palette file
+    // with scene::loadPalette), and the name messages give the palette.
+    zones::Palette palette;
+    std::string paletteName = "the palette";
+    float band = -1.0f;       // band width in zone-map pixels; < 0 = the palette's; 0 = none
+    float epsilon = 0.5f;     // borderline simplification, zone-map pixels
+    bool heightBlend = true;  // tile heights move the transition inside a band
+    bool triplanar = false;   // tiles projected along the normal's axes on steep slopes
+    bool variation = true;    // a slow warp of the tile coordinates against visible repetition
     ZoneDebugView debugView = ZoneDebugView::None;
     zones::AutoZoneDesc autoZones;  // thresholds for map "auto" (seaLevel in stored units)
 };

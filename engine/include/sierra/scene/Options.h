@@ -1,7 +1,8 @@
 #pragma once
 // The one command-line registrar of Sierra's apps: every program gets the
 // scene's options from here, with the same names, types, checks and help, and
-// picks the groups it needs.
+// picks the groups it needs. The options are the rows of the option table
+// (OptionTable.h) that have a flag.
 //
 //   scene::Scene scene;                    // the app's defaults, e.g.
 //   scene.output.msaa = 0;                 //   shown by --help as [0]
@@ -19,6 +20,7 @@
 // rendering. Relative paths in a config file are relative to the working
 // directory, as on the command line.
 
+#include <sierra/scene/OptionTable.h>
 #include <sierra/scene/Scene.h>
 
 #include <CLI/CLI.hpp>
@@ -29,48 +31,6 @@
 #include <vector>
 
 namespace sierra::scene {
-
-// Option groups (bits): each registers the options listed and shows them under
-// its own heading in --help. --config and --print-config are always registered.
-enum OptionGroup : unsigned {
-    // --heightmap FILE, --generate N, --seed S, --roughness R, --hurst H, --raw-size WxH,
-    // --spacing S, --vertical-scale V, --sea-level H|auto|none, --height-units auto|m|none,
-    // --channel grey|luminance|r|g|b
-    kTerrainOptions = 1u << 0,
-    // --camera-pos X Y Z, --camera-target X Y Z, --azimuth DEG, --elevation DEG,
-    // --distance D, --fov DEG, --ortho
-    kCameraOptions = 1u << 1,
-    // --path none|orbit|flyover|keyframes, --frames N|A:B, --frame-count N
-    kPathOptions = 1u << 2,
-    // --sun-azimuth DEG, --sun-altitude DEG, --ambient A, --fog D|auto, --sky R,G,B,
-    // --shadows on|off, --sky-light on|off, --sun-size DEG, --horizon-radius D,
-    // --sun-time TIME, --latitude DEG, --longitude DEG, --sun-step S
-    kLightingOptions = 1u << 3,
-    // --lod sbt|full, --tau PX, --no-geomorph, --no-cull, --threads N
-    kLodOptions = 1u << 4,
-    // --out FILE.png|.jpg, --depth-out FILE.npy, --alpha, --png-compression fast|default|best,
-    // --jpeg-quality Q, --max-queued-frames N
-    kOutputOptions = 1u << 5,
-    // --debug-out FILE.png, --no-debug
-    kDebugOptions = 1u << 6,
-    // --wireframe
-    kStyleOptions = 1u << 7,
-    // --size WxH, --msaa 0|2|4|8
-    kFrameOptions = 1u << 8,
-    // --zones auto|MAP.png, --palette P.json, --band W, --zone-epsilon E, and the auto-zoning
-    // thresholds --deep-water F, --sand-top F, --zone-snow-line F, --rock-slope DEG
-    kZoneOptions = 1u << 9,
-    // How a renderer shades zones: --blend linear|height, --triplanar, --no-tile-variation,
-    // --debug-view none|zones|bands
-    kZoneShadingOptions = 1u << 10,
-    kAllOptions = (1u << 11) - 1,
-};
-
-// A finite float option value, or sierra::Error "OPTION 'TEXT': expected
-// EXPECTED" (empty, trailing characters, out of float range, NaN or inf):
-// the registrar's parser, for an app's own options too.
-float parseFloat(const std::string& text, const std::string& option,
-                 const char* expected = "a number");
 
 class SceneOptions {
   public:
@@ -102,10 +62,8 @@ class SceneOptions {
         Setter set;
     };
 
-    CLI::Option* add(const char* name, const std::string& help, const std::string& group,
-                     const char* typeName, const std::string& defaultText, int values, Setter set);
-    CLI::Option* addFlag(const char* name, const std::string& help, const std::string& group,
-                         Setter set);
+    // Registers one table entry (OptionTable.h).
+    CLI::Option* add(const OptionEntry& entry);
 
     CLI::App& app_;
     Scene& scene_;

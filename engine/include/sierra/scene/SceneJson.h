@@ -17,22 +17,11 @@
 
 #include <sierra/scene/Scene.h>
 
-#include <nlohmann/json.hpp>
+#include <sierra/scene/JsonRead.h>
 
 #include <string>
-#include <string_view>
 
 namespace sierra::scene {
-
-// Keys keep their order (terrain first, as in Scene), which plain nlohmann::json
-// would sort alphabetically.
-using Json = nlohmann::ordered_json;
-
-// Parses JSON text; throws sierra::Error naming `source` for text that is not
-// JSON (with the parser's line and column) or holds a number out of range.
-Json parseJson(std::string_view text, const std::string& source);
-// Reads and parses a JSON file the same way (unreadable files named too).
-Json readJsonFile(const std::string& path);
 
 // The scene described by `json`, starting from `base` (keys absent from `json`
 // keep base's values). `source` names the file in messages. Checks keys and

@@ -116,11 +116,6 @@ Borderlines buildBorderlines(const ZoneMap& map, const Palette& palette,
 // smaller, even negative.
 std::vector<double> zoneAreas(const Borderlines& lines);
 
-// JSON: {"width", "height", "layout", "frame": [x0, y0, x1, y1],
-//        "vertices": [[x, y], ...], "edges": [[from, to, leftZone, rightZone], ...],
-//        "zones": [{"id", "name", "colour": "#rrggbb", "bandOf": [a, b]?}, ...]}.
-std::string borderlinesToJson(const Borderlines& lines);
-
 // An SVG of the edges drawn over the zone map image `imageHref` (a path or a
 // data URI; empty = no image): borderlines in red, band copies in yellow, the
 // frame in blue, vertices as dots.

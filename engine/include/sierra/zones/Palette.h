@@ -1,6 +1,7 @@
 #pragma once
 // Palettes: which colour of a zone map is which surface type, its tile image
-// and its blend settings. The JSON form is described in docs/zones.md.
+// and its blend settings. Its JSON form (docs/zones.md) is read and written
+// by the programs' layer, scene/PaletteJson.h.
 
 #include <cstdint>
 #include <string>
@@ -34,18 +35,5 @@ struct Palette {
     // Zone id of a surface name, -1 when absent.
     int findName(const std::string& name) const;
 };
-
-// Parses a palette from JSON text. `baseDir` resolves relative tile paths,
-// `source` names the file in messages. checkTiles: every tile file must exist.
-// Throws sierra::Error: not JSON, missing or wrong fields, duplicate colours or
-// names, a surface using the borderline colour, a missing tile file.
-Palette parsePalette(const std::string& text, const std::string& baseDir, const std::string& source,
-                     bool checkTiles = true);
-
-// Reads and parses a palette file (tile paths relative to the file's folder).
-Palette loadPalette(const std::string& path, bool checkTiles = true);
-
-// The palette JSON text (tiles written as given, relative to nothing).
-std::string paletteToJson(const Palette& palette);
 
 }  // namespace sierra::zones
