@@ -1,6 +1,7 @@
 #include <sierra/render/SceneRenderer.h>
 
 #include <sierra/core/Log.h>
+#include <sierra/render/CameraRecord.h>
 #include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/scene/Terrain.h>
@@ -62,6 +63,37 @@ DepthImage SceneRenderer::depth(int k) {
                  frameCount() - 1);
     context_->makeCurrent();
     return terrain_->renderDepth(cameras_[size_t(k)], target_.width(), target_.height(), draw_);
+}
+
+LabelImage SceneRenderer::labels(int k, bool cameraSpace) {
+    SIERRA_CHECK(k >= 0 && k < frameCount(), "frame ", k, " is outside the scene's 0..",
+                 frameCount() - 1);
+    context_->makeCurrent();
+    const Camera& camera = cameras_[size_t(k)];
+    return terrain_->renderLabels(camera, target_.width(), target_.height(), draw_,
+                                  cameraSpace ? openCvRotation(camera) : glm::mat3(1.0f));
+}
+
+scene::CameraRecord SceneRenderer::cameraRecord(int k) const {
+    SIERRA_CHECK(k >= 0 && k < frameCount(), "frame ", k, " is outside the scene's 0..",
+                 frameCount() - 1);
+    return render::cameraRecord(cameras_[size_t(k)], target_.width(), target_.height(), field_);
+}
+
+void SceneRenderer::writeDataset(int k) {
+    SIERRA_CHECK(k >= 0 && k < frameCount(), "frame ", k, " is outside the scene's 0..",
+                 frameCount() - 1);
+    if (!dataset_) {
+        dataset_ = std::make_unique<DatasetWriter>(scene_, frameCount() > 1);
+        dataset_->checkLocations();
+    }
+    context_->makeCurrent();
+    dataset_->write(*terrain_, field_, k, cameras_[size_t(k)], target_.width(), target_.height(),
+                    draw_);
+}
+
+void SceneRenderer::finishDataset() {
+    if (dataset_) dataset_->finish();
 }
 
 }  // namespace sierra::render

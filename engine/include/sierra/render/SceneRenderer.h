@@ -17,6 +17,7 @@
 #include <sierra/gpu/EglContext.h>
 #include <sierra/gpu/ReadBack.h>
 #include <sierra/render/Camera.h>
+#include <sierra/render/Dataset.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Scene.h>
@@ -47,6 +48,18 @@ class SceneRenderer {
     gpu::Image frame(int k = 0);
     // Linear eye-space depth of frame k (world units, NaN where no terrain).
     DepthImage depth(int k = 0);
+    // The dataset labels of frame k (LabelPass): unit normals in world axes,
+    // or with `cameraSpace` in the camera's OpenCV axes (x right, y down, z
+    // forward: R times the world normal), the terrain mask, and zone ids
+    // when the scene has zones. One pass renders all three.
+    LabelImage labels(int k = 0, bool cameraSpace = false);
+    // Frame k's camera for dataset outputs: K, R|t, GL matrices, georeference.
+    scene::CameraRecord cameraRecord(int k = 0) const;
+    // Writes every dataset output the scene asks for of frame k
+    // (scene.output: depth, normals, zone ids, mask, camera JSON; DatasetWriter),
+    // and finishDataset() the transforms.json of the frames written.
+    void writeDataset(int k);
+    void finishDataset();
 
     int frameCount() const { return int(cameras_.size()); }
     const Camera& camera(int k) const { return cameras_.at(size_t(k)); }
@@ -74,6 +87,7 @@ class SceneRenderer {
     DrawOptions draw_;
     DrawStats stats_;
     std::string description_;
+    std::unique_ptr<DatasetWriter> dataset_;  // made by the first writeDataset()
 };
 
 }  // namespace sierra::render
