@@ -1,7 +1,8 @@
 # Inlines #include "x.glsl" lines of SHADER (as the engine does at run time) and
 # runs glslangValidator on the result; fails the test on any error. A stage that
 # includes "surface.glsl" is validated once per surface_*.glsl file, the
-# surface functions the engine substitutes for it. STAGE (optional, e.g. geom)
+# surface functions the engine substitutes for it ("surface_base.glsl", the
+# surface under a surface_drape.glsl, is the ramp's). STAGE (optional, e.g. geom)
 # names the stage of a file whose extension does not (the *_geom.glsl files).
 # DEFINE (optional) is a macro the engine defines for a variant of the stage
 # (#define DEFINE 1 after #version, as gpu::Program inserts it).
@@ -35,6 +36,8 @@ foreach(variant ${variants})
       string(REGEX REPLACE "#include \"([^\"]+)\"" "\\1" incname "${inc}")
       if(incname STREQUAL "surface.glsl")
         set(incname ${variant})
+      elseif(incname STREQUAL "surface_base.glsl")
+        set(incname surface_hypsometric.glsl)  # a surface over another (drapes) over the ramp
       endif()
       file(READ ${dir}/${incname} inctext)
       string(REPLACE "${inc}" "${inctext}" text "${text}")

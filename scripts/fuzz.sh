@@ -19,7 +19,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-120}
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap obj camera)
+[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap obj vector drape camera)
 
 packages=(clang libclang-rt-14-dev python3)
 missing=()
@@ -45,7 +45,7 @@ fi
 built=$SECONDS
 mkdir -p build-fuzz
 if ! { cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-         -DSIERRA_FUZZ=ON -DSIERRA_BUILD_TESTS=OFF -DSIERRA_WITH_GDAL=OFF &&
+         -DSIERRA_FUZZ=ON -DSIERRA_BUILD_TESTS=OFF -DSIERRA_WITH_GDAL=ON &&
        cmake --build build-fuzz -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}"); } \
      >build-fuzz/build.log 2>&1; then
   tail -n 30 build-fuzz/build.log >&2
@@ -131,6 +131,25 @@ put("obj", "corners.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nvn 0 1 0\nvt 0 0\n"
     "f 1//1 3//1 2//1\nf -3/-1/1 -1/-1/1 -2/-1/1\ng ground\no mesh\ns off\n")
 put("obj", "tin.mtl", "newmtl zone_1\nKd 0.2 0.6 0.1\nmap_Kd tiles/grass.png\n"
     "newmtl band_1_2\nKd 0.4 0.4 0.2\n")
+# Vector layers: GeoJSON of every geometry kind on the fuzz grid (10-11 E,
+# 46.5-47 N), GPX and KML where GDAL reads them.
+put("vector", "mixed.geojson", json.dumps({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {"name": "Hut"}, "geometry": {"type": "Point", "coordinates": [10.2, 46.9]}},
+    {"type": "Feature", "properties": {"name": "River"}, "geometry": {"type": "MultiLineString",
+        "coordinates": [[[10.0, 47.0], [10.5, 46.7]], [[10.6, 46.6], [12.0, 46.6]]]}},
+    {"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [
+        [[10.1, 46.9], [10.3, 46.9], [10.3, 46.8], [10.1, 46.9]], [[10.2, 46.88], [10.25, 46.88], [10.22, 46.85], [10.2, 46.88]]]}},
+    {"type": "Feature", "properties": {}, "geometry": {"type": "GeometryCollection", "geometries": [
+        {"type": "Point", "coordinates": [10.4, 46.7]}, {"type": "LineString", "coordinates": [[10.4, 46.7], [10.45, 46.72]]}]}}]}))
+put("vector", "track.gpx", '<?xml version="1.0"?><gpx version="1.1" creator="sierra"><wpt lat="46.9" lon="10.2"><name>Hut</name></wpt>'
+    '<trk><name>Track</name><trkseg><trkpt lat="46.9" lon="10.1"/><trkpt lat="46.8" lon="10.3"/></trkseg></trk></gpx>')
+put("vector", "places.kml", '<?xml version="1.0"?><kml xmlns="http://www.opengis.net/kml/2.2"><Document>'
+    '<Placemark><name>Peak</name><Point><coordinates>10.3,46.8,0</coordinates></Point></Placemark>'
+    '<Placemark><LineString><coordinates>10.1,46.9 10.2,46.85</coordinates></LineString></Placemark></Document></kml>')
+# Drapes: grey, grey + alpha, RGB and RGBA PNGs (stretched over the grid,
+# having no georeference), 16 x 8 pixels.
+for name, colour, channels in (("grey.png", 0, 1), ("grey_alpha.png", 4, 2), ("rgb.png", 2, 3), ("rgba.png", 6, 4)):
+    put("drape", name, png(16, 8, 8, colour, [bytes((x * 16 + y * 32 + c * 80) % 256 for x in range(16) for c in range(channels)) for y in range(8)]))
 # Cameras: one scene per path type and projection (fuzz_camera follows each to
 # its matrices); the scene seed above as well.
 cameras = {

@@ -20,6 +20,7 @@ packages=(
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   libopenexr-dev
   python-matplotlib-data
+  fonts-dejavu-core
   python3-dev python3-numpy python3-pytest pybind11-dev
   gdal-bin python3-gdal
 )

@@ -1,5 +1,7 @@
 #include <sierra/render/ZoneSurface.h>
 
+#include "render/TextureFiltering.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Timer.h>
 #include <sierra/render/Capture.h>
@@ -22,9 +24,6 @@ namespace {
 
 constexpr GLuint kZoneUniformBinding = 2;
 constexpr int kMaxZones = 256;
-// GL_TEXTURE_MAX_ANISOTROPY (core in 4.6, the same value as the EXT extension's).
-constexpr GLenum kMaxAnisotropy = 0x84FE;
-constexpr GLenum kMaxAnisotropyLimit = 0x84FF;
 
 // Field for field the layout of `uniform Zones` in shaders/surface_zones.glsl.
 struct ZoneUniformData {
@@ -35,16 +34,6 @@ struct ZoneUniformData {
         tile{};  // x: 1 / zone-map pixels per tile repetition; y: height blend 0..1
     std::array<glm::vec4, kMaxZones> colour{};  // rgb: the zone's colour in the palette
 };
-
-bool hasExtension(const char* name) {
-    GLint count = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
-    for (GLint k = 0; k < count; ++k)
-        if (std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(k))),
-                        name) == 0)
-            return true;
-    return false;
-}
 
 // The real samples of a padded field (padding lies beyond the last real row and column).
 terrain::Heightfield realSamples(const terrain::Heightfield& field, const TerrainGpu& terrain) {
@@ -158,20 +147,7 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
     for (size_t k = 0; k < images.size(); ++k)
         surface->tiles_.uploadLayer(int(k), GL_RGBA, GL_UNSIGNED_BYTE, images[k].rgba.data());
     if (levels > 1) surface->tiles_.generateMipmaps();
-    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const bool llvmpipe = renderer && std::strstr(renderer, "llvmpipe") != nullptr;
-    // llvmpipe (Mesa 22.3) filters in software: with anisotropy 8 one 1080p
-    // frame took minutes, and bilinear lookups of the nearest mip level cost
-    // fewer instructions than trilinear ones (docs/zones.md, "Frame cost").
-    // Other drivers: trilinear, anisotropy 8 (or the driver's limit).
-    if (llvmpipe && levels > 1)
-        glTextureParameteri(surface->tiles_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    if (!llvmpipe && (hasExtension("GL_EXT_texture_filter_anisotropic") ||
-                      hasExtension("GL_ARB_texture_filter_anisotropic"))) {
-        float limit = 1.0f;
-        glGetFloatv(kMaxAnisotropyLimit, &limit);
-        glTextureParameterf(surface->tiles_.id(), kMaxAnisotropy, std::min(8.0f, limit));
-    }
+    applyMipmapFiltering(surface->tiles_, levels);
 
     auto u = std::make_unique<ZoneUniformData>();
     u->map = {float(map.width), float(map.height), float(texelsPerPixel), band};

@@ -31,6 +31,9 @@ class Surface {
     virtual bool zoneIds() const { return false; }
     // Binds the surface's textures and blocks (inside the terrain pass's state scope).
     virtual void bind() const = 0;
+    // A surface over another (the drapes): the shader file that stands for
+    // "surface_base.glsl" in its own; empty for a surface of its own.
+    virtual std::string baseShaderFile() const { return {}; }
 };
 
 struct RampSurfaceDesc {

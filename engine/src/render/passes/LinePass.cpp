@@ -28,7 +28,8 @@ std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines,
     std::vector<float> data;
     for (size_t k = 0; k < lines.polylineCount(); ++k) {
         auto p = lines.polyline(k);
-        const float rank = float(std::fmod(double(k) * kGolden, 1.0));
+        // Rank 0 is below every cell's threshold: never thinned.
+        const float rank = desc.thin ? float(std::fmod(double(k) * kGolden, 1.0)) : 0.0f;
         for (size_t v = 1; v < p.size(); ++v) {
             const analysis::LineVertex& a = p[v - 1];
             const analysis::LineVertex& b = p[v];

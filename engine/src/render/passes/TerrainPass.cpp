@@ -12,12 +12,15 @@ namespace sierra::render {
 
 namespace {
 
-gpu::Program buildProgram(const std::string& surfaceFile, const std::string& defines) {
-    gpu::IncludeAlias alias{"surface.glsl", surfaceFile};
-    return gpu::Program::create({.vertex = "terrain.vert",
-                                 .fragment = "terrain.frag",
-                                 .defines = defines,
-                                 .aliases = std::span<const gpu::IncludeAlias>(&alias, 1)});
+gpu::Program buildProgram(const std::string& surfaceFile, const std::string& baseFile,
+                          const std::string& defines) {
+    const gpu::IncludeAlias aliases[] = {{"surface.glsl", surfaceFile},
+                                         {"surface_base.glsl", baseFile}};
+    return gpu::Program::create(
+        {.vertex = "terrain.vert",
+         .fragment = "terrain.frag",
+         .defines = defines,
+         .aliases = std::span<const gpu::IncludeAlias>(aliases, baseFile.empty() ? 1 : 2)});
 }
 
 }  // namespace
@@ -26,6 +29,7 @@ std::unique_ptr<TerrainPass> TerrainPass::create(std::unique_ptr<Surface> surfac
     SIERRA_CHECK(surface != nullptr, "the terrain pass needs a surface");
     auto pass = std::make_unique<TerrainPass>();
     pass->surfaceFile_ = surface->shaderFile();
+    pass->baseFile_ = surface->baseShaderFile();
     pass->lit_ = surface->lit();
     pass->defines_ = surface->defines() + (pass->lit_ ? "" : "#define SIERRA_UNLIT 1\n");
     pass->program(false, false);  // the plain variant now: a bad surface fails at creation
@@ -37,9 +41,9 @@ const gpu::Program& TerrainPass::program(bool contours, bool relief) {
     relief = relief && lit_;
     gpu::Program& program = programs_[size_t(contours ? 1 : 0) | size_t(relief ? 2 : 0)];
     if (program.id() == 0)
-        program =
-            buildProgram(surfaceFile_, defines_ + (contours ? "#define SIERRA_CONTOURS 1\n" : "") +
-                                           (relief ? "#define SIERRA_RELIEF_LIGHT 1\n" : ""));
+        program = buildProgram(surfaceFile_, baseFile_,
+                               defines_ + (contours ? "#define SIERRA_CONTOURS 1\n" : "") +
+                                   (relief ? "#define SIERRA_RELIEF_LIGHT 1\n" : ""));
     return program;
 }
 

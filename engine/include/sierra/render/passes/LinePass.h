@@ -26,6 +26,9 @@ namespace sierra::render {
 struct LinePassDesc {
     float width = 1.0f;                        // pixels, > 0
     glm::vec4 colour{0.0f, 0.0f, 0.0f, 1.0f};  // RGBA 0..1; alpha multiplies the curvature
+    // Distance thinning (the curvature lines' density per screen area);
+    // false keeps every polyline at any distance (vector layers).
+    bool thin = true;
 };
 
 class LinePass final : public Pass {

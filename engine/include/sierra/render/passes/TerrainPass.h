@@ -53,6 +53,7 @@ class TerrainPass final : public Pass {
     std::array<gpu::Program, 4> programs_;
     std::string defines_;      // the surface's
     std::string surfaceFile_;  // what "surface.glsl" stands for
+    std::string baseFile_;     // what "surface_base.glsl" stands for; empty = nothing
     TerrainShading shading_;
     std::unique_ptr<Surface> surface_;
     bool lit_ = true;

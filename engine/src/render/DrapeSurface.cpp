@@ -1,0 +1,140 @@
+#include <sierra/render/DrapeSurface.h>
+
+#include "render/TextureFiltering.h"
+
+#include <sierra/core/Error.h>
+#include <sierra/core/Parallel.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sierra::render {
+
+namespace {
+
+// Layer texel (x, y) of a target `width` x `height` composite: the layer's
+// colour and alpha there, bilinear between its texel centres (a layer spans
+// the same grid extent at its own resolution).
+std::array<float, 4> sampleLayer(const terrain::DrapeImage& image, int x, int y, int width,
+                                 int height) {
+    const float u = std::clamp((float(x) + 0.5f) * float(image.width) / float(width) - 0.5f, 0.0f,
+                               float(image.width - 1));
+    const float v = std::clamp((float(y) + 0.5f) * float(image.height) / float(height) - 0.5f, 0.0f,
+                               float(image.height - 1));
+    const int x0 = int(u), y0 = int(v);
+    const int x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
+    const float fu = u - float(x0), fv = v - float(y0);
+    std::array<float, 4> out{};
+    auto at = [&](int px, int py, int c) {
+        return float(image.rgba[(size_t(py) * size_t(image.width) + size_t(px)) * 4 + size_t(c)]);
+    };
+    for (int c = 0; c < 4; ++c)
+        out[size_t(c)] =
+            ((1.0f - fu) * (1.0f - fv) * at(x0, y0, c) + fu * (1.0f - fv) * at(x1, y0, c) +
+             (1.0f - fu) * fv * at(x0, y1, c) + fu * fv * at(x1, y1, c)) /
+            255.0f;
+    return out;
+}
+
+uint8_t unorm(float v) {
+    return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+class DrapeSurface final : public Surface {
+  public:
+    DrapeSurface(std::unique_ptr<Surface> base, gpu::Texture multiplier, gpu::Texture added)
+        : base_(std::move(base)), multiplier_(std::move(multiplier)), added_(std::move(added)) {}
+    std::string shaderFile() const override { return "surface_drape.glsl"; }
+    std::string baseShaderFile() const override { return base_->shaderFile(); }
+    std::string defines() const override { return base_->defines(); }
+    bool lit() const override { return base_->lit(); }
+    // bind() binds the base's textures and blocks, its zone field among them.
+    bool zoneIds() const override { return base_->zoneIds(); }
+    void bind() const override {
+        base_->bind();
+        glBindTextureUnit(8, multiplier_.id());
+        glBindTextureUnit(9, added_.id());
+    }
+
+  private:
+    std::unique_ptr<Surface> base_;
+    gpu::Texture multiplier_;
+    gpu::Texture added_;
+};
+
+gpu::Texture upload(const DrapeMaps& maps, const std::vector<uint8_t>& pixels) {
+    const int levels = 1 + int(std::floor(std::log2(double(std::max(maps.width, maps.height)))));
+    gpu::Texture texture = gpu::Texture::create(
+        {.format = GL_RGBA8, .width = maps.width, .height = maps.height, .levels = levels});
+    texture.upload(GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    texture.generateMipmaps();
+    applyMipmapFiltering(texture, levels);
+    return texture;
+}
+
+}  // namespace
+
+DrapeMaps composeDrapes(std::span<const DrapeLayer> layers) {
+    SIERRA_CHECK(!layers.empty(), "composeDrapes needs at least one layer");
+    DrapeMaps maps;
+    for (const DrapeLayer& layer : layers) {
+        SIERRA_CHECK(layer.image && layer.image->width > 0 && layer.image->height > 0 &&
+                         layer.image->rgba.size() ==
+                             size_t(layer.image->width) * size_t(layer.image->height) * 4,
+                     "a drape layer needs an image");
+        SIERRA_CHECK(layer.opacity >= 0.0f && layer.opacity <= 1.0f,
+                     "a drape's opacity is 0..1, got ", layer.opacity);
+        maps.width = std::max(maps.width, layer.image->width);
+        maps.height = std::max(maps.height, layer.image->height);
+    }
+    const size_t texels = size_t(maps.width) * size_t(maps.height);
+    maps.multiplier.assign(texels * 4, 255);
+    maps.added.assign(texels * 4, 0);
+    parallelFor(0, maps.height, [&](int64_t row) {
+        const int y = int(row);
+        for (int x = 0; x < maps.width; ++x) {
+            // c -> c * m + a, composed layer after layer.
+            float m[3] = {1.0f, 1.0f, 1.0f}, a[3] = {0.0f, 0.0f, 0.0f};
+            for (const DrapeLayer& layer : layers) {
+                const auto s = sampleLayer(*layer.image, x, y, maps.width, maps.height);
+                const float alpha = s[3] * layer.opacity;
+                for (int c = 0; c < 3; ++c) {
+                    // Replace: c (1 - alpha) + alpha L. Multiply: c (1 - alpha + alpha L).
+                    const float lm = layer.blend == DrapeBlend::Replace
+                                         ? 1.0f - alpha
+                                         : 1.0f - alpha + alpha * s[size_t(c)];
+                    const float la =
+                        layer.blend == DrapeBlend::Replace ? alpha * s[size_t(c)] : 0.0f;
+                    m[c] *= lm;
+                    a[c] = a[c] * lm + la;
+                }
+            }
+            const size_t k = (size_t(y) * size_t(maps.width) + size_t(x)) * 4;
+            for (int c = 0; c < 3; ++c) {
+                maps.multiplier[k + size_t(c)] = unorm(m[c]);
+                maps.added[k + size_t(c)] = unorm(a[c]);
+            }
+        }
+    });
+    return maps;
+}
+
+int maxTextureSide() {
+    GLint side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &side);
+    return int(side);
+}
+
+std::unique_ptr<Surface> makeDrapeSurface(std::unique_ptr<Surface> base,
+                                          std::span<const DrapeLayer> layers) {
+    SIERRA_CHECK(base != nullptr, "a drape needs a surface beneath it");
+    const DrapeMaps maps = composeDrapes(layers);
+    const int limit = maxTextureSide();
+    if (maps.width > limit || maps.height > limit)
+        throw Error(msg("a drape of ", maps.width, "x", maps.height,
+                        " texels is over this driver's texture limit of ", limit));
+    return std::make_unique<DrapeSurface>(std::move(base), upload(maps, maps.multiplier),
+                                          upload(maps, maps.added));
+}
+
+}  // namespace sierra::render

@@ -1,0 +1,58 @@
+// libFuzzer target: imagery drapes (terrain::readDrape, behind --drape) on
+// arbitrary bytes, through GDAL's raster drivers onto a georeferenced grid,
+// as one in-memory file (memfd_create) read back through /proc/self/fd. A
+// sierra::Error is the expected answer to bad input; anything else is a
+// finding, and so is a drape that breaks readDrape's promises (a size within
+// the texture limit, width * height * 4 bytes, coverage in (0, 1]).
+
+#include <sierra/core/Error.h>
+#include <sierra/terrain/Drape.h>
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace {
+
+struct MemoryFile {
+    int fd = ::memfd_create("fuzz.drape", MFD_CLOEXEC);
+    std::string path = "/proc/self/fd/" + std::to_string(fd);
+    ~MemoryFile() { ::close(fd); }
+
+    void fill(const uint8_t* data, size_t size) {
+        if (fd < 0 || ::ftruncate(fd, 0) != 0) __builtin_trap();
+        for (size_t done = 0; done < size;) {
+            const ssize_t n = ::pwrite(fd, data + done, size - done, off_t(done));
+            if (n <= 0) __builtin_trap();
+            done += size_t(n);
+        }
+    }
+};
+
+// WGS 84, 64 x 32 samples 0.01 degrees apart from 10 E, 47 N (the seeds' area).
+const char* kWgs84 =
+    "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],"
+    "PRIMEM[\"Greenwich\",0],UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    static MemoryFile file;
+    file.fill(data, size);
+    try {
+        // A small texture limit keeps a huge declared image cheap to place.
+        const auto drape = sierra::terrain::readDrape(
+            file.path, {.placement = sierra::terrain::GridPlacement{
+                            {10.0, 0.01, 0.0, 47.0, 0.0, -0.01}, kWgs84, 64, 32},
+                        .maxTexels = 256});
+        if (drape.width < 1 || drape.height < 1 || drape.width > 256 || drape.height > 256 ||
+            drape.rgba.size() != size_t(drape.width) * size_t(drape.height) * 4 ||
+            !(drape.coverage > 0.0 && drape.coverage <= 1.0))
+            __builtin_trap();
+    } catch (const sierra::Error&) {
+    }
+    return 0;
+}
