@@ -5,9 +5,14 @@
 # ARCHITECTURE defaults to docs/architecture.md beside this script's cmake/.
 # It scans ENGINE_DIR/src/<module>/ and ENGINE_DIR/include/sierra/<module>/ and
 # prints one line per forbidden include: "FILE:LINE: module M may not include
-# <H> (H belongs to D; M may use: ...)". Exit status non-zero on any.
+# <H> (H belongs to D; M may use: ...)", and one per public header that
+# reaches a dependency kept out of its module's public headers, directly or
+# through other public headers: "HEADER: a public header of M reaches <H>
+# (D is kept out of M's public headers) through FILE:LINE". Exit status
+# non-zero on any.
 
 cmake_policy(SET CMP0057 NEW)  # if(... IN_LIST ...)
+cmake_policy(SET CMP0054 NEW)  # quoted if() arguments are strings
 
 if(NOT ENGINE_DIR OR NOT IS_DIRECTORY "${ENGINE_DIR}")
   message(FATAL_ERROR "CheckModuleIncludes: set -DENGINE_DIR to the engine/ directory")
@@ -29,6 +34,11 @@ endif()
 #                                            names classify() gives headers below)
 #   | dependency | only in |                 a dependency that only the files
 #                                            listed in backticks may include
+#   | kept out | of the public headers of |  a dependency that the public headers
+#                                            of the modules listed may not reach,
+#                                            directly or through other headers,
+#                                            and that those modules' rows may not
+#                                            list
 # A table ends at the first line that does not start with "|".
 # Read as text and split on newlines: semicolons and brackets in the prose
 # would otherwise cut or join list elements.
@@ -40,6 +50,7 @@ string(REPLACE "\r" "" doc_text "${doc_text}")
 string(REPLACE "\n" ";" doc_lines "${doc_text}")
 set(known_modules "")
 set(confined "")
+set(kept_out "")
 set(table "")
 set(doc_line 0)
 foreach(line IN LISTS doc_lines)
@@ -50,6 +61,9 @@ foreach(line IN LISTS doc_lines)
   elseif(line MATCHES "^\\| *dependency *\\| *only in *\\| *$")
     set(table confined)
     continue()
+  elseif(line MATCHES "^\\| *kept out *\\| *of the public headers of *\\| *$")
+    set(table kept_out)
+    continue()
   endif()
   if(table STREQUAL "" OR line MATCHES "^\\|[-| :]+$")
     continue()
@@ -58,7 +72,7 @@ foreach(line IN LISTS doc_lines)
     set(table "")
     continue()
   endif()
-  if(NOT line MATCHES "^\\| *`([a-z0-9_]+)` *\\|(.*\\|)?([^|]*)\\| *$")
+  if(NOT line MATCHES "^\\| *`([A-Za-z0-9_]+)` *\\|(.*\\|)?([^|]*)\\| *$")
     message("${ARCHITECTURE}:${doc_line}: a row of the ${table} table must start "
             "with a `name` cell and end with a cell of `names`: ${line}")
     message(FATAL_ERROR "CheckModuleIncludes: the module table could not be read")
@@ -69,6 +83,9 @@ foreach(line IN LISTS doc_lines)
   if(table STREQUAL "modules")
     list(APPEND known_modules ${name})
     set(allowed_${name} ${tokens})
+  elseif(table STREQUAL "kept_out")
+    list(APPEND kept_out ${name})
+    set(kept_out_of_${name} ${tokens})
   else()
     list(APPEND confined ${name})
     set(only_in_${name} ${tokens})
@@ -197,6 +214,86 @@ foreach(module ${known_modules})
         math(EXPR violations "${violations} + 1")
       endif()
     endforeach()
+  endforeach()
+endforeach()
+
+# Kept out of public headers: a module listed may not name the dependency in
+# its row, and none of its public headers may reach it, directly or through
+# the public headers it includes (followed through ENGINE_DIR/include).
+foreach(dep ${kept_out})
+  foreach(module ${kept_out_of_${dep}})
+    list(FIND allowed_${module} ${dep} at)
+    if(at GREATER -1)
+      message("${ARCHITECTURE}: module ${module} lists `${dep}` in the module table, "
+              "but ${dep} is kept out of ${module}'s public headers")
+      math(EXPR violations "${violations} + 1")
+    endif()
+  endforeach()
+endforeach()
+
+# The <...> includes of a header as "HEADER|LINE" entries, read once per file.
+function(public_includes file out)
+  string(MD5 key "${file}")
+  get_property(known GLOBAL PROPERTY includes_${key} SET)
+  if(NOT known)
+    set(found "")
+    file(STRINGS "${file}" lines)
+    set(line_number 0)
+    foreach(line IN LISTS lines)
+      math(EXPR line_number "${line_number} + 1")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*<([^>]+)>")
+        list(APPEND found "${CMAKE_MATCH_1}|${line_number}")
+      endif()
+    endforeach()
+    set_property(GLOBAL PROPERTY includes_${key} "${found}")
+  endif()
+  get_property(found GLOBAL PROPERTY includes_${key})
+  set(${out} "${found}" PARENT_SCOPE)
+endfunction()
+
+set(kept_modules "")
+foreach(dep ${kept_out})
+  list(APPEND kept_modules ${kept_out_of_${dep}})
+endforeach()
+list(REMOVE_DUPLICATES kept_modules)
+foreach(module ${kept_modules})
+  set(deps_kept "")
+  foreach(dep ${kept_out})
+    if(module IN_LIST kept_out_of_${dep})
+      list(APPEND deps_kept ${dep})
+    endif()
+  endforeach()
+  file(GLOB_RECURSE headers "${ENGINE_DIR}/include/sierra/${module}/*.h")
+  foreach(header_file ${headers})
+    file(RELATIVE_PATH start "${ENGINE_DIR}" "${header_file}")
+    # Breadth first over the public headers it reaches; each reported once.
+    set(queue "${header_file}")
+    set(seen "${header_file}")
+    while(queue)
+      list(POP_FRONT queue file)
+      file(RELATIVE_PATH rel "${ENGINE_DIR}" "${file}")
+      public_includes("${file}" entries)
+      foreach(entry IN LISTS entries)
+        string(REGEX REPLACE "\\|[0-9]+$" "" included "${entry}")
+        string(REGEX REPLACE "^.*\\|" "" at_line "${entry}")
+        classify("${included}" kind)
+        if(kind IN_LIST deps_kept)
+          if(rel STREQUAL start)
+            set(via "directly (line ${at_line})")
+          else()
+            set(via "through ${rel}:${at_line}")
+          endif()
+          message("${start}: a public header of ${module} reaches <${included}> "
+                  "(${kind} is kept out of ${module}'s public headers) ${via}")
+          math(EXPR violations "${violations} + 1")
+        endif()
+        set(next "${ENGINE_DIR}/include/${included}")
+        if(included MATCHES "^sierra/" AND EXISTS "${next}" AND NOT next IN_LIST seen)
+          list(APPEND seen "${next}")
+          list(APPEND queue "${next}")
+        endif()
+      endforeach()
+    endwhile()
   endforeach()
 endforeach()
 

@@ -3,8 +3,8 @@
 // Any heightmap sierra-render reads will do; with no arguments a generated
 // fractal terrain goes to hello.png.
 #include <sierra/core/Error.h>
+#include <sierra/facade/SceneRenderer.h>
 #include <sierra/render/Capture.h>
-#include <sierra/render/SceneRenderer.h>
 
 #include <cstdio>
 
@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
     scene.camera.elevation = 30.0f;
     const char* out = argc > 2 ? argv[2] : "hello.png";
     try {
-        auto renderer = sierra::render::SceneRenderer::create(scene);
+        auto renderer = sierra::facade::SceneRenderer::create(scene);
         sierra::render::writePng(out, renderer.frame());
         std::printf("%s\n%d triangles -> %s\n", renderer.description().c_str(),
                     renderer.lastStats().triangles, out);

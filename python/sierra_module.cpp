@@ -10,9 +10,9 @@
 // time.
 #include <sierra/analysis/Relief.h>
 #include <sierra/core/Error.h>
+#include <sierra/facade/SceneRenderer.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
-#include <sierra/render/SceneRenderer.h>
 #include <sierra/scene/SceneJson.h>
 #include <sierra/terrain/DemMaps.h>
 #include <sierra/terrain/Heightfield.h>
@@ -130,8 +130,8 @@ class Renderer {
             context(s.output.width, s.output.height);
             context_->makeCurrent();
             try {
-                last_ = std::make_unique<render::SceneRenderer>(
-                    render::SceneRenderer::create(s, context_, grid ? &*grid : nullptr));
+                last_ = std::make_unique<facade::SceneRenderer>(
+                    facade::SceneRenderer::create(s, context_, grid ? &*grid : nullptr));
                 if (output == "rgba")
                     image = last_->frame(frame);
                 else
@@ -169,7 +169,7 @@ class Renderer {
     }
 
     std::shared_ptr<gpu::EglContext> context_;
-    std::unique_ptr<render::SceneRenderer> last_;
+    std::unique_ptr<facade::SceneRenderer> last_;
     std::mutex mutex_;
 };
 

@@ -336,7 +336,7 @@ FIGURES = [
     Figure("python", "Python render against the C++ facade",
            "One 1080p frame of the default scene, the renderer created for the scene on a kept "
            "context and the frame read back, through `sierra.Renderer.render` and through "
-           "`sierra-bench facade` (render::SceneRenderer) in alternating rounds; medians "
+           "`sierra-bench facade` (facade::SceneRenderer) in alternating rounds; medians "
            "(PYTHONPATH=build/python).",
            {"python_render": ["python3", "python/bench/render_bench.py", "--bench",
                               "{apps}/sierra-bench", "--json", "{json}"]},

@@ -11,8 +11,13 @@
 #include "surface_base.glsl"
 #undef surfaceAlbedo
 
+// With multiply layers (SIERRA_DRAPE_MULTIPLY), two maps. Replace layers
+// alone multiply the base by a grey (1 - a): one map then, premultiplied
+// colour and its alpha a, half the memory and one fetch.
+layout(binding = 9) uniform sampler2D uDrapeAdded;  // rgb: what is added; a: 1 - the multiplier (replace only)
+#ifdef SIERRA_DRAPE_MULTIPLY
 layout(binding = 8) uniform sampler2D uDrapeMultiplier;  // rgb: what the base albedo is multiplied by
-layout(binding = 9) uniform sampler2D uDrapeAdded;       // rgb: what is added after
+#endif
 
 vec2 drapeUv(vec2 xz) {
     vec2 samples = uSpacingValid.zw / uSpacingValid.xy + 1.0;  // the real grid, not the padding
@@ -21,6 +26,10 @@ vec2 drapeUv(vec2 xz) {
 
 vec3 surfaceAlbedo(vec3 world, Ground g) {
     vec2 uv = drapeUv(world.xz);
-    return baseSurfaceAlbedo(world, g) * texture(uDrapeMultiplier, uv).rgb +
-           texture(uDrapeAdded, uv).rgb;
+    vec4 added = texture(uDrapeAdded, uv);
+#ifdef SIERRA_DRAPE_MULTIPLY
+    return baseSurfaceAlbedo(world, g) * texture(uDrapeMultiplier, uv).rgb + added.rgb;
+#else
+    return baseSurfaceAlbedo(world, g) * (1.0 - added.a) + added.rgb;
+#endif
 }

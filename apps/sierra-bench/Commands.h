@@ -9,7 +9,7 @@ namespace sierra::apps {
 void addStaticCommand(CLI::App& app);
 // `frames`: view-dependent frames along a camera path, timed per stage.
 void addFramesCommand(CLI::App& app);
-// `facade`: whole renders of a scene through render::SceneRenderer, timed.
+// `facade`: whole renders of a scene through facade::SceneRenderer, timed.
 void addFacadeCommand(CLI::App& app);
 
 }  // namespace sierra::apps

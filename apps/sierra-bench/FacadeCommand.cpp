@@ -1,5 +1,5 @@
 // sierra-bench facade: the time an embedding program pays for one frame of a
-// scene through render::SceneRenderer, as the Python module renders it: the
+// scene through facade::SceneRenderer, as the Python module renders it: the
 // renderer created for the scene on a context kept between calls (terrain
 // loaded, padded and uploaded, relief fields and surface built, cameras
 // placed), frame k drawn and read back. The Python module's benchmark
@@ -12,8 +12,8 @@
 
 #include <sierra/core/Files.h>
 #include <sierra/core/Timer.h>
+#include <sierra/facade/SceneRenderer.h>
 #include <sierra/gpu/EglContext.h>
-#include <sierra/render/SceneRenderer.h>
 #include <sierra/scene/Options.h>
 
 #include <nlohmann/json.hpp>
@@ -42,7 +42,7 @@ void runFacade(const FacadeOptions& o) {
     std::string renderer;
     for (int k = 0; k <= o.repeat; ++k) {
         Stopwatch clock;
-        render::SceneRenderer r = render::SceneRenderer::create(s, context);
+        facade::SceneRenderer r = facade::SceneRenderer::create(s, context);
         const gpu::Image image = r.frame(o.frame);
         const double t = clock.ms();
         if (k == 0) {

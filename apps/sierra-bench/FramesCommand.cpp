@@ -12,14 +12,13 @@
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
+#include <sierra/facade/SceneRenderer.h>
 #include <sierra/gpu/EglContext.h>
+#include <sierra/gpu/Gl.h>
 #include <sierra/render/Capture.h>
-#include <sierra/render/FrameTarget.h>
-#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Options.h>
-#include <sierra/scene/Terrain.h>
 
 #include <nlohmann/json.hpp>
 
@@ -90,23 +89,21 @@ double processCpuMs() {
 }
 
 // Draws one frame and reads it back; fills the timing fields of `record`.
-gpu::Image timedFrame(render::TerrainRenderer& terrain, render::FrameTarget& target,
-                      const render::Camera& camera, const render::DrawOptions& draw,
-                      FrameRecord& record) {
+gpu::Image timedFrame(facade::SceneRenderer& r, const render::Camera& camera,
+                      const render::DrawOptions& draw, FrameRecord& record) {
     const double cpuStart = processCpuMs();
     Stopwatch frame;
-    target.begin(render::TerrainRenderer::clearColour(draw.lighting));
-    render::DrawStats s = terrain.draw(camera, target.width(), target.height(), draw);
+    render::DrawStats s = r.drawFrame(camera, draw);
     Stopwatch finish;
-    target.resolve();
+    r.target().resolve();
     glFinish();  // llvmpipe rasterises at flush: the draw is done only here
     double drawWall = s.submitMs + finish.ms();
     Stopwatch read;
-    gpu::Image image = gpu::readFramebuffer(target.width(), target.height());
+    gpu::Image image = gpu::readFramebuffer(r.target().width(), r.target().height());
     record.readBack = read.ms();
     record.total = frame.ms();
     record.processCpu = processCpuMs() - cpuStart;
-    terrain.collectGpuTime(s);
+    r.terrain().collectGpuTime(s);
     record.refine = s.refineMs;
     record.upload = s.uploadMs;
     record.draw = drawWall;
@@ -154,10 +151,9 @@ void pinCallingThread(int cpu) {
         throw Error(msg("--pin-cpu ", cpu, ": ", std::strerror(err)));
 }
 
-void runFrames(const FramesOptions& o) {
-    const scene::Scene& sc = o.scene;
+// The options checked before any work, so a bad one fails at once.
+void checkFramesOptions(const FramesOptions& o) {
     if (o.pinCpu >= 0) checkPinCpu(o.pinCpu);
-    // Outputs are checked before the run, so a bad path fails at once.
     if (!o.saveFrames.empty() && lowerExtension(o.saveFrames) != ".png")
         throw UsageError(
             msg("frames: --save-frames must name a .png file (frames are written as "
@@ -165,354 +161,385 @@ void runFrames(const FramesOptions& o) {
                 o.saveFrames, "'"));
     for (const std::string* path : {&o.json, &o.saveFrames})
         if (!path->empty()) ensureWritableLocation(*path);
-    const int width = sc.output.width, height = sc.output.height;
-    std::string description;
-    // The context comes first: its texture limit bounds the grid the loader takes.
-    gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
-    std::fprintf(stderr, "renderer: %s (%s)\n", context.renderer().c_str(),
-                 context.platform().c_str());
+}
+
+// The scene's renderer, its set-up said on stderr; the refining thread is
+// pinned once the context (and the driver's threads) exist.
+facade::SceneRenderer setUpFrames(const FramesOptions& o) {
+    const scene::Scene& sc = o.scene;
+    auto context = std::make_shared<gpu::EglContext>(
+        gpu::EglContext::create({.width = sc.output.width, .height = sc.output.height}));
+    std::fprintf(stderr, "renderer: %s (%s)\n", context->renderer().c_str(),
+                 context->platform().c_str());
     if (o.pinCpu >= 0) pinCallingThread(o.pinCpu);
-    terrain::Heightfield field =
-        scene::loadTerrain(sc.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
-                           render::TerrainGpu::maxGridSide());
-    float seaLevel = scene::resolveSeaLevel(sc.terrain, field);
-    std::fprintf(stderr, "terrain: %s\n", description.c_str());
-    const std::vector<glm::vec3> allSuns = render::sceneSunDirections(sc, field);
-    render::TerrainRenderer terrain =
-        render::TerrainRenderer::create(render::sceneTerrainDesc(sc, field, seaLevel));
-    if (std::string zones = render::applySceneSurface(terrain, sc, field, seaLevel); !zones.empty())
-        std::fprintf(stderr, "%s\n", zones.c_str());
-    if (std::string mesh = render::applySceneMesh(terrain, sc, field); !mesh.empty())
-        std::fprintf(stderr, "%s\n", mesh.c_str());
-    render::addOverlayPasses(terrain, sc);
-    const std::vector<std::string> passNames = terrain.addedPassNames();
-    if (o.overlayCosts && passNames.empty())
+    return facade::SceneRenderer::create(
+        sc, context, nullptr,
+        {.report = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); },
+         .describeSun = true});
+}
+
+// What the frame loop shares: the renderer, the frames timed (first..last of
+// the scene's sequence) and the draws compared.
+struct FramesRun {
+    const FramesOptions& o;
+    facade::SceneRenderer& r;
+    int first = 0, last = 0;
+    std::vector<std::string> passNames;  // the overlay passes (--overlay-costs)
+    std::string fullFrames;              // --save-frames: NAME_full.png for the references
+
+    int frames() const { return last - first + 1; }
+};
+
+// The cost options need something to compare: each refuses a scene without it.
+void checkCostOptions(const FramesRun& run, const render::DrawOptions& draw) {
+    const FramesOptions& o = run.o;
+    if (o.overlayCosts && run.passNames.empty())
         throw UsageError(
             "--overlay-costs needs overlays to time: --style with lines, hatch or contours, or "
             "--preset");
-    render::FrameTarget target =
-        render::FrameTarget::create({.width = width, .height = height, .samples = sc.output.msaa});
-    std::vector<render::Camera> all = render::sceneCameras(sc, terrain.bounds());
-    const int first = sc.path.range ? sc.path.range->first : 0;
-    const int last = sc.path.range ? sc.path.range->last : int(all.size()) - 1;
-    std::vector<render::Camera> cameras(all.begin() + first, all.begin() + last + 1);
-    const std::vector<glm::vec3> suns(allSuns.begin() + first, allSuns.begin() + last + 1);
-    render::DrawOptions draw = render::sceneDrawOptions(sc);
-    draw.lighting.sunDirection = suns.front();
     if (o.lightingCosts && !draw.lighting.shadows && !draw.lighting.skyLight)
         throw UsageError(
             "--lighting-costs compares frames with shadows and sky light against frames "
             "without: leave --shadows or --sky-light on");
-    if (o.surfaceCosts && (sc.zones.map.empty() || !sc.style.overlay.layers.shaded))
+    if (o.surfaceCosts && (o.scene.zones.map.empty() || !o.scene.style.overlay.layers.shaded))
         throw UsageError(
             "--surface-costs compares frames drawn with the zone surface against the plain "
             "colouring: give --zones (with a shaded style)");
-    render::Lod lod = draw.lod;
-    render::DrawOptions fullDraw = draw;
-    fullDraw.lod = render::Lod::Full;
-    const std::string lodText = render::lodName(lod);
-    const std::string pathText = scene::toString(sc.path.type);
+}
 
-    // One warm-up frame: first-use costs (full-grid index build, shader
-    // compilation in the driver) are not frame costs.
-    {
-        FrameRecord warm;
-        timedFrame(terrain, target, cameras.front(), draw, warm);
-        if (o.compareFull || lod == render::Lod::Full)
-            timedFrame(terrain, target, cameras.front(), fullDraw, warm);
-        if (o.lightingCosts) {
-            render::DrawOptions plainDraw = draw;
-            plainDraw.lighting.shadows = plainDraw.lighting.skyLight = false;
-            timedFrame(terrain, target, cameras.front(), plainDraw, warm);
-        }
-        if (o.surfaceCosts) {
-            render::DrawOptions plainDraw = draw;
-            plainDraw.plainSurface = true;
-            timedFrame(terrain, target, cameras.front(), plainDraw, warm);
-        }
-    }
+render::DrawOptions fullGrid(render::DrawOptions draw) {
+    draw.lod = render::Lod::Full;
+    return draw;
+}
+render::DrawOptions plainLighting(render::DrawOptions draw) {
+    draw.lighting.shadows = draw.lighting.skyLight = false;
+    return draw;
+}
+render::DrawOptions plainSurface(render::DrawOptions draw) {
+    draw.plainSurface = true;
+    return draw;
+}
 
-    std::vector<FrameRecord> records;
-    Progress progress(o.compareFull ? "frames (and full-grid references)" : "frames",
-                      int64_t(cameras.size()));
-    // Saved frames carry their index in the whole sequence; full-grid
-    // references go beside them as NAME_full_0000.png.
-    std::string fullFrames;
-    if (!o.saveFrames.empty()) {
-        std::filesystem::path p(o.saveFrames);
-        fullFrames =
-            (p.parent_path() / (p.stem().string() + "_full" + p.extension().string())).string();
-    }
-    for (size_t k = 0; k < cameras.size(); ++k) {
-        FrameRecord r;
-        draw.lighting.sunDirection = suns[k];
-        fullDraw.lighting.sunDirection = suns[k];
-        // --surface-costs: the same camera with the plain colouring, before
-        // the frame on odd frames and after it on even ones, so whatever a
-        // camera's first or second draw pays weighs on both alike.
-        render::DrawOptions plainSurfaceDraw = draw;
-        plainSurfaceDraw.plainSurface = true;
-        const bool plainSurfaceFirst = o.surfaceCosts && k % 2 == 1;
-        FrameRecord plainSurface;
-        if (plainSurfaceFirst)
-            timedFrame(terrain, target, cameras[k], plainSurfaceDraw, plainSurface);
-        gpu::Image image = timedFrame(terrain, target, cameras[k], draw, r);
-        if (o.surfaceCosts && !plainSurfaceFirst)
-            timedFrame(terrain, target, cameras[k], plainSurfaceDraw, plainSurface);
-        r.plainSurface = plainSurface.total;
-        r.plainSurfaceCpu = plainSurface.processCpu;
-        if (!o.saveFrames.empty())
-            render::writePng(render::sequencePath(o.saveFrames, first + int(k)), image);
-        std::string detail = msg(fixed(r.total, 1), " ms, ", r.triangles, " triangles");
-        if (o.surfaceCosts) detail += msg(", plain colouring ", fixed(r.plainSurface, 1), " ms");
-        if (o.compareFull) {
-            FrameRecord full;
-            gpu::Image reference = timedFrame(terrain, target, cameras[k], fullDraw, full);
-            if (!fullFrames.empty())
-                render::writePng(render::sequencePath(fullFrames, first + int(k)), reference);
-            render::ImageDifference d = render::compareImages(image, reference, 8);
-            r.psnr = d.psnr;
-            r.differing = d.differingShare;
-            r.fullTotal = full.total;
-            detail +=
-                msg(", full grid ", fixed(full.total, 1), " ms, PSNR ",
-                    std::isfinite(d.psnr) ? fixed(d.psnr, 2) + " dB" : std::string("identical"));
-        }
-        if (o.lightingCosts) {
-            // The same camera without the relief fields, in turn with the frame above.
-            render::DrawOptions plainDraw = draw;
-            plainDraw.lighting.shadows = plainDraw.lighting.skyLight = false;
-            FrameRecord other;
-            timedFrame(terrain, target, cameras[k], plainDraw, other);
-            r.plain = other.total;
-            detail += msg(", plain lighting ", fixed(r.plain, 1), " ms");
-        }
-        if (o.overlayCosts) {
-            // Interleaved with the frame above, so the machine's load weighs on all alike.
-            render::DrawOptions bareDraw = draw;
-            bareDraw.addedPasses = 0;
-            FrameRecord other;
-            timedFrame(terrain, target, cameras[k], bareDraw, other);
-            r.bare = other.total;
-            for (size_t p = 0; p < passNames.size() && p < 64; ++p) {
-                bareDraw.addedPasses = uint64_t(1) << p;
-                timedFrame(terrain, target, cameras[k], bareDraw, other);
-                r.alone.push_back(other.total);
-            }
-            detail += msg(", no overlays ", fixed(r.bare, 1), " ms");
-        }
-        records.push_back(r);
-        progress.update(int64_t(k + 1), detail);
-    }
-    progress.finish();
+// One warm-up frame: first-use costs (full-grid index build, shader
+// compilation in the driver) are not frame costs.
+void warmUp(FramesRun& run) {
+    const FramesOptions& o = run.o;
+    const render::Camera camera = run.r.camera(run.first);
+    const render::DrawOptions draw = run.r.drawOptions(run.first);
+    FrameRecord warm;
+    timedFrame(run.r, camera, draw, warm);
+    if (o.compareFull || draw.lod == render::Lod::Full)
+        timedFrame(run.r, camera, fullGrid(draw), warm);
+    if (o.lightingCosts) timedFrame(run.r, camera, plainLighting(draw), warm);
+    if (o.surfaceCosts) timedFrame(run.r, camera, plainSurface(draw), warm);
+}
 
-    Stats refine = stats(records, &FrameRecord::refine),
-          upload = stats(records, &FrameRecord::upload), drawS = stats(records, &FrameRecord::draw),
-          gpuS = stats(records, &FrameRecord::gpu), readS = stats(records, &FrameRecord::readBack),
-          total = stats(records, &FrameRecord::total);
+// Frame k of the sequence and the draws compared with it from its camera;
+// `detail` gets the progress line's figures.
+FrameRecord measureFrame(FramesRun& run, int k, std::string& detail) {
+    const FramesOptions& o = run.o;
+    facade::SceneRenderer& r = run.r;
+    const render::Camera camera = r.camera(k);
+    const render::DrawOptions draw = r.drawOptions(k);
+    FrameRecord rec;
+    // --surface-costs: the same camera with the plain colouring, before the
+    // frame on odd frames and after it on even ones, so whatever a camera's
+    // first or second draw pays weighs on both alike.
+    const bool plainSurfaceFirst = o.surfaceCosts && (k - run.first) % 2 == 1;
+    FrameRecord plain;
+    if (plainSurfaceFirst) timedFrame(r, camera, plainSurface(draw), plain);
+    gpu::Image image = timedFrame(r, camera, draw, rec);
+    if (o.surfaceCosts && !plainSurfaceFirst) timedFrame(r, camera, plainSurface(draw), plain);
+    rec.plainSurface = plain.total;
+    rec.plainSurfaceCpu = plain.processCpu;
+    if (!o.saveFrames.empty()) render::writePng(render::sequencePath(o.saveFrames, k), image);
+    detail = msg(fixed(rec.total, 1), " ms, ", rec.triangles, " triangles");
+    if (o.surfaceCosts) detail += msg(", plain colouring ", fixed(rec.plainSurface, 1), " ms");
+    if (o.compareFull) {
+        FrameRecord full;
+        gpu::Image reference = timedFrame(r, camera, fullGrid(draw), full);
+        if (!run.fullFrames.empty())
+            render::writePng(render::sequencePath(run.fullFrames, k), reference);
+        render::ImageDifference d = render::compareImages(image, reference, 8);
+        rec.psnr = d.psnr;
+        rec.differing = d.differingShare;
+        rec.fullTotal = full.total;
+        detail += msg(", full grid ", fixed(full.total, 1), " ms, PSNR ",
+                      std::isfinite(d.psnr) ? fixed(d.psnr, 2) + " dB" : std::string("identical"));
+    }
+    if (o.lightingCosts) {
+        // The same camera without the relief fields, in turn with the frame above.
+        FrameRecord other;
+        timedFrame(r, camera, plainLighting(draw), other);
+        rec.plain = other.total;
+        detail += msg(", plain lighting ", fixed(rec.plain, 1), " ms");
+    }
+    if (o.overlayCosts) {
+        // Interleaved with the frame above, so the machine's load weighs on all alike.
+        render::DrawOptions bareDraw = draw;
+        bareDraw.addedPasses = 0;
+        FrameRecord other;
+        timedFrame(r, camera, bareDraw, other);
+        rec.bare = other.total;
+        for (size_t p = 0; p < run.passNames.size() && p < 64; ++p) {
+            bareDraw.addedPasses = uint64_t(1) << p;
+            timedFrame(r, camera, bareDraw, other);
+            rec.alone.push_back(other.total);
+        }
+        detail += msg(", no overlays ", fixed(rec.bare, 1), " ms");
+    }
+    return rec;
+}
+
+// The figures over all frames.
+struct FramesSummary {
+    Stats refine, upload, draw, gpu, read, total;
+    double triangles = 0, bytes = 0, indices = 0;
+    double rate = 0;  // refine + strip, triangles per second (median over frames)
+    int refined = 0, oneThread = 0;
+    std::map<int, int> cpuFrames;  // CPU the refinement finished on: frames
+    double cpuShare = 0;
+};
+
+FramesSummary summarise(const std::vector<FrameRecord>& records) {
+    FramesSummary s{.refine = stats(records, &FrameRecord::refine),
+                    .upload = stats(records, &FrameRecord::upload),
+                    .draw = stats(records, &FrameRecord::draw),
+                    .gpu = stats(records, &FrameRecord::gpu),
+                    .read = stats(records, &FrameRecord::readBack),
+                    .total = stats(records, &FrameRecord::total)};
     auto medianOf = [&](auto field) {
         std::vector<double> v;
         for (const FrameRecord& r : records) v.push_back(double(r.*field));
         return median(v);
     };
-    double triangles = medianOf(&FrameRecord::triangles);
-    double bytes = medianOf(&FrameRecord::bytes);
-    double indices = medianOf(&FrameRecord::indices);
+    s.triangles = medianOf(&FrameRecord::triangles);
+    s.bytes = medianOf(&FrameRecord::bytes);
+    s.indices = medianOf(&FrameRecord::indices);
     // Refinement throughput, frame by frame (triangles over that frame's
     // refine + strip time), then the median: the per-core rate when the
     // refinement ran on one thread.
     std::vector<double> rates;
     for (const FrameRecord& r : records)
         if (r.refine > 0) rates.push_back(double(r.triangles) / (r.refine * 1e-3));
-    const double rate = rates.empty() ? 0.0 : median(rates);
+    s.rate = rates.empty() ? 0.0 : median(rates);
     // Frames whose refinement ran on one thread, of those that refined: what
     // the default chose, frame by frame.
-    int refined = 0, oneThread = 0;
-    std::map<int, int> cpuFrames;  // CPU the refinement finished on: frames
     for (const FrameRecord& r : records) {
-        refined += r.threads > 0;
-        oneThread += r.threads == 1;
-        if (r.cpu >= 0) ++cpuFrames[r.cpu];
+        s.refined += r.threads > 0;
+        s.oneThread += r.threads == 1;
+        if (r.cpu >= 0) ++s.cpuFrames[r.cpu];
     }
+    s.cpuShare = s.total.median > 0 ? (s.refine.median + s.upload.median) / s.total.median : 0.0;
+    return s;
+}
+
+nlohmann::json toJson(Stats s) {
+    return nlohmann::json{{"median", s.median}, {"p95", s.p95}, {"p99", s.p99}};
+}
+
+// The stage table and the mesh figures on stdout, and the same in `j`.
+void reportSummary(const FramesRun& run, const FramesSummary& s, nlohmann::json& j) {
+    const FramesOptions& o = run.o;
+    const scene::Scene& sc = o.scene;
+    const render::DrawOptions& draw = run.r.drawOptions();
+    const std::string lodText = render::lodName(draw.lod);
+    const std::string pathText = scene::toString(sc.path.type);
     const bool adaptive = sc.lod.threads == 0;
     const std::string threadsText =
         adaptive ? msg("default (1 or ", defaultThreadCount(), ", whichever measures faster)")
                  : msg(sc.lod.threads);
-
+    const std::string& description = run.r.terrainDescription();
+    const std::string& renderer = run.r.context().renderer();
     std::printf(
-        "sierra-bench frames: %s, %dx%d, %s path, %zu frames, lod %s, tau %g px, geomorph %s, msaa "
+        "sierra-bench frames: %s, %dx%d, %s path, %d frames, lod %s, tau %g px, geomorph %s, msaa "
         "%d, threads %s\n",
-        description.c_str(), width, height, pathText.c_str(), cameras.size(), lodText.c_str(),
-        draw.tau, draw.geomorph ? "on" : "off", sc.output.msaa, threadsText.c_str());
-    std::printf("renderer: %s\n", context.renderer().c_str());
+        description.c_str(), sc.output.width, sc.output.height, pathText.c_str(), run.frames(),
+        lodText.c_str(), draw.tau, draw.geomorph ? "on" : "off", sc.output.msaa,
+        threadsText.c_str());
+    std::printf("renderer: %s\n", renderer.c_str());
     std::printf("%-22s %10s %10s %10s\n", "stage (ms)", "median", "p95", "p99");
-    auto row = [](const char* name, Stats s) {
-        std::printf("%-22s %10.3f %10.3f %10.3f\n", name, s.median, s.p95, s.p99);
+    auto row = [](const char* name, Stats st) {
+        std::printf("%-22s %10.3f %10.3f %10.3f\n", name, st.median, st.p95, st.p99);
     };
-    row("refine + strip", refine);
-    row("upload", upload);
-    row("draw (to glFinish)", drawS);
-    row("draw (GL timer)", gpuS);
-    row("read-back", readS);
-    row("frame", total);
-    std::printf("triangles per frame (median): %.0f\n", triangles);
-    std::printf("refine + strip rate (median over frames): %.1f M triangles/s\n", rate * 1e-6);
-    if (refined > 0)
-        std::printf("refinements on one thread: %d of %d frames\n", oneThread, refined);
-    if (!cpuFrames.empty()) {
+    row("refine + strip", s.refine);
+    row("upload", s.upload);
+    row("draw (to glFinish)", s.draw);
+    row("draw (GL timer)", s.gpu);
+    row("read-back", s.read);
+    row("frame", s.total);
+    std::printf("triangles per frame (median): %.0f\n", s.triangles);
+    std::printf("refine + strip rate (median over frames): %.1f M triangles/s\n", s.rate * 1e-6);
+    if (s.refined > 0)
+        std::printf("refinements on one thread: %d of %d frames\n", s.oneThread, s.refined);
+    if (!s.cpuFrames.empty()) {
         std::string text;
-        for (const auto& [cpu, frames] : cpuFrames)
+        for (const auto& [cpu, frames] : s.cpuFrames)
             text += msg(text.empty() ? "" : ", ", "CPU ", cpu, " (", frames,
                         frames == 1 ? " frame)" : " frames)");
         std::printf("refinements finished on: %s%s\n", text.c_str(),
                     o.pinCpu >= 0 ? msg("; pinned to CPU ", o.pinCpu).c_str() : "");
     }
-    std::printf("indices per triangle: %.3f\n", triangles > 0 ? indices / triangles : 0.0);
-    std::printf("bytes uploaded per frame (median): %.0f (%.2f per triangle)\n", bytes,
-                triangles > 0 ? bytes / triangles : 0.0);
-    double cpuShare = total.median > 0 ? (refine.median + upload.median) / total.median : 0.0;
-    std::printf("refine + strip + upload share of the frame: %.1f%%\n", 100.0 * cpuShare);
+    const double perTriangle = s.triangles > 0 ? s.indices / s.triangles : 0.0;
+    const double bytesPerTriangle = s.triangles > 0 ? s.bytes / s.triangles : 0.0;
+    std::printf("indices per triangle: %.3f\n", perTriangle);
+    std::printf("bytes uploaded per frame (median): %.0f (%.2f per triangle)\n", s.bytes,
+                bytesPerTriangle);
+    std::printf("refine + strip + upload share of the frame: %.1f%%\n", 100.0 * s.cpuShare);
 
-    nlohmann::json j;
     j["terrain"] = description;
-    j["renderer"] = context.renderer();
-    j["size"] = {width, height};
+    j["renderer"] = renderer;
+    j["size"] = {sc.output.width, sc.output.height};
     j["path"] = pathText;
-    j["frames"] = cameras.size();
+    j["frames"] = run.frames();
     j["lod"] = lodText;
     j["tau"] = draw.tau;
     j["geomorph"] = draw.geomorph;
     j["msaa"] = sc.output.msaa;
     j["threads"] = sc.lod.threads ? sc.lod.threads : defaultThreadCount();
     j["threads_adaptive"] = adaptive;
-    auto toJson = [](Stats s) {
-        return nlohmann::json{{"median", s.median}, {"p95", s.p95}, {"p99", s.p99}};
-    };
-    j["ms"] = {{"refine_strip", toJson(refine)}, {"upload", toJson(upload)},
-               {"draw", toJson(drawS)},          {"draw_gl_timer", toJson(gpuS)},
-               {"read_back", toJson(readS)},     {"frame", toJson(total)}};
-    j["triangles_median"] = triangles;
-    j["refine_triangles_per_second_median"] = rate;
-    j["one_thread_frames"] = oneThread;
+    j["ms"] = {{"refine_strip", toJson(s.refine)}, {"upload", toJson(s.upload)},
+               {"draw", toJson(s.draw)},           {"draw_gl_timer", toJson(s.gpu)},
+               {"read_back", toJson(s.read)},      {"frame", toJson(s.total)}};
+    j["triangles_median"] = s.triangles;
+    j["refine_triangles_per_second_median"] = s.rate;
+    j["one_thread_frames"] = s.oneThread;
     j["pinned_cpu"] = o.pinCpu >= 0 ? nlohmann::json(o.pinCpu) : nlohmann::json(nullptr);
-    j["indices_per_triangle"] = triangles > 0 ? indices / triangles : 0.0;
-    j["bytes_per_frame_median"] = bytes;
-    j["bytes_per_triangle"] = triangles > 0 ? bytes / triangles : 0.0;
-    j["cpu_share"] = cpuShare;
+    j["indices_per_triangle"] = perTriangle;
+    j["bytes_per_frame_median"] = s.bytes;
+    j["bytes_per_triangle"] = bytesPerTriangle;
+    j["cpu_share"] = s.cpuShare;
+}
+// --compare-full: the frames against the full grid's from the same cameras.
+void reportCompareFull(const FramesRun& run, const std::vector<FrameRecord>& records,
+                       const FramesSummary& s, nlohmann::json& j) {
+    const std::string lodText = render::lodName(run.r.drawOptions().lod);
+    Stats full = stats(records, &FrameRecord::fullTotal);
+    Stats psnr = stats(records, &FrameRecord::psnr);
+    Stats differing = stats(records, &FrameRecord::differing);
+    // A frame identical to its reference has an infinite PSNR: say so in
+    // words here and as null in the JSON (which has no infinity).
+    double minPsnr = std::numeric_limits<double>::infinity();
+    int identical = 0;
+    for (const FrameRecord& r : records) {
+        minPsnr = std::min(minPsnr, r.psnr);
+        identical += std::isinf(r.psnr);
+    }
+    auto dB = [](double v) {
+        return std::isfinite(v) ? fixed(v, 2) + " dB" : std::string("identical");
+    };
+    std::printf("full-grid frame (ms): median %.3f, p95 %.3f\n", full.median, full.p95);
+    std::printf("frame time ratio %s / full (medians): %.4f (1/%.1f)\n", lodText.c_str(),
+                s.total.median / full.median, full.median / s.total.median);
+    std::printf(
+        "PSNR against full grid: median %s, min %s; %d of %zu frames identical; differing "
+        "pixels: "
+        "median %.3f%%\n",
+        dB(psnr.median).c_str(), dB(minPsnr).c_str(), identical, records.size(),
+        100.0 * differing.median);
+    auto psnrJson = [](double v) {
+        return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    };
+    j["full_frame"] = toJson(full);
+    j["frame_ratio"] = s.total.median / full.median;
+    j["psnr"] = {{"median", psnrJson(psnr.median)},
+                 {"min", psnrJson(minPsnr)},
+                 {"identical_frames", identical},
+                 {"note", "dB against the full grid; null = identical frames"}};
+    j["differing_share_median"] = differing.median;
+}
 
-    if (o.compareFull) {
-        Stats full = stats(records, &FrameRecord::fullTotal);
-        Stats psnr = stats(records, &FrameRecord::psnr);
-        Stats differing = stats(records, &FrameRecord::differing);
-        // A frame identical to its reference has an infinite PSNR: say so in
-        // words here and as null in the JSON (which has no infinity).
-        double minPsnr = std::numeric_limits<double>::infinity();
-        int identical = 0;
-        for (const FrameRecord& r : records) {
-            minPsnr = std::min(minPsnr, r.psnr);
-            identical += std::isinf(r.psnr);
-        }
-        auto dB = [](double v) {
-            return std::isfinite(v) ? fixed(v, 2) + " dB" : std::string("identical");
-        };
-        std::printf("full-grid frame (ms): median %.3f, p95 %.3f\n", full.median, full.p95);
-        std::printf("frame time ratio %s / full (medians): %.4f (1/%.1f)\n", lodText.c_str(),
-                    total.median / full.median, full.median / total.median);
-        std::printf(
-            "PSNR against full grid: median %s, min %s; %d of %zu frames identical; differing "
-            "pixels: "
-            "median %.3f%%\n",
-            dB(psnr.median).c_str(), dB(minPsnr).c_str(), identical, records.size(),
-            100.0 * differing.median);
-        auto psnrJson = [](double v) {
-            return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-        };
-        j["full_frame"] = toJson(full);
-        j["frame_ratio"] = total.median / full.median;
-        j["psnr"] = {{"median", psnrJson(psnr.median)},
-                     {"min", psnrJson(minPsnr)},
-                     {"identical_frames", identical},
-                     {"note", "dB against the full grid; null = identical frames"}};
-        j["differing_share_median"] = differing.median;
+// --lighting-costs: frames with and without the relief fields.
+void reportLightingCosts(const FramesRun& run, const std::vector<FrameRecord>& records,
+                         const FramesSummary& s, nlohmann::json& j) {
+    const render::DrawOptions& draw = run.r.drawOptions();
+    // The ratio of medians of frames drawn in turn from the same cameras.
+    Stats plain = stats(records, &FrameRecord::plain);
+    std::printf(
+        "lighting costs (frame medians, each camera drawn in turn with and without): plain "
+        "lighting %.3f ms, %s%s%s %.3f ms: x%.3f (%+.1f%%); relief fields computed in %.1f "
+        "ms\n",
+        plain.median, draw.lighting.shadows ? "shadows" : "",
+        draw.lighting.shadows && draw.lighting.skyLight ? " and " : "",
+        draw.lighting.skyLight ? "sky light" : "", s.total.median, s.total.median / plain.median,
+        100.0 * (s.total.median / plain.median - 1.0), run.r.terrain().terrain().reliefMs());
+    j["lighting_costs"] = {{"plain_frame_median", plain.median},
+                           {"ratio", s.total.median / plain.median},
+                           {"shadows", draw.lighting.shadows},
+                           {"sky_light", draw.lighting.skyLight},
+                           {"relief_ms", run.r.terrain().terrain().reliefMs()}};
+}
+
+// --surface-costs: frames with the zone surface and the plain colouring.
+void reportSurfaceCosts(const FramesRun& run, const std::vector<FrameRecord>& records,
+                        const FramesSummary& s, nlohmann::json& j) {
+    // Frame by frame (each camera drawn in turn with both surfaces), the
+    // median of the ratios, beside the ratio of the two medians; the
+    // same of the process's CPU time.
+    Stats plain = stats(records, &FrameRecord::plainSurface);
+    Stats zonesCpu = stats(records, &FrameRecord::processCpu);
+    Stats plainCpu = stats(records, &FrameRecord::plainSurfaceCpu);
+    std::vector<double> ratios, cpuRatios;
+    for (const FrameRecord& r : records) {
+        ratios.push_back(r.total / r.plainSurface);
+        cpuRatios.push_back(r.processCpu / r.plainSurfaceCpu);
     }
-    if (o.lightingCosts) {
-        // The ratio of medians of frames drawn in turn from the same cameras.
-        Stats plain = stats(records, &FrameRecord::plain);
-        std::printf(
-            "lighting costs (frame medians, each camera drawn in turn with and without): plain "
-            "lighting %.3f ms, %s%s%s %.3f ms: x%.3f (%+.1f%%); relief fields computed in %.1f "
-            "ms\n",
-            plain.median, draw.lighting.shadows ? "shadows" : "",
-            draw.lighting.shadows && draw.lighting.skyLight ? " and " : "",
-            draw.lighting.skyLight ? "sky light" : "", total.median, total.median / plain.median,
-            100.0 * (total.median / plain.median - 1.0), terrain.terrain().reliefMs());
-        j["lighting_costs"] = {{"plain_frame_median", plain.median},
-                               {"ratio", total.median / plain.median},
-                               {"shadows", draw.lighting.shadows},
-                               {"sky_light", draw.lighting.skyLight},
-                               {"relief_ms", terrain.terrain().reliefMs()}};
+    const double ratio = median(ratios), cpuRatio = median(cpuRatios);
+    std::printf(
+        "surface costs (each camera drawn in turn with and without the zone surface): plain "
+        "colouring %.3f ms, zones %.3f ms (frame medians): x%.3f (%+.1f%%) frame by frame "
+        "(median; p95 x%.3f), x%.3f of the medians\n",
+        plain.median, s.total.median, ratio, 100.0 * (ratio - 1.0), quantile(ratios, 0.95),
+        s.total.median / plain.median);
+    std::printf(
+        "surface costs in process CPU time (every thread): plain colouring %.3f ms, zones "
+        "%.3f ms (medians): x%.3f frame by frame (median; p95 x%.3f)\n",
+        plainCpu.median, zonesCpu.median, cpuRatio, quantile(cpuRatios, 0.95));
+    j["surface_costs"] = {
+        {"surface", "zones"},
+        {"zones", run.o.scene.zones.map},
+        {"plain_frame", toJson(plain)},
+        {"zones_frame", toJson(s.total)},
+        {"ratio", ratio},
+        {"ratio_p95", quantile(ratios, 0.95)},
+        {"ratio_of_medians", s.total.median / plain.median},
+        {"plain_cpu", toJson(plainCpu)},
+        {"zones_cpu", toJson(zonesCpu)},
+        {"cpu_ratio", cpuRatio},
+        {"cpu_ratio_p95", quantile(cpuRatios, 0.95)},
+        {"note",
+         "ratio: the median over frames of zones / plain frame time, each camera drawn in "
+         "turn with both; cpu_ratio: the same of the process's CPU time (all threads)"}};
+}
+
+// --overlay-costs: frames without the overlay passes and with each alone.
+void reportOverlayCosts(const FramesRun& run, const std::vector<FrameRecord>& records,
+                        const FramesSummary& s, nlohmann::json& j) {
+    const std::vector<std::string>& passNames = run.passNames;
+    // Ratios of medians of frames drawn in turn from the same cameras.
+    Stats bare = stats(records, &FrameRecord::bare);
+    std::printf(
+        "overlay costs (frame medians, each camera drawn in turn with and without): no "
+        "overlays %.3f ms, "
+        "all overlays %.3f ms: x%.3f (%+.1f%%)\n",
+        bare.median, s.total.median, s.total.median / bare.median,
+        100.0 * (s.total.median / bare.median - 1.0));
+    nlohmann::json alone = nlohmann::json::object();
+    for (size_t p = 0; p < passNames.size() && p < 64; ++p) {
+        std::vector<double> v;
+        for (const FrameRecord& r : records) v.push_back(r.alone[p]);
+        const double m = median(v);
+        std::printf("  %-10s alone %.3f ms: x%.3f (%+.1f%%)\n", passNames[p].c_str(), m,
+                    m / bare.median, 100.0 * (m / bare.median - 1.0));
+        alone[passNames[p]] = {{"frame_median", m}, {"ratio", m / bare.median}};
     }
-    if (o.surfaceCosts) {
-        // Frame by frame (each camera drawn in turn with both surfaces), the
-        // median of the ratios, beside the ratio of the two medians; the
-        // same of the process's CPU time.
-        Stats plain = stats(records, &FrameRecord::plainSurface);
-        Stats zonesCpu = stats(records, &FrameRecord::processCpu);
-        Stats plainCpu = stats(records, &FrameRecord::plainSurfaceCpu);
-        std::vector<double> ratios, cpuRatios;
-        for (const FrameRecord& r : records) {
-            ratios.push_back(r.total / r.plainSurface);
-            cpuRatios.push_back(r.processCpu / r.plainSurfaceCpu);
-        }
-        const double ratio = median(ratios), cpuRatio = median(cpuRatios);
-        std::printf(
-            "surface costs (each camera drawn in turn with and without the zone surface): plain "
-            "colouring %.3f ms, zones %.3f ms (frame medians): x%.3f (%+.1f%%) frame by frame "
-            "(median; p95 x%.3f), x%.3f of the medians\n",
-            plain.median, total.median, ratio, 100.0 * (ratio - 1.0), quantile(ratios, 0.95),
-            total.median / plain.median);
-        std::printf(
-            "surface costs in process CPU time (every thread): plain colouring %.3f ms, zones "
-            "%.3f ms (medians): x%.3f frame by frame (median; p95 x%.3f)\n",
-            plainCpu.median, zonesCpu.median, cpuRatio, quantile(cpuRatios, 0.95));
-        j["surface_costs"] = {
-            {"surface", "zones"},
-            {"zones", sc.zones.map},
-            {"plain_frame", toJson(plain)},
-            {"zones_frame", toJson(total)},
-            {"ratio", ratio},
-            {"ratio_p95", quantile(ratios, 0.95)},
-            {"ratio_of_medians", total.median / plain.median},
-            {"plain_cpu", toJson(plainCpu)},
-            {"zones_cpu", toJson(zonesCpu)},
-            {"cpu_ratio", cpuRatio},
-            {"cpu_ratio_p95", quantile(cpuRatios, 0.95)},
-            {"note",
-             "ratio: the median over frames of zones / plain frame time, each camera drawn in "
-             "turn with both; cpu_ratio: the same of the process's CPU time (all threads)"}};
-    }
-    if (o.overlayCosts) {
-        // Ratios of medians of frames drawn in turn from the same cameras.
-        Stats bare = stats(records, &FrameRecord::bare);
-        std::printf(
-            "overlay costs (frame medians, each camera drawn in turn with and without): no "
-            "overlays %.3f ms, "
-            "all overlays %.3f ms: x%.3f (%+.1f%%)\n",
-            bare.median, total.median, total.median / bare.median,
-            100.0 * (total.median / bare.median - 1.0));
-        nlohmann::json alone = nlohmann::json::object();
-        for (size_t p = 0; p < passNames.size() && p < 64; ++p) {
-            std::vector<double> v;
-            for (const FrameRecord& r : records) v.push_back(r.alone[p]);
-            const double m = median(v);
-            std::printf("  %-10s alone %.3f ms: x%.3f (%+.1f%%)\n", passNames[p].c_str(), m,
-                        m / bare.median, 100.0 * (m / bare.median - 1.0));
-            alone[passNames[p]] = {{"frame_median", m}, {"ratio", m / bare.median}};
-        }
-        j["overlay_costs"] = {{"bare_frame_median", bare.median},
-                              {"all_ratio", total.median / bare.median},
-                              {"alone", alone}};
-    }
+    j["overlay_costs"] = {{"bare_frame_median", bare.median},
+                          {"all_ratio", s.total.median / bare.median},
+                          {"alone", alone}};
+}
+
+// Every frame's record.
+nlohmann::json perFrameJson(const FramesOptions& o, const std::vector<FrameRecord>& records) {
     nlohmann::json perFrame = nlohmann::json::array();
     for (const FrameRecord& r : records)
         perFrame.push_back(
@@ -533,7 +560,46 @@ void runFrames(const FramesOptions& o) {
               o.surfaceCosts ? nlohmann::json(r.plainSurface) : nlohmann::json(nullptr)},
              {"plain_surface_cpu",
               o.surfaceCosts ? nlohmann::json(r.plainSurfaceCpu) : nlohmann::json(nullptr)}});
-    j["per_frame"] = perFrame;
+    return perFrame;
+}
+
+void runFrames(const FramesOptions& o) {
+    const scene::Scene& sc = o.scene;
+    checkFramesOptions(o);
+    facade::SceneRenderer r = setUpFrames(o);
+    FramesRun run{.o = o,
+                  .r = r,
+                  .first = sc.path.range ? sc.path.range->first : 0,
+                  .last = sc.path.range ? sc.path.range->last : r.frameCount() - 1,
+                  .passNames = r.terrain().addedPassNames()};
+    checkCostOptions(run, r.drawOptions(run.first));
+    // Saved frames carry their index in the whole sequence; full-grid
+    // references go beside them as NAME_full_0000.png.
+    if (!o.saveFrames.empty()) {
+        std::filesystem::path p(o.saveFrames);
+        run.fullFrames =
+            (p.parent_path() / (p.stem().string() + "_full" + p.extension().string())).string();
+    }
+    warmUp(run);
+
+    std::vector<FrameRecord> records;
+    Progress progress(o.compareFull ? "frames (and full-grid references)" : "frames",
+                      int64_t(run.frames()));
+    for (int k = run.first; k <= run.last; ++k) {
+        std::string detail;
+        records.push_back(measureFrame(run, k, detail));
+        progress.update(int64_t(k - run.first + 1), detail);
+    }
+    progress.finish();
+
+    const FramesSummary summary = summarise(records);
+    nlohmann::json j;
+    reportSummary(run, summary, j);
+    if (o.compareFull) reportCompareFull(run, records, summary, j);
+    if (o.lightingCosts) reportLightingCosts(run, records, summary, j);
+    if (o.surfaceCosts) reportSurfaceCosts(run, records, summary, j);
+    if (o.overlayCosts) reportOverlayCosts(run, records, summary, j);
+    j["per_frame"] = perFrameJson(o, records);
     if (!o.json.empty()) {
         writeFileAtomic(o.json, j.dump(2) + "\n");
         std::printf("wrote %s\n", o.json.c_str());

@@ -9,19 +9,14 @@
 #include <sierra/core/Npy.h>
 #include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
+#include <sierra/facade/DebugSnapshot.h>
+#include <sierra/facade/SceneRenderer.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/gpu/EglContext.h>
-#include <sierra/gpu/Gl.h>
 #include <sierra/render/Capture.h>
-#include <sierra/render/DebugOverlay.h>
-#include <sierra/render/DebugSnapshot.h>
 #include <sierra/render/FrameQueue.h>
-#include <sierra/render/FrameTarget.h>
-#include <sierra/render/SceneView.h>
-#include <sierra/render/TerrainGpu.h>
-#include <sierra/render/TerrainRenderer.h>
 #include <sierra/render/Video.h>
 #include <sierra/scene/Options.h>
-#include <sierra/scene/Terrain.h>
 
 #include "AppMain.h"
 
@@ -147,15 +142,66 @@ void keepRecent(std::vector<T>& values, const T& value) {
     if (values.size() >= 2 * kKept) values.erase(values.begin(), values.end() - long(kKept));
 }
 
+// The file of frame k for `base`: base itself for a single frame, its
+// sequence name (base_0007.png) for a sequence.
+std::string sequenceFile(const scene::Scene& s, const std::string& base, int k) {
+    return s.path.frames > 1 ? render::sequencePath(base, k) : base;
+}
+
+// Where the frames go, in the order they are read back: to the video
+// encoder on this thread, or to the encoder queue's threads as image files.
+class FrameWriter {
+  public:
+    FrameWriter(const scene::Scene& s, render::VideoEncoder* encoder, int first, int last)
+        : s_(s),
+          encoder_(encoder),
+          first_(first),
+          last_(last),
+          next_(first),
+          encoding_(facade::frameEncoding(s.output)),
+          queue_({.capacity = s.output.maxQueuedFrames > 0
+                                  ? s.output.maxQueuedFrames
+                                  : render::defaultQueuedFrames(size_t(s.output.width) *
+                                                                size_t(s.output.height) * 4),
+                  .threads = render::defaultEncoderThreads()}) {
+        if (s.path.frames > 1 && !encoder)
+            log::info("frames encoded on ", queue_.threads(), " thread(s), at most ",
+                      queue_.capacity(), " queued");
+    }
+    // Takes the next frame (`image` is left empty).
+    void write(gpu::Image& image) {
+        if (encoder_) {  // a video takes its frames in order, on this thread
+            encoder_->write(image);
+        } else {
+            std::string path = sequenceFile(s_, s_.output.frame, next_);
+            if (s_.path.frames > 1)
+                log::debug("frame ", next_, " (", next_ - first_ + 1, "/", last_ - first_ + 1,
+                           ") queued -> ", path);
+            queue_.submit(next_, std::move(image),
+                          [path, encoding = encoding_](const gpu::Image& frame) {
+                              render::writeImage(path, frame, encoding);
+                          });
+        }
+        image = {};
+        ++next_;
+    }
+    // Waits for the queued files.
+    void finish() { queue_.finish(); }
+
+  private:
+    const scene::Scene& s_;
+    render::VideoEncoder* encoder_;
+    int first_, last_, next_;
+    render::ImageEncoding encoding_;
+    render::FrameQueue queue_;
+};
+
 int run(const scene::Scene& s) {
     const int width = s.output.width, height = s.output.height;
     const int frameCount = s.path.frames;
     const int first = s.path.range ? s.path.range->first : 0;
     const int last = s.path.range ? s.path.range->last : frameCount - 1;
-    const bool sequence = frameCount > 1;
-    auto framePath = [&](const std::string& base, int k) {
-        return sequence ? render::sequencePath(base, k) : base;
-    };
+    auto framePath = [&](const std::string& base, int k) { return sequenceFile(s, base, k); };
     const bool video = scene::isVideoOutput(s.output.frame);
     const std::string videoPath = video ? videoDesc(s, false).path : std::string();
 
@@ -166,172 +212,59 @@ int run(const scene::Scene& s) {
         if (!path->empty()) ensureWritableLocation(*path);
 
     Stopwatch total;
-    std::string description;
     // The context comes first: its texture limit bounds the grid the loader takes.
-    gpu::EglContext context = gpu::EglContext::create({.width = width, .height = height});
-    log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(),
+    auto context = std::make_shared<gpu::EglContext>(
+        gpu::EglContext::create({.width = width, .height = height}));
+    log::info("OpenGL ", context->version(), " on ", context->renderer(), " (", context->platform(),
               ")");
     // Opened before the terrain, so a codec or size it refuses fails at once.
     std::optional<render::VideoEncoder> encoder;
     if (video) {
-        const bool nvidia = context.vendor().find("NVIDIA") != std::string::npos ||
-                            context.renderer().find("NVIDIA") != std::string::npos;
+        const bool nvidia = context->vendor().find("NVIDIA") != std::string::npos ||
+                            context->renderer().find("NVIDIA") != std::string::npos;
         encoder.emplace(videoDesc(s, nvidia));
         log::info("video ", videoPath, ": ", encoder->encoderName(), ", ", s.output.fps, " fps");
     }
-    terrain::Heightfield field =
-        scene::loadTerrain(s.terrain, &description, scene::Padding::PowerOfTwoPlusOne,
-                           render::TerrainGpu::maxGridSide());
-    float seaLevel = scene::resolveSeaLevel(s.terrain, field);
-    log::info("terrain: ", description);
     // Before the terrain's GPU data: a sun time without a place fails at once.
-    render::describeSceneSun(s, field);
-    render::TerrainRenderer terrain =
-        render::TerrainRenderer::create(render::sceneTerrainDesc(s, field, seaLevel));
-    if (std::string zones = render::applySceneSurface(terrain, s, field, seaLevel); !zones.empty())
-        log::info(zones);
-    if (std::string mesh = render::applySceneMesh(terrain, s, field); !mesh.empty())
-        log::info(mesh);
-    log::info("terrain on the GPU: ", terrain.summary());
-    const render::OverlayInfo overlays = render::addOverlayPasses(terrain, s);
-    render::FrameTarget target =
-        render::FrameTarget::create({.width = width, .height = height, .samples = s.output.msaa});
-    const render::SceneCameraPath cameras(s, terrain.bounds());
-    render::DrawOptions draw = render::sceneDrawOptions(s);
-    glm::vec4 clear = render::TerrainRenderer::clearColour(draw.lighting);
+    facade::SceneRenderer r = facade::SceneRenderer::create(
+        s, context, nullptr,
+        {.report = [](const std::string& line) { log::info(line); }, .describeSun = true});
 
     std::vector<float> frameMs;
-    render::DrawStats stats;
-    // Sequences read back through pixel-buffer objects: frame k is copied while
-    // frame k + 1 is refined and drawn, and handed to the encoder threads once
-    // it arrives; the render thread waits only when the queue is full.
-    gpu::PixelReader reader(width, height);
+    // Sequences read back through pixel-buffer objects (SceneRenderer::submitFrame):
+    // each frame is handed to the encoder threads once it arrives; the render
+    // thread waits only when the queue is full.
     gpu::Image image;
-    const render::ImageEncoding encoding = render::frameEncoding(s.output);
-    render::FrameQueue queue(
-        {.capacity = s.output.maxQueuedFrames > 0
-                         ? s.output.maxQueuedFrames
-                         : render::defaultQueuedFrames(size_t(width) * size_t(height) * 4),
-         .threads = render::defaultEncoderThreads()});
-    if (sequence && !encoder)
-        log::info("frames encoded on ", queue.threads(), " thread(s), at most ", queue.capacity(),
-                  " queued");
-    int submitted = first;
-    auto writeNext = [&]() {
-        if (encoder) {  // a video takes its frames in order, on this thread
-            encoder->write(image);
-            image = {};
-            ++submitted;
-            return;
-        }
-        std::string path = framePath(s.output.frame, submitted);
-        if (sequence)
-            log::debug("frame ", submitted, " (", submitted - first + 1, "/", last - first + 1,
-                       ") queued -> ", path);
-        queue.submit(submitted, std::move(image), [path, encoding](const gpu::Image& frame) {
-            render::writeImage(path, frame, encoding);
-        });
-        image = {};
-        ++submitted;
-    };
+    FrameWriter writer(s, encoder ? &*encoder : nullptr, first, last);
     // Debug snapshots: the frame re-rendered narrower with the UI in a column
     // beside it, or the UI alone on a plain background.
     std::vector<render::DrawStats> history;
-    std::unique_ptr<render::DebugOverlay> overlay;
-    std::optional<render::SceneCameraPath> snapshotCameras;
+    facade::SnapshotRenderer snapshots(r);
     auto snapshot = [&](int k, const std::string& path, bool uiOnly = false) {
-        if (!overlay) overlay = std::make_unique<render::DebugOverlay>();
-        const int column = render::debugColumnWidth(width);
-        const int frameWidth = render::snapshotFrameWidth(width, column);
-        if (!snapshotCameras)
-            snapshotCameras = render::snapshotCameraPath(s, terrain.bounds(), frameWidth);
-        const render::Camera camera = snapshotCameras->at(k);
-        render::SnapshotFacts facts{.scene = &s,
-                                    .field = &field,
-                                    .glRenderer = context.renderer(),
-                                    .glVersion = context.version(),
-                                    .eglPlatform = context.platform(),
-                                    .renderer = &terrain,
-                                    .camera = camera,
-                                    .frameWidth = frameWidth,
-                                    .height = height,
-                                    .draw = draw,
-                                    .frames = history,
-                                    .frameMs = frameMs,
-                                    .overlays = overlays};
-        render::DebugPanel panel = render::buildDebugPanel(facts, s.output.snapshotDeterministic);
-        panel.columnWidth = uiOnly ? column : width - frameWidth;
-        const int shotWidth = uiOnly ? column : width;
-        // A frame too short for the whole panel gets a taller snapshot (the
-        // frame at its top, the UI's background below it) rather than a
-        // column cut off by a scroll bar.
-        int shotHeight = std::max(height, overlay->contentHeight(panel, shotWidth, height));
-        // Measured again at that height: without the scroll bar the text
-        // wraps less and the column is shorter.
-        if (shotHeight > height)
-            shotHeight = std::max(height, overlay->contentHeight(panel, shotWidth, shotHeight));
-        std::optional<render::FrameTarget> tall;
-        if (shotHeight > height)
-            tall.emplace(render::FrameTarget::create({.width = shotWidth,
-                                                      .height = shotHeight,
-                                                      // the UI alone draws no terrain
-                                                      .samples = uiOnly ? 0 : s.output.msaa,
-                                                      .offscreen = true}));
-        const glm::vec4 uiBackground{0.2f, 0.2f, 0.22f, 1.0f};
-        if (uiOnly) {
-            if (tall) {
-                tall->begin(uiBackground);
-                tall->resolve();
-            } else {
-                glBindFramebuffer(GL_FRAMEBUFFER, 0);
-                glViewport(0, 0, column, height);
-                glClearColor(uiBackground.r, uiBackground.g, uiBackground.b, uiBackground.a);
-                glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-            }
-        } else {
-            render::FrameTarget& into = tall ? *tall : target;
-            into.begin(clear);
-            if (tall) {  // below the frame: the UI's background (GL's rows run bottom-up)
-                glEnable(GL_SCISSOR_TEST);
-                glScissor(0, 0, frameWidth, shotHeight - height);
-                glClearColor(uiBackground.r, uiBackground.g, uiBackground.b, uiBackground.a);
-                glClear(GL_COLOR_BUFFER_BIT);
-                glDisable(GL_SCISSOR_TEST);
-            }
-            glViewport(0, shotHeight - height, frameWidth, height);
-            terrain.draw(camera, frameWidth, height, draw);
-            into.resolve();
-        }
-        overlay->draw(panel, shotWidth, shotHeight);
-        const gpu::Image shot = gpu::readFramebuffer(shotWidth, shotHeight);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        render::writePng(path, shot);
+        render::writePng(path, snapshots.render(k, uiOnly, history, frameMs));
         log::info("wrote debug snapshot ", path);
     };
     catchStopSignals();
     SequenceProgress progress(int64_t(last) - first + 1);
     int rendered = first - 1;
     for (int k = first; k <= last && stopSignal == 0; ++k) {
-        const render::Camera camera = cameras.at(k);
-        draw.lighting.sunDirection = render::sceneSunDirection(s, field, k);
         Stopwatch frame;
-        target.begin(clear);
-        stats = terrain.draw(camera, width, height, draw);
-        if (stats.triangles == 0)
+        const bool ready = r.submitFrame(k, image);
+        const render::DrawStats& stats = r.lastStats();
+        if (stats.triangles == 0) {
+            const render::Camera camera = r.camera(k);
             log::warn("frame ", k, ": no terrain triangle is in view of the camera at ",
                       describe(camera.position), " looking at ", describe(camera.target),
                       " (the frame is sky only)");
-        target.resolve();
-        bool ready = reader.start(image);
-        terrain.collectGpuTime(stats);
+        }
         keepRecent(frameMs, float(frame.ms()));
         keepRecent(history, stats);
-        if (ready) writeNext();
+        if (ready) writer.write(image);
         if (!s.output.debug.empty() && s.output.snapshotEvery > 0 &&
             (k - first) % s.output.snapshotEvery == 0)
             snapshot(k, framePath(s.output.debug, k));
         if (!s.output.depth.empty()) {
-            render::DepthImage depth = terrain.renderDepth(camera, width, height, draw);
+            render::DepthImage depth = r.depth(k);
             writeFileAtomic(framePath(s.output.depth, k),
                             encodeNpyFloat32(depth.height, depth.width, depth.depth));
         }
@@ -340,8 +273,8 @@ int run(const scene::Scene& s) {
     }
     // The frames in flight (the last read back, those queued) are written
     // whether the sequence ended or was stopped.
-    if (reader.finish(image)) writeNext();
-    queue.finish();
+    if (r.finishFrames(image)) writer.write(image);
+    writer.finish();
     progress.finish();
     // A stopped video is finished too: it plays with the frames so far.
     if (encoder && stopSignal != 0) encoder->finish();
@@ -353,10 +286,12 @@ int run(const scene::Scene& s) {
                      stopSignal == SIGINT ? "SIGINT" : "SIGTERM", done.c_str());
         return 128 + int(stopSignal);
     }
-    log::info(render::lodName(draw.lod), " frame: ", stats.triangles, " triangles, ", stats.indices,
-              " indices (", fixed(stats.indicesPerTriangle()), " per triangle), refine + strip ",
-              fixed(stats.refineMs), " ms, upload ", fixed(stats.uploadMs), " ms, draw (GL timer) ",
-              fixed(stats.drawMs), " ms, frame ", fixed(frameMs.back(), 1), " ms");
+    const render::DrawStats& stats = r.lastStats();
+    log::info(render::lodName(r.drawOptions().lod), " frame: ", stats.triangles, " triangles, ",
+              stats.indices, " indices (", fixed(stats.indicesPerTriangle()),
+              " per triangle), refine + strip ", fixed(stats.refineMs), " ms, upload ",
+              fixed(stats.uploadMs), " ms, draw (GL timer) ", fixed(stats.drawMs), " ms, frame ",
+              fixed(frameMs.back(), 1), " ms");
     if (encoder) {
         encoder->finish();
         log::info("wrote ", videoPath, ": frames ", first, "..", last, " (",

@@ -3,7 +3,7 @@
 
 Renders one 1080p frame of the same scene (the default fractal unless --config
 names a scene file) through `sierra.Renderer.render` and through
-`sierra-bench facade` (render::SceneRenderer, the renderer created on a kept
+`sierra-bench facade` (facade::SceneRenderer, the renderer created on a kept
 context and frame 0 read back, as the module does), in alternating rounds, and
 reports each side's median and their ratio (target: at most 1.05).
 

@@ -1,9 +1,9 @@
-// render::SceneCameraPath: frame k's camera alone is the camera the whole
+// facade::SceneCameraPath: frame k's camera alone is the camera the whole
 // list holds, and a path of a billion frames is set up and walked in
 // constant time per frame.
 #include <sierra/core/Error.h>
 #include <sierra/core/Timer.h>
-#include <sierra/render/SceneView.h>
+#include <sierra/facade/SceneView.h>
 
 #include <gtest/gtest.h>
 
@@ -50,14 +50,14 @@ TEST(SceneCameraPath, EachFrameIsTheListsCamera) {
             scene::Scene s = pathScene(type, 37);
             if (ortho) s.camera.projection = scene::Projection::Orthographic;
             if (type == scene::PathType::Orbit) s.camera.target = scene::Vec3{400, 10, 600};
-            const std::vector<render::Camera> list = render::sceneCameras(s, kBounds);
-            const render::SceneCameraPath path(s, kBounds);
+            const std::vector<render::Camera> list = facade::sceneCameras(s, kBounds);
+            const facade::SceneCameraPath path(s, kBounds);
             ASSERT_EQ(path.frames(), 37);
             ASSERT_EQ(list.size(), 37u);
             for (int k : {0, 1, 18, 36}) {
                 SCOPED_TRACE(msg(scene::toString(type), ortho ? " ortho" : "", " frame ", k));
                 expectSame(path.at(k), list[size_t(k)]);
-                expectSame(render::sceneCamera(s, kBounds, k), list[size_t(k)]);
+                expectSame(facade::sceneCamera(s, kBounds, k), list[size_t(k)]);
             }
             EXPECT_THROW(path.at(37), Error);
             EXPECT_THROW(path.at(-1), Error);
@@ -68,7 +68,7 @@ TEST(SceneCameraPath, EachFrameIsTheListsCamera) {
 TEST(SceneCameraPath, ABillionFrameOrbitIsConstantTimePerFrame) {
     const int frames = 1000000000;
     Stopwatch clock;
-    const render::SceneCameraPath path(pathScene(scene::PathType::Orbit, frames), kBounds);
+    const facade::SceneCameraPath path(pathScene(scene::PathType::Orbit, frames), kBounds);
     int64_t steps = 0;
     for (int k = 0; k < frames; k += frames / 1000, ++steps) (void)path.at(k);
     const render::Camera lastFrame = path.at(frames - 1);
@@ -106,5 +106,27 @@ TEST(SceneCameraPath, SampledOrbitDistanceFramesEveryFrame) {
 TEST(SceneCameraPath, KeyframesAreCheckedOnce) {
     scene::Scene s = pathScene(scene::PathType::Keyframes, 10);
     s.path.keyframes[2].time = 0.5f;  // goes back in time
-    EXPECT_THROW(render::SceneCameraPath(s, kBounds), Error);
+    EXPECT_THROW(facade::SceneCameraPath(s, kBounds), Error);
 }
+
+namespace {
+
+// The scene's output settings become the render module's image encoding.
+TEST(FrameEncoding, FollowsTheSceneOutput) {
+    scene::OutputDesc output;
+    const std::pair<scene::PngCompression, render::PngCompression> levels[] = {
+        {scene::PngCompression::Fast, render::PngCompression::Fast},
+        {scene::PngCompression::Default, render::PngCompression::Default},
+        {scene::PngCompression::Best, render::PngCompression::Best}};
+    for (auto [from, to] : levels) {
+        output.pngCompression = from;
+        EXPECT_EQ(facade::frameEncoding(output).png, to);
+    }
+    output.jpegQuality = 37;
+    output.alpha = true;
+    const render::ImageEncoding encoding = facade::frameEncoding(output);
+    EXPECT_EQ(encoding.jpegQuality, 37);
+    EXPECT_TRUE(encoding.alpha);
+}
+
+}  // namespace

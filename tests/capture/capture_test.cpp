@@ -71,8 +71,8 @@ class CaptureFiles : public ::testing::Test {
 TEST(Capture, PngRoundTripsExactlyAtEveryCompression) {
     const gpu::Image image = testImage(97, 61);
     size_t fastBytes = 0, bestBytes = 0;
-    for (auto level : {scene::PngCompression::Fast, scene::PngCompression::Default,
-                       scene::PngCompression::Best}) {
+    for (auto level : {render::PngCompression::Fast, render::PngCompression::Default,
+                       render::PngCompression::Best}) {
         for (bool alpha : {false, true}) {
             const std::vector<uint8_t> png = render::encodePng(image, alpha, level);
             int channels = 0;
@@ -82,11 +82,11 @@ TEST(Capture, PngRoundTripsExactlyAtEveryCompression) {
             EXPECT_EQ(channels, alpha ? 4 : 3);
             for (size_t i = 0; i < image.rgba.size(); ++i) {
                 const uint8_t expected = i % 4 == 3 && !alpha ? 255 : image.rgba[i];
-                ASSERT_EQ(back.rgba[i], expected)
-                    << "byte " << i << ", " << scene::toString(level) << ", alpha " << alpha;
+                ASSERT_EQ(back.rgba[i], expected) << "byte " << i << ", "
+                                                  << "level " << int(level) << ", alpha " << alpha;
             }
-            if (!alpha && level == scene::PngCompression::Fast) fastBytes = png.size();
-            if (!alpha && level == scene::PngCompression::Best) bestBytes = png.size();
+            if (!alpha && level == render::PngCompression::Fast) fastBytes = png.size();
+            if (!alpha && level == render::PngCompression::Best) bestBytes = png.size();
         }
     }
     EXPECT_LT(bestBytes, fastBytes) << "best compression is no smaller than fast";
@@ -97,7 +97,7 @@ TEST(Capture, Grey16PngKeepsEverySample) {
     std::vector<uint16_t> samples(size_t(w) * h);
     for (size_t i = 0; i < samples.size(); ++i) samples[i] = uint16_t(i * 2654435761u >> 16);
     const std::vector<uint8_t> png =
-        render::encodePngGrey16(w, h, samples, scene::PngCompression::Default);
+        render::encodePngGrey16(w, h, samples, render::PngCompression::Default);
     spng_ctx* ctx = spng_ctx_new(0);
     ASSERT_EQ(spng_set_png_buffer(ctx, png.data(), png.size()), 0);
     spng_ihdr ihdr{};
@@ -109,7 +109,7 @@ TEST(Capture, Grey16PngKeepsEverySample) {
     ASSERT_EQ(spng_decode_image(ctx, back.data(), back.size() * 2, SPNG_FMT_PNG, 0), 0);
     spng_ctx_free(ctx);
     EXPECT_EQ(back, samples);
-    EXPECT_THROW(render::encodePngGrey16(w, h + 1, samples, scene::PngCompression::Fast), Error);
+    EXPECT_THROW(render::encodePngGrey16(w, h + 1, samples, render::PngCompression::Fast), Error);
 }
 
 TEST(Capture, JpegIsCloseAtItsQualityAndSmallerAtALowerOne) {

@@ -1,6 +1,6 @@
 // libFuzzer target: a scene file's cameras. The JSON is read and checked as
 // the apps do (parseJson, sceneFromJson, validateScene); a scene that passes
-// then gives every camera of its sequence (render::sceneCameras over a fixed
+// then gives every camera of its sequence (facade::sceneCameras over a fixed
 // terrain box), and each must be usable: finite position and target, clip
 // planes with 0 < near < far for perspective, finite view and projection
 // matrices and frustum planes. fuzz_scene stops at validateScene; this one
@@ -8,7 +8,7 @@
 // A sierra::Error is an accepted answer; anything else is a finding.
 
 #include <sierra/core/Error.h>
-#include <sierra/render/SceneView.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/scene/Scene.h>
 #include <sierra/scene/SceneJson.h>
 
@@ -52,7 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         sierra::scene::validateScene(scene);
         if (scene.path.frames > kMaxFrames) return 0;
         const float aspect = float(scene.output.width) / float(scene.output.height);
-        for (const sierra::render::Camera& camera : sierra::render::sceneCameras(scene, kBounds)) {
+        for (const sierra::render::Camera& camera : sierra::facade::sceneCameras(scene, kBounds)) {
             if (!finite(camera.position) || !finite(camera.target)) __builtin_trap();
             if (camera.projection == sierra::render::Projection::Perspective &&
                 !(camera.nearPlane > 0.0f && camera.nearPlane < camera.farPlane))

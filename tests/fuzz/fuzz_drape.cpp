@@ -45,8 +45,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         // A small texture limit keeps a huge declared image cheap to place.
         const auto drape = sierra::terrain::readDrape(
-            file.path, {.placement = sierra::terrain::GridPlacement{
-                            {10.0, 0.01, 0.0, 47.0, 0.0, -0.01}, kWgs84, 64, 32},
+            file.path, {.placement =
+                            sierra::terrain::GridPlacement{
+                                {10.0, 0.01, 0.0, 47.0, 0.0, -0.01}, kWgs84, 64, 32},
                         .maxTexels = 256});
         if (drape.width < 1 || drape.height < 1 || drape.width > 256 || drape.height > 256 ||
             drape.rgba.size() != size_t(drape.width) * size_t(drape.height) * 4 ||

@@ -50,7 +50,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const auto layer = sierra::terrain::readVectorLayer(
             file.path, {.placement = sierra::terrain::GridPlacement{
                             {10.0, 0.01, 0.0, 47.0, 0.0, -0.01}, kWgs84, 101, 51}});
-        if (layer.outside > layer.read || int64_t(layer.features.size()) < layer.read - layer.outside)
+        if (layer.outside > layer.read ||
+            int64_t(layer.features.size()) < layer.read - layer.outside)
             __builtin_trap();
         int64_t vertices = 0;
         for (const VectorFeature& f : layer.features) {

@@ -1,4 +1,4 @@
-// Dataset outputs (render/Dataset.h, SceneRenderer's labels and camera
+// Dataset outputs (facade/Dataset.h, facade::SceneRenderer's labels and camera
 // records): the camera JSON's K and R|t back-project the depth image onto the
 // heightfield (a real DEM, perspective and orthographic), normals of a tilted
 // plane, camera-space normals as R times world normals, normals files read
@@ -8,10 +8,10 @@
 #include "GlTest.h"
 
 #include <sierra/core/Files.h>
-#include <sierra/render/CameraRecord.h>
+#include <sierra/facade/CameraRecord.h>
+#include <sierra/facade/SceneRenderer.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/Exr.h>
-#include <sierra/render/SceneRenderer.h>
 #include <sierra/scene/Assets.h>
 #include <sierra/zones/Palette.h>
 #include <sierra/zones/ZoneMap.h>
@@ -59,15 +59,15 @@ class Dataset : public ::testing::Test {
         renderer_.reset();
         EXPECT_EQ(context_->glErrorCount(), 0) << "GL errors were reported (see log)";
     }
-    render::SceneRenderer& make(const terrain::Heightfield* grid = nullptr) {
-        renderer_ = std::make_unique<render::SceneRenderer>(
-            render::SceneRenderer::create(scene_, context_, grid));
+    facade::SceneRenderer& make(const terrain::Heightfield* grid = nullptr) {
+        renderer_ = std::make_unique<facade::SceneRenderer>(
+            facade::SceneRenderer::create(scene_, context_, grid));
         return *renderer_;
     }
 
     std::shared_ptr<gpu::EglContext> context_;
     scene::Scene scene_;
-    std::unique_ptr<render::SceneRenderer> renderer_;
+    std::unique_ptr<facade::SceneRenderer> renderer_;
 };
 
 // The world point of pixel (u, v) (column, row) at depth z through the
@@ -104,7 +104,7 @@ struct BackProjection {
     std::vector<double> errors;
 };
 
-BackProjection measureBackProjection(render::SceneRenderer& r) {
+BackProjection measureBackProjection(facade::SceneRenderer& r) {
     const render::DepthImage depth = r.depth(0);
     const scene::CameraRecord c = r.cameraRecord(0);
     const render::SceneBounds bounds = r.terrain().bounds();
@@ -125,7 +125,7 @@ BackProjection measureBackProjection(render::SceneRenderer& r) {
     return out;
 }
 
-void expectBackProjects(render::SceneRenderer& r, const char* what) {
+void expectBackProjects(facade::SceneRenderer& r, const char* what) {
     const BackProjection b = measureBackProjection(r);
     ASSERT_GT(b.terrain, size_t(kWidth * kHeight) / 4) << what << ": the terrain fills the frame";
     const double share = double(b.within) / double(b.terrain);
@@ -150,7 +150,7 @@ TEST_F(Dataset, DepthBackProjectsOntoTheDemPerspective) {
     // pixels on screen (about 180 m of height at this frame's 40 km and
     // 320 pixels), more than the 32 m asked for here.
     scene_.lod.mode = scene::LodMode::Full;
-    render::SceneRenderer& r = make();
+    facade::SceneRenderer& r = make();
     ASSERT_FALSE(r.cameraRecord(0).orthographic);
     expectBackProjects(r, "jacksboro, perspective");
 }
@@ -164,7 +164,7 @@ TEST_F(Dataset, DepthBackProjectsOntoTheDemOrthographic) {
     scene_.camera.elevation = 50.0f;
     scene_.camera.projection = scene::Projection::Orthographic;
     scene_.lod.mode = scene::LodMode::Full;  // as above
-    render::SceneRenderer& r = make();
+    facade::SceneRenderer& r = make();
     const scene::CameraRecord c = r.cameraRecord(0);
     ASSERT_TRUE(c.orthographic);
     EXPECT_NEAR(c.fx * c.pixelSize, 1.0, 1e-9);
@@ -175,13 +175,13 @@ TEST_F(Dataset, CameraRecordPutsTheDemInItsReferenceSystem) {
     if (!std::filesystem::exists(kDem))
         GTEST_SKIP() << kDem << " is missing (apt-get install python-matplotlib-data)";
     scene_.terrain.heightmap = kDem;
-    render::SceneRenderer& r = make();
+    facade::SceneRenderer& r = make();
     const scene::CameraRecord c = r.cameraRecord(0);
     ASSERT_TRUE(c.georeference.has_value());
     EXPECT_NE(c.georeference->crsWkt.find("WGS 84"), std::string::npos);
     // The grid's first sample centre (world origin) lies half a cell inside
     // the file's west and north bounds (xmin -84.41375, the larger y 36.73292).
-    const auto origin = render::worldToCrs(glm::dvec3(0.0), r.field());
+    const auto origin = facade::worldToCrs(glm::dvec3(0.0), r.field());
     EXPECT_NEAR(origin[0], -84.41375 + 0.5 * 0.000833333, 1e-7);
     EXPECT_NEAR(origin[1], 36.73291667 - 0.5 * 0.000833333, 1e-7);
     // The camera's CRS position maps back through the geotransform.
@@ -208,7 +208,7 @@ TEST_F(Dataset, NormalsOfATiltedPlaneInWorldAndCameraAxes) {
     scene_.terrain.verticalScale = 1.0f;
     scene_.camera.azimuth = 250.0f;
     scene_.camera.elevation = 40.0f;
-    render::SceneRenderer& r = make(&plane);
+    facade::SceneRenderer& r = make(&plane);
     const render::LabelImage world = r.labels(0, false);
     const render::LabelImage camera = r.labels(0, true);
     const render::DepthImage depth = r.depth(0);
@@ -301,7 +301,7 @@ TEST_F(Dataset, NormalsFilesReadBack) {
     scene_.terrain.heightmap = "tilted-plane";
     scene_.terrain.verticalScale = 1.0f;
     scene_.output.normalsSpace = "world";
-    render::SceneRenderer& r = make(&plane);
+    facade::SceneRenderer& r = make(&plane);
     const render::LabelImage labels = r.labels(0, false);
     const std::string shape = std::to_string(kHeight) + ", " + std::to_string(kWidth) + ", 3";
     for (const char* precision : {"float32", "float16"})
@@ -309,7 +309,7 @@ TEST_F(Dataset, NormalsFilesReadBack) {
             scene::Scene s = scene_;
             s.output.normalsPrecision = precision;
             s.output.normals = (dir / (std::string("n_") + precision + ext)).string();
-            render::SceneRenderer one = render::SceneRenderer::create(s, context_, &plane);
+            facade::SceneRenderer one = facade::SceneRenderer::create(s, context_, &plane);
             one.writeDataset(0);
             const bool half = std::string(precision) == "float16";
             const float tolerance = half ? 1e-3f : 0.0f;
@@ -361,7 +361,7 @@ TEST_F(Dataset, ZoneIdsMatchTheZoneMapAndTheMaskTheDepth) {
     scene_.output.zoneIds = (dir / "zones.png").string();
     scene_.output.mask = (dir / "mask.png").string();
     scene_.output.depth = (dir / "depth.npy").string();
-    render::SceneRenderer& r = make(&hills);
+    facade::SceneRenderer& r = make(&hills);
     r.writeDataset(0);
 
     const std::vector<float> depth = readNpy(
@@ -398,7 +398,7 @@ TEST_F(Dataset, ZoneIdsMatchTheZoneMapAndTheMaskTheDepth) {
     ASSERT_GT(compared, size_t(kWidth * kHeight) / 8);
     EXPECT_EQ(matched, compared);
 
-    std::ifstream in(render::DatasetWriter::palettePath(scene_.output.zoneIds));
+    std::ifstream in(facade::DatasetWriter::palettePath(scene_.output.zoneIds));
     const nlohmann::json json = nlohmann::json::parse(in);
     ASSERT_EQ(json["zones"].size(), palette.surfaces.size());
     for (const char* name : {"grass", "rock"}) {
@@ -423,7 +423,7 @@ TEST_F(Dataset, TransformsMatchTheCameraJsonOfEveryFrame) {
     scene_.output.frame = (dir / "rgb" / "f.png").string();
     scene_.output.camera = (dir / "cam.json").string();
     scene_.output.transforms = (dir / "transforms.json").string();
-    render::SceneRenderer& r = make(&hills);
+    facade::SceneRenderer& r = make(&hills);
     for (int k = 0; k < 3; ++k) r.writeDataset(k);
     r.finishDataset();
     std::ifstream in(scene_.output.transforms);

@@ -7,14 +7,13 @@
 #include "GoldenCompare.h"
 
 #include <sierra/core/Parallel.h>
+#include <sierra/facade/DebugSnapshot.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/gpu/Gl.h>
 #include <sierra/gpu/ReadBack.h>
 #include <sierra/render/Capture.h>
-#include <sierra/render/DebugSnapshot.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/MeshInspector.h>
-#include <sierra/render/Scene.h>
-#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Terrain.h>
 
@@ -55,8 +54,8 @@ class DebugSnapshot : public test::GlTest {
     }
 
     render::DebugPanel panel(int frameWidth, const render::DrawStats& stats, bool deterministic,
-                             render::OverlayInfo overlays = {}) {
-        render::SnapshotFacts facts{.scene = &scene_,
+                             facade::OverlayInfo overlays = {}) {
+        facade::SnapshotFacts facts{.scene = &scene_,
                                     .field = &field_,
                                     .glRenderer = "test renderer",
                                     .glVersion = "4.5 test",
@@ -69,7 +68,7 @@ class DebugSnapshot : public test::GlTest {
                                     .frames = {stats, stats},
                                     .frameMs = {12.0f, 14.0f},
                                     .overlays = overlays};
-        return render::buildDebugPanel(facts, deterministic);
+        return facade::buildDebugPanel(facts, deterministic);
     }
 
     scene::Scene scene_;
@@ -90,7 +89,7 @@ bool samePixel(const gpu::Image& a, const gpu::Image& b, int x, int y) {
 }
 
 TEST_F(DebugSnapshot, PanelsBesideTheFrameLeaveTheTerrainUncovered) {
-    const int column = render::debugColumnWidth(kWidth);
+    const int column = facade::debugColumnWidth(kWidth);
     const int frameWidth = render::snapshotFrameWidth(kWidth, column);
     ASSERT_LT(frameWidth, kWidth);
     ASSERT_GE(frameWidth, kWidth / 3);
@@ -218,7 +217,7 @@ TEST_F(DebugSnapshot, StyleShowsTheOverlaysAndTheCurvatureScaleDrawn) {
 }
 
 TEST_F(DebugSnapshot, SnapshotCamerasKeepTheWholeTerrainInTheNarrowFrame) {
-    const int frameWidth = render::snapshotFrameWidth(kWidth, render::debugColumnWidth(kWidth));
+    const int frameWidth = render::snapshotFrameWidth(kWidth, facade::debugColumnWidth(kWidth));
     auto drawNarrow = [&](const render::Camera& camera) {
         target_->begin(render::TerrainRenderer::clearColour({}));
         glViewport(0, 0, frameWidth, kHeight);
@@ -227,7 +226,7 @@ TEST_F(DebugSnapshot, SnapshotCamerasKeepTheWholeTerrainInTheNarrowFrame) {
         return gpu::readFramebuffer(kWidth, kHeight);
     };
     const gpu::Image fitted =
-        drawNarrow(render::snapshotCameras(scene_, terrain_->bounds(), frameWidth).at(0));
+        drawNarrow(facade::snapshotCameras(scene_, terrain_->bounds(), frameWidth).at(0));
     render::writePng(std::string(SIERRA_TEST_OUTPUT_DIR) + "/debug_narrow_frame.png", fitted);
     EXPECT_EQ(terrainOnFrameBorder(fitted, frameWidth), 0)
         << "the terrain touches the snapshot frame's border";
@@ -236,12 +235,12 @@ TEST_F(DebugSnapshot, SnapshotCamerasKeepTheWholeTerrainInTheNarrowFrame) {
         glm::length(glm::vec3(centre[0], centre[1], centre[2]) - render::Lighting{}.sky * 255.0f),
         30.0f);
     // The full frame's camera, drawn narrower, cuts the terrain at the sides.
-    const gpu::Image cut = drawNarrow(render::sceneCameras(scene_, terrain_->bounds()).at(0));
+    const gpu::Image cut = drawNarrow(facade::sceneCameras(scene_, terrain_->bounds()).at(0));
     EXPECT_GT(terrainOnFrameBorder(cut, frameWidth), 0);
 }
 
 TEST_F(DebugSnapshot, UiAloneMatchesGoldenWithPlaceholders) {
-    const int column = render::debugColumnWidth(kWidth);
+    const int column = facade::debugColumnWidth(kWidth);
     render::DrawStats stats;
     frame(render::snapshotFrameWidth(kWidth, column), &stats);
     stats.refineMs = 3.25, stats.uploadMs = 0.5,
@@ -274,7 +273,7 @@ TEST_F(DebugSnapshot, UiAloneMatchesGoldenWithPlaceholders) {
 }
 
 TEST_F(DebugSnapshot, AShortSnapshotGrowsToShowTheWholePanel) {
-    const int column = render::debugColumnWidth(kWidth);
+    const int column = facade::debugColumnWidth(kWidth);
     render::DrawStats stats;
     frame(render::snapshotFrameWidth(kWidth, column), &stats);
     render::DebugPanel p = panel(render::snapshotFrameWidth(kWidth, column), stats, true);

@@ -11,7 +11,6 @@
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/MeshInspector.h>
-#include <sierra/render/Scene.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Terrain.h>
 
@@ -211,7 +210,7 @@ class DisplayGolden : public test::GlTest {
     static constexpr int kWidth = 640, kHeight = 360;
     void SetUp() override {
         createContext(kWidth, kHeight);
-        field_ = render::loadTerrain({});
+        field_ = scene::loadTerrain({});
         terrain_.emplace(render::TerrainRenderer::create(
             {.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
         target_.emplace(

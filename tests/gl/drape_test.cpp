@@ -180,6 +180,33 @@ TEST_F(Drape, MultiplyAndOpacityBlendAsTheirFormulasSay) {
     EXPECT_THROW(drape({{&red, 1.5f}}), Error);
 }
 
+TEST_F(Drape, AStreamedDrapeDrawsAsTheComposedOne) {
+    // Half transparent in places, at half opacity: premultiplied either way.
+    const auto art = image(300, 200, [](int x, int y) {
+        return std::array<uint8_t, 4>{uint8_t(x), uint8_t(y), uint8_t((x + y) / 2),
+                                      uint8_t(x < 150 ? 255 : 100)};
+    });
+    gpu::Image png{art.width, art.height, art.rgba};
+    const std::string file = testOutputPath("drape_streamed_source.png");
+    render::writePng(file, png, true);
+    drape({{&art, 0.5f}});
+    const gpu::Image composed = frame();
+    terrain::DrapeImage header;
+    terrain_->setSurface(
+        render::makeStreamedDrapeSurface(render::makeRampSurface(terrain_->terrain()), file,
+                                         {.width = kSide, .height = kSide}, 0.5f, &header));
+    const gpu::Image streamed = frame();
+    render::writePng(testOutputPath("drape_streamed.png"), streamed);
+    EXPECT_TRUE(header.stretched);
+    // Stretched over the square grid at the image's finer density: 300 x 300.
+    EXPECT_EQ(header.width, 300);
+    EXPECT_EQ(header.height, 300);
+    const auto result = compareWithGolden(inner(streamed), inner(composed));
+    std::printf("streamed against composed: %.1f dB, max difference within the tolerance: %d\n",
+                result.psnr, int(result.matches));
+    EXPECT_GE(result.psnr, 50.0);
+}
+
 TEST_F(Drape, ADrapeIsLitLikeTheSurface) {
     const auto white = image(kSide, kSide, [](int, int) {
         return std::array<uint8_t, 4>{255, 255, 255, 255};

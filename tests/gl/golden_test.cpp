@@ -11,7 +11,6 @@
 #include <sierra/render/Capture.h>
 #include <sierra/render/DebugOverlay.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/Scene.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/terrain/Padding.h>
@@ -35,7 +34,7 @@ class Golden : public test::GlTest {
   protected:
     void SetUp() override {
         createContext(kWidth, kHeight);
-        field_ = render::loadTerrain({});  // the default scene
+        field_ = scene::loadTerrain({});  // the default scene
         terrain_.emplace(render::TerrainRenderer::create(
             {.field = &field_, .seaLevel = scene::heightQuantile(field_, 0.3)}));
         target_.emplace(

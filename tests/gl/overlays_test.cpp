@@ -8,11 +8,11 @@
 #include "GoldenCompare.h"
 
 #include <sierra/core/Error.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/gpu/GlStateScope.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/CurvatureGpu.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/render/passes/ContourPass.h>
 #include <sierra/render/passes/HatchPass.h>
@@ -395,7 +395,7 @@ TEST_F(Overlays, NothingIsDrawnBesideTheTerrainWhereThereIsWater) {
             return target.read();
         };
         const gpu::Image plain = frame();
-        const render::OverlayInfo info = render::addOverlayPasses(renderer, s);
+        const facade::OverlayInfo info = facade::addOverlayPasses(renderer, s);
         const gpu::Image overlaid = frame();
         // Below the terrain (rows run down the frame): beneath each column's
         // lowest pixel of the plain frame that is not the sky's colour, with
@@ -475,7 +475,7 @@ class OverlayGolden : public test::GlTest {
         s.style.overlay = style;
         auto renderer = render::TerrainRenderer::create({.field = &field});
         if (!style.layers.shaded) renderer.setSurface(render::makePaperSurface());
-        render::OverlayInfo info = render::addOverlayPasses(renderer, s);
+        facade::OverlayInfo info = facade::addOverlayPasses(renderer, s);
         std::printf("%s: %zu lines, %zu segments\n", name.c_str(), info.lines, info.segments);
         auto target = render::FrameTarget::create({.width = kW, .height = kH, .samples = 4});
         render::Camera camera = render::defaultCamera(renderer.bounds(), float(kW) / kH);

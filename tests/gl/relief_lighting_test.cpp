@@ -10,9 +10,9 @@
 #include "GlTest.h"
 #include "GoldenCompare.h"
 
+#include <sierra/facade/SceneView.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Scene.h>
 #include <sierra/scene/Terrain.h>
@@ -46,7 +46,7 @@ class ReliefLighting : public test::GlTest {
         field_ = scene::loadTerrain(scene_.terrain);
         const float sea = scene::resolveSeaLevel(scene_.terrain, field_);
         terrain_.emplace(
-            render::TerrainRenderer::create(render::sceneTerrainDesc(scene_, field_, sea)));
+            render::TerrainRenderer::create(facade::sceneTerrainDesc(scene_, field_, sea)));
         target_.emplace(
             render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
     }
@@ -54,13 +54,13 @@ class ReliefLighting : public test::GlTest {
     gpu::Image renderFrame(const render::DrawOptions& draw,
                            std::optional<render::Camera> camera = std::nullopt) {
         const render::Camera c =
-            camera ? *camera : render::sceneCameras(scene_, terrain_->bounds()).front();
+            camera ? *camera : facade::sceneCameras(scene_, terrain_->bounds()).front();
         target_->begin(render::TerrainRenderer::clearColour(draw.lighting));
         terrain_->draw(c, kWidth, kHeight, draw);
         return target_->read();
     }
     render::DrawOptions options(bool shadows, bool skyLight) const {
-        render::DrawOptions draw = render::sceneDrawOptions(scene_);
+        render::DrawOptions draw = facade::sceneDrawOptions(scene_);
         draw.lighting.shadows = shadows;
         draw.lighting.skyLight = skyLight;
         return draw;
@@ -94,7 +94,7 @@ std::pair<int, int> darkerLighter(const gpu::Image& a, const gpu::Image& b, int 
 TEST_F(ReliefLighting, ShadowedSkyLitValleyMatchesReference) {
     // The scene's defaults: shadows and sky light on.
     ASSERT_TRUE(scene_.lighting.shadows && scene_.lighting.skyLight);
-    gpu::Image frame = renderFrame(render::sceneDrawOptions(scene_));
+    gpu::Image frame = renderFrame(facade::sceneDrawOptions(scene_));
     test::expectMatchesGolden(frame, "relief_jacksboro.png");
     EXPECT_GT(terrain_->terrain().reliefMs(), 0.0);
 }
@@ -159,7 +159,7 @@ double meanDistanceFromSky(const gpu::Image& image, const render::DepthImage& de
 
 TEST_F(ReliefLighting, AutomaticFogLeavesAFarCameraClear) {
     const render::SceneBounds bounds = terrain_->bounds();
-    const render::Camera near = render::sceneCameras(scene_, bounds).front();
+    const render::Camera near = facade::sceneCameras(scene_, bounds).front();
     render::Camera far = near;
     const float extent = std::max(bounds.size().x, bounds.size().z);
     far.position = near.target + glm::normalize(near.position - near.target) * 7.0f * extent;

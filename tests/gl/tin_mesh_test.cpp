@@ -9,9 +9,9 @@
 #include "GoldenCompare.h"
 
 #include <sierra/core/Error.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/SceneView.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Assets.h>
 #include <sierra/scene/Terrain.h>
@@ -65,8 +65,8 @@ class TinMesh : public test::GlTest {
         field_ = scene::loadTerrain(scene_.terrain);
         sea_ = scene::resolveSeaLevel(scene_.terrain, field_);
         renderer_.emplace(
-            render::TerrainRenderer::create(render::sceneTerrainDesc(scene_, field_, sea_)));
-        render::applySceneSurface(*renderer_, scene_, field_, sea_);
+            render::TerrainRenderer::create(facade::sceneTerrainDesc(scene_, field_, sea_)));
+        facade::applySceneSurface(*renderer_, scene_, field_, sea_);
         target_.emplace(
             render::FrameTarget::create({.width = kWidth, .height = kHeight, .samples = 4}));
     }
@@ -89,9 +89,9 @@ class TinMesh : public test::GlTest {
 };
 
 TEST_F(TinMesh, ZoneTilesOnTheTinMatchReferenceAndFullGrid) {
-    const std::string line = render::applySceneMesh(*renderer_, scene_, field_);
+    const std::string line = facade::applySceneMesh(*renderer_, scene_, field_);
     EXPECT_NE(line.find("triangles"), std::string::npos) << line;
-    render::DrawOptions options = render::sceneDrawOptions(scene_);
+    render::DrawOptions options = facade::sceneDrawOptions(scene_);
     ASSERT_EQ(options.lod, render::Lod::Mesh);
     const gpu::Image tin = renderFrame(options);
     EXPECT_EQ(stats_.triangles, tinTriangles_);
@@ -106,8 +106,8 @@ TEST_F(TinMesh, ZoneTilesOnTheTinMatchReferenceAndFullGrid) {
 }
 
 TEST_F(TinMesh, WireframeShowsTheTin) {
-    render::applySceneMesh(*renderer_, scene_, field_);
-    render::DrawOptions options = render::sceneDrawOptions(scene_);
+    facade::applySceneMesh(*renderer_, scene_, field_);
+    render::DrawOptions options = facade::sceneDrawOptions(scene_);
     options.wireframe = true;
     const gpu::Image tin = renderFrame(options);
     options.lod = render::Lod::Full;
@@ -123,7 +123,7 @@ TEST_F(TinMesh, MeshOfAnotherTerrainIsRefused) {
     size_t triangles = 0;
     other.lod.mesh = writeTin(other, "tin_mesh_other.obj", &triangles);
     try {
-        render::applySceneMesh(*renderer_, other, field_);
+        facade::applySceneMesh(*renderer_, other, field_);
         FAIL() << "a mesh of another terrain was accepted";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("tin_mesh_other.obj"), std::string::npos) << e.what();
@@ -131,7 +131,7 @@ TEST_F(TinMesh, MeshOfAnotherTerrainIsRefused) {
             << e.what();
     }
     other.lod.mesh = std::string(SIERRA_TEST_OUTPUT_DIR) + "/none.obj";
-    EXPECT_THROW(render::applySceneMesh(*renderer_, other, field_), Error);
+    EXPECT_THROW(facade::applySceneMesh(*renderer_, other, field_), Error);
 }
 
 }  // namespace

@@ -11,7 +11,6 @@
 
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
-#include <sierra/render/Scene.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/render/ZoneSurface.h>
 #include <sierra/scene/Assets.h>
@@ -70,7 +69,7 @@ class ZoneFrames : public test::GlTest {
 
     // The default scene (the terrain sierra-render draws with no arguments).
     void useDefaultScene() {
-        field_ = render::loadTerrain({});
+        field_ = scene::loadTerrain({});
         seaLevel_ = scene::heightQuantile(field_, 0.3);
         terrain_.emplace(
             render::TerrainRenderer::create({.field = &field_, .seaLevel = seaLevel_}));

@@ -17,8 +17,8 @@ function(run name)
 endfunction()
 
 run(install ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-foreach(f include/sierra/render/SceneRenderer.h include/sierra/core/Error.h lib/libsierra_core.a
-          lib/libsierra_render.a lib/cmake/Sierra/SierraConfig.cmake
+foreach(f include/sierra/facade/SceneRenderer.h include/sierra/core/Error.h lib/libsierra_core.a
+          lib/libsierra_render.a lib/libsierra_facade.a lib/cmake/Sierra/SierraConfig.cmake
           lib/cmake/Sierra/SierraConfigVersion.cmake lib/cmake/Sierra/SierraTargets.cmake
           lib/pkgconfig/sierra.pc share/sierra/assets/palettes/default.json bin/sierra-render
           bin/sierra-gen bin/sierra-tin bin/sierra-bench)
@@ -33,7 +33,7 @@ if(PKG_CONFIG)
   execute_process(COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${prefix}/lib/pkgconfig
                           ${PKG_CONFIG} --cflags --libs sierra
                   RESULT_VARIABLE rc OUTPUT_VARIABLE flags ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0 OR NOT flags MATCHES "-lsierra_render")
+  if(NOT rc EQUAL 0 OR NOT flags MATCHES "-lsierra_facade.*-lsierra_render")
     message(FATAL_ERROR "pkg-config --libs sierra: ${rc} ${flags} ${err}")
   endif()
   string(FIND "${flags}" "${prefix}/lib/pkgconfig/../../include" at)

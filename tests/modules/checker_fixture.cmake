@@ -1,7 +1,8 @@
 # Shows that cmake/CheckModuleIncludes.cmake catches wrong includes: each case
 # writes a small engine tree under WORK_DIR, runs the checker on it and expects
 # success, or failure with the given text. The module table comes from
-# docs/architecture.md unless a case sets case_architecture to a table of its own.
+# docs/architecture.md unless a case sets case_architecture to a table of its own;
+# case_extra_file and case_extra_content plant a second file.
 #   cmake -DCHECKER=<CheckModuleIncludes.cmake> -DWORK_DIR=<dir> -P checker_fixture.cmake
 
 function(run_case name file content expected)
@@ -17,6 +18,9 @@ function(run_case name file content expected)
        "#include \"render/Private.h\"\n#include <sierra/gpu/Gl.h>\n#include <glm/glm.hpp>\n#include <imgui.h>\n")
   if(file)
     file(WRITE "${root}/${file}" "${content}")
+  endif()
+  if(case_extra_file)
+    file(WRITE "${root}/${case_extra_file}" "${case_extra_content}")
   endif()
   set(architecture_arg "")
   if(case_architecture)
@@ -61,6 +65,36 @@ run_case(quoted_cross_module src/sbt/Bridge.cpp "#include \"render/SbtBridge.h\"
 run_case(unknown_module src/physics/Body.cpp "#include <string>\n"
          "module physics is not in the table")
 
+# CLI11, nlohmann-json and the scene module are kept out of the engine modules'
+# public headers by the document's table: a planted include is refused in each,
+# directly or through another module's public header.
+foreach(module core terrain sbt analysis zones tin gpu render)
+  foreach(planted "CLI|CLI/CLI.hpp" "scene|sierra/scene/Scene.h")
+    string(REPLACE "|" ";" planted "${planted}")
+    list(GET planted 0 dep)
+    list(GET planted 1 header)
+    run_case(${module}_header_reaches_${dep} include/sierra/${module}/Planted.h
+             "#pragma once\n#include <${header}>\n"
+             "include/sierra/${module}/Planted.h: a public header of ${module} reaches <${header}> (${dep} is kept out of ${module}'s public headers) directly (line 2)")
+  endforeach()
+endforeach()
+foreach(module core terrain sbt tin gpu render)
+  run_case(${module}_header_reaches_nlohmann include/sierra/${module}/Planted.h
+           "#pragma once\n#include <nlohmann/json.hpp>\n"
+           "include/sierra/${module}/Planted.h: a public header of ${module} reaches <nlohmann/json.hpp> (nlohmann is kept out of ${module}'s public headers) directly (line 2)")
+endforeach()
+set(case_extra_file include/sierra/zones/Palette.h)
+set(case_extra_content "#pragma once\n#include <sierra/terrain/Grid.h>\n#include <nlohmann/json_fwd.hpp>\n")
+run_case(render_header_reaches_nlohmann_through_zones include/sierra/render/Overlay.h
+         "#pragma once\n#include <string>\n#include <sierra/zones/Palette.h>\n"
+         "include/sierra/render/Overlay.h: a public header of render reaches <nlohmann/json_fwd.hpp> (nlohmann is kept out of render's public headers) through include/sierra/zones/Palette.h:3")
+set(case_extra_file include/sierra/scene/Scene.h)
+set(case_extra_content "#pragma once\n#include <CLI/CLI.hpp>\n")
+run_case(facade_header_may_reach_scene include/sierra/facade/View.h
+         "#pragma once\n#include <sierra/scene/Scene.h>\n#include <sierra/render/Camera.h>\n" "")
+unset(case_extra_file)
+unset(case_extra_content)
+
 # The table is read from the document: one that lets terrain use render passes the
 # include the real table refuses; one without a table, or with a malformed row, is refused.
 set(table_head "| module | owns | may include |\n|---|---|---|\n")
@@ -80,3 +114,9 @@ set(case_architecture "${WORK_DIR}/bad_row.md")
 run_case(document_bad_row "" "" "bad_row.md:6: a row of the modules table must start with a `name` cell")
 set(case_architecture "${WORK_DIR}/missing.md")
 run_case(document_missing "" "" "missing.md not found")
+# A module the kept-out table names may not list the dependency in its row.
+string(REPLACE "`imgui` `spng` |" "`imgui` `spng` `CLI` |" render_lists_cli "${table_rows}")
+file(WRITE "${WORK_DIR}/render_lists_cli.md"
+     "${table_head}${render_lists_cli}| `terrain` | grids | `core` `spng` |\n${table_confined}\n| kept out | of the public headers of |\n|---|---|\n| `CLI` | `core` `render` |\n")
+set(case_architecture "${WORK_DIR}/render_lists_cli.md")
+run_case(kept_out_row_listed "" "" "module render lists `CLI` in the module table, but CLI is kept out of render's public headers")

@@ -143,6 +143,24 @@ TEST_F(Drapes, AUtmImageOnAGeographicGridIsWarped) {
     EXPECT_NEAR((bx + 0.5) / d.width, 0.5, 0.02);
     EXPECT_NEAR((by + 0.5) / d.height, 0.5, 0.02);
     EXPECT_LT(texel(d, 2, 2)[0], 50) << "blue away from the spot";
+
+    // In strips of 7 rows: the same bytes, strip by strip, top first.
+    std::vector<uint8_t> strips;
+    int sized = 0, next = 0;
+    const auto header = terrain::readDrapeStrips(
+        file, {.placement = grid}, 7,
+        [&](const terrain::DrapeImage& size) { sized = size.width * size.height; },
+        [&](const terrain::DrapeStrip& s) {
+            EXPECT_EQ(s.row, next);
+            EXPECT_LE(s.rows, 7);
+            next += s.rows;
+            strips.insert(strips.end(), s.rgba, s.rgba + size_t(s.width) * s.rows * 4);
+        });
+    EXPECT_EQ(sized, d.width * d.height);
+    EXPECT_EQ(next, d.height);
+    EXPECT_TRUE(header.rgba.empty());
+    EXPECT_DOUBLE_EQ(header.coverage, d.coverage);
+    EXPECT_EQ(strips, d.rgba);
 }
 
 TEST_F(Drapes, WithoutGeoreferenceAnImageIsStretchedOrPlacedByBounds) {

@@ -41,10 +41,10 @@ struct SpngFree {
 // faster and smaller than level 1's string matching with the Up, Paeth or
 // per-row filter (apps/sierra-microbench/capture_bench.cpp). Default and
 // best: zlib's levels 6 and 9 with the filter chosen per row.
-void setCompression(spng_ctx* ctx, scene::PngCompression compression) {
+void setCompression(spng_ctx* ctx, PngCompression compression) {
     int level = 1, filters = SPNG_FILTER_CHOICE_SUB, strategy = Z_RLE;
-    if (compression != scene::PngCompression::Fast) {
-        level = compression == scene::PngCompression::Best ? 9 : 6;
+    if (compression != PngCompression::Fast) {
+        level = compression == PngCompression::Best ? 9 : 6;
         filters = SPNG_FILTER_CHOICE_ALL;
         strategy = Z_FILTERED;
     }
@@ -58,8 +58,7 @@ void setCompression(spng_ctx* ctx, scene::PngCompression compression) {
 // swaps them).
 template <typename Row>
 std::vector<uint8_t> encodeSpng(int width, int height, uint8_t colourType, uint8_t bitDepth,
-                                size_t rowBytes, scene::PngCompression compression,
-                                const Row& row) {
+                                size_t rowBytes, PngCompression compression, const Row& row) {
     std::unique_ptr<spng_ctx, SpngFree> ctx(spng_ctx_new(SPNG_CTX_ENCODER));
     if (!ctx) throw Error("cannot encode PNG: out of memory");
     auto check = [](int err, const char* step) {
@@ -145,12 +144,7 @@ bool isJpegName(const std::string& path) {
 
 }  // namespace
 
-ImageEncoding frameEncoding(const scene::OutputDesc& output) {
-    return {.png = output.pngCompression, .jpegQuality = output.jpegQuality, .alpha = output.alpha};
-}
-
-std::vector<uint8_t> encodePng(const gpu::Image& image, bool alpha,
-                               scene::PngCompression compression) {
+std::vector<uint8_t> encodePng(const gpu::Image& image, bool alpha, PngCompression compression) {
     checkImage(image, "PNG");
     const size_t pixels = size_t(image.width);
     const uint8_t* rgba = image.rgba.data();
@@ -171,7 +165,7 @@ std::vector<uint8_t> encodePng(const gpu::Image& image, bool alpha,
 }
 
 std::vector<uint8_t> encodePngGrey16(int width, int height, std::span<const uint16_t> samples,
-                                     scene::PngCompression compression) {
+                                     PngCompression compression) {
     SIERRA_CHECK(width > 0 && height > 0 && samples.size() == size_t(width) * size_t(height),
                  "cannot encode a 16-bit PNG: ", width, "x", height, " needs ",
                  size_t(std::max(width, 0)) * size_t(std::max(height, 0)), " samples, got ",
@@ -184,7 +178,7 @@ std::vector<uint8_t> encodePngGrey16(int width, int height, std::span<const uint
 }
 
 std::vector<uint8_t> encodePngGrey8(int width, int height, std::span<const uint8_t> samples,
-                                    scene::PngCompression compression) {
+                                    PngCompression compression) {
     SIERRA_CHECK(width > 0 && height > 0 && samples.size() == size_t(width) * size_t(height),
                  "cannot encode an 8-bit PNG: ", width, "x", height, " needs ",
                  size_t(std::max(width, 0)) * size_t(std::max(height, 0)), " samples, got ",

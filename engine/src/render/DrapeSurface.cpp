@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace sierra::render {
 
@@ -42,34 +43,60 @@ uint8_t unorm(float v) {
 
 class DrapeSurface final : public Surface {
   public:
-    DrapeSurface(std::unique_ptr<Surface> base, gpu::Texture multiplier, gpu::Texture added)
-        : base_(std::move(base)), multiplier_(std::move(multiplier)), added_(std::move(added)) {}
+    // `multiplier` absent: replace layers only, `added` premultiplied with
+    // alpha = 1 - the multiplier (surface_drape.glsl).
+    DrapeSurface(std::unique_ptr<Surface> base, gpu::Texture added,
+                 std::optional<gpu::Texture> multiplier)
+        : base_(std::move(base)), added_(std::move(added)), multiplier_(std::move(multiplier)) {}
     std::string shaderFile() const override { return "surface_drape.glsl"; }
     std::string baseShaderFile() const override { return base_->shaderFile(); }
-    std::string defines() const override { return base_->defines(); }
+    std::string defines() const override {
+        return base_->defines() + (multiplier_ ? "#define SIERRA_DRAPE_MULTIPLY 1\n" : "");
+    }
     bool lit() const override { return base_->lit(); }
     // bind() binds the base's textures and blocks, its zone field among them.
     bool zoneIds() const override { return base_->zoneIds(); }
     void bind() const override {
         base_->bind();
-        glBindTextureUnit(8, multiplier_.id());
         glBindTextureUnit(9, added_.id());
+        if (multiplier_) glBindTextureUnit(8, multiplier_->id());
     }
 
   private:
     std::unique_ptr<Surface> base_;
-    gpu::Texture multiplier_;
     gpu::Texture added_;
+    std::optional<gpu::Texture> multiplier_;
 };
 
-gpu::Texture upload(const DrapeMaps& maps, const std::vector<uint8_t>& pixels) {
-    const int levels = 1 + int(std::floor(std::log2(double(std::max(maps.width, maps.height)))));
-    gpu::Texture texture = gpu::Texture::create(
-        {.format = GL_RGBA8, .width = maps.width, .height = maps.height, .levels = levels});
-    texture.upload(GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+int mipLevels(int width, int height) {
+    return 1 + int(std::floor(std::log2(double(std::max(width, height)))));
+}
+
+gpu::Texture drapeTexture(int width, int height) {
+    const int limit = maxTextureSide();
+    if (width > limit || height > limit)
+        throw Error(msg("a drape of ", width, "x", height,
+                        " texels is over this driver's texture limit of ", limit));
+    return gpu::Texture::create(
+        {.format = GL_RGBA8, .width = width, .height = height, .levels = mipLevels(width, height)});
+}
+
+void finish(gpu::Texture& texture) {
     texture.generateMipmaps();
-    applyMipmapFiltering(texture, levels);
+    applyMipmapFiltering(texture, mipLevels(texture.width(), texture.height()));
+}
+
+gpu::Texture upload(const DrapeMaps& maps, const std::vector<uint8_t>& pixels) {
+    gpu::Texture texture = drapeTexture(maps.width, maps.height);
+    texture.upload(GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    finish(texture);
     return texture;
+}
+
+bool replaceOnly(std::span<const DrapeLayer> layers) {
+    for (const DrapeLayer& layer : layers)
+        if (layer.blend != DrapeBlend::Replace) return false;
+    return true;
 }
 
 }  // namespace
@@ -87,9 +114,10 @@ DrapeMaps composeDrapes(std::span<const DrapeLayer> layers) {
         maps.width = std::max(maps.width, layer.image->width);
         maps.height = std::max(maps.height, layer.image->height);
     }
+    maps.replaceOnly = replaceOnly(layers);
     const size_t texels = size_t(maps.width) * size_t(maps.height);
     maps.multiplier.assign(texels * 4, 255);
-    maps.added.assign(texels * 4, 0);
+    maps.added.assign(texels * 4, maps.replaceOnly ? 0 : 255);
     parallelFor(0, maps.height, [&](int64_t row) {
         const int y = int(row);
         for (int x = 0; x < maps.width; ++x) {
@@ -114,6 +142,8 @@ DrapeMaps composeDrapes(std::span<const DrapeLayer> layers) {
                 maps.multiplier[k + size_t(c)] = unorm(m[c]);
                 maps.added[k + size_t(c)] = unorm(a[c]);
             }
+            // Replace layers alone leave a grey multiplier: its complement is alpha.
+            if (maps.replaceOnly) maps.added[k + 3] = unorm(1.0f - m[0]);
         }
     });
     return maps;
@@ -128,13 +158,43 @@ int maxTextureSide() {
 std::unique_ptr<Surface> makeDrapeSurface(std::unique_ptr<Surface> base,
                                           std::span<const DrapeLayer> layers) {
     SIERRA_CHECK(base != nullptr, "a drape needs a surface beneath it");
-    const DrapeMaps maps = composeDrapes(layers);
-    const int limit = maxTextureSide();
-    if (maps.width > limit || maps.height > limit)
-        throw Error(msg("a drape of ", maps.width, "x", maps.height,
-                        " texels is over this driver's texture limit of ", limit));
-    return std::make_unique<DrapeSurface>(std::move(base), upload(maps, maps.multiplier),
-                                          upload(maps, maps.added));
+    DrapeMaps maps = composeDrapes(layers);
+    gpu::Texture added = upload(maps, maps.added);
+    std::optional<gpu::Texture> multiplier;
+    if (!maps.replaceOnly) multiplier = upload(maps, maps.multiplier);
+    return std::make_unique<DrapeSurface>(std::move(base), std::move(added), std::move(multiplier));
+}
+
+std::unique_ptr<Surface> makeStreamedDrapeSurface(std::unique_ptr<Surface> base,
+                                                  const std::string& path,
+                                                  const terrain::DrapeOptions& options,
+                                                  float opacity, terrain::DrapeImage* header) {
+    SIERRA_CHECK(base != nullptr, "a drape needs a surface beneath it");
+    SIERRA_CHECK(opacity >= 0.0f && opacity <= 1.0f, "a drape's opacity is 0..1, got ", opacity);
+    std::optional<gpu::Texture> texture;
+    std::vector<uint8_t> premultiplied;
+    terrain::DrapeOptions limited = options;
+    limited.maxTexels = std::min(options.maxTexels, maxTextureSide());
+    // Strips of about 16 MiB: each premultiplied and uploaded as it comes.
+    const auto info = terrain::readDrapeStrips(
+        path, limited, 1 << 22,
+        [&](const terrain::DrapeImage& size) { texture = drapeTexture(size.width, size.height); },
+        [&](const terrain::DrapeStrip& s) {
+            premultiplied.assign(s.rgba, s.rgba + size_t(s.width) * size_t(s.rows) * 4);
+            for (size_t k = 0; k < premultiplied.size(); k += 4) {
+                const float a = float(premultiplied[k + 3]) / 255.0f * opacity;
+                for (int c = 0; c < 3; ++c)
+                    premultiplied[k + size_t(c)] =
+                        unorm(float(premultiplied[k + size_t(c)]) / 255.0f * a);
+                premultiplied[k + 3] = unorm(a);
+            }
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+            glTextureSubImage2D(texture->id(), 0, 0, s.row, s.width, s.rows, GL_RGBA,
+                                GL_UNSIGNED_BYTE, premultiplied.data());
+        });
+    finish(*texture);
+    if (header) *header = info;
+    return std::make_unique<DrapeSurface>(std::move(base), std::move(*texture), std::nullopt);
 }
 
 }  // namespace sierra::render

@@ -6,7 +6,6 @@
 #include <sierra/render/passes/PointsPass.h>
 #include <sierra/render/passes/TerrainPass.h>
 #include <sierra/render/passes/WireframePass.h>
-#include <sierra/scene/Scene.h>
 
 #include <algorithm>
 #include <cmath>
@@ -66,11 +65,11 @@ FrameUniformData TerrainRenderer::frameUniforms(const Camera& camera, int width,
     // Automatic haze over the terrain's bounding sphere as the eye sees it;
     // an orthographic view has no meaningful eye distance (its eye is put
     // anywhere behind the terrain), so maps get none unless asked for.
-    scene::FogRange fog{.density = std::max(light.fogDensity, 0.0f)};
+    FogRange fog{.density = std::max(light.fogDensity, 0.0f)};
     if (light.fogDensity < 0.0f && camera.projection != Projection::Orthographic) {
         const SceneBounds bounds = state_->terrain.bounds();
-        fog = scene::automaticFog(glm::distance(camera.position, bounds.centre()),
-                                  0.5f * glm::length(bounds.size()));
+        fog = automaticFog(glm::distance(camera.position, bounds.centre()),
+                           0.5f * glm::length(bounds.size()));
     }
     // A sun whose whole disc is below the horizon lights nothing directly.
     glm::vec3 sun = glm::normalize(light.sunDirection);

@@ -407,6 +407,7 @@ PngCompression parsePngCompression(const std::string& text, const std::string& w
 }
 
 void validateScene(const Scene& scene) {
+    validateMapLayers(scene.layers);
     validateTerrain(scene.terrain);
     validateCamera(scene.camera);
     validatePath(scene.path, scene.camera);
@@ -439,15 +440,6 @@ SunAngles sceneSun(const Scene& scene, const terrain::Heightfield& field, int fr
     sun.azimuth = float(p.azimuth);
     sun.altitude = float(p.altitude);
     return sun;
-}
-
-FogRange automaticFog(float eyeToCentre, float radius) {
-    if (!(radius > 0.0f) || !std::isfinite(radius) || !std::isfinite(eyeToCentre)) return {};
-    const float start = std::max(eyeToCentre - radius, 0.0f);
-    const float far = std::max(eyeToCentre + radius, 0.0f);
-    // fog(d) = 1 - exp(-density * (d - start)) is kAutoFogFarEdge at `far`.
-    return {.density = -std::log(1.0f - kAutoFogFarEdge) / std::max(far - start, 1e-6f),
-            .start = start};
 }
 
 std::string presetPath(const std::string& name) {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 
 #ifdef SIERRA_WITH_GDAL
@@ -173,9 +174,55 @@ void checkBands(const std::string& path, GDALDataset& source, int& colourBands, 
     alpha = bands == 2 || bands == 4;
 }
 
+// Rows [row, row + rows) of the th-row result, warped into `rgba` (tw x rows,
+// RGBA8): a memory raster whose bands are those bytes, R, G, B and alpha, or
+// grey in R (copied to G and B after) and alpha.
+void warpStrip(const std::string& path, GDALDriver& mem, GDALDataset& source, const Target& target,
+               std::array<int, 2> size, int row, int rows, int colourBands, bool sourceAlpha,
+               Resampling resampling, uint8_t* rgba) {
+    const auto [tw, th] = size;
+    Dataset warped(mem.Create("", tw, rows, 0, GDT_Byte, nullptr));
+    if (!warped) throw Error(msg(path, ": GDAL cannot make a ", tw, "x", rows, " raster"));
+    for (int b = 0; b <= colourBands; ++b) {
+        const int offset = b == colourBands ? 3 : b;  // alpha last
+        char pointer[64];
+        CPLPrintPointer(pointer, rgba + offset, sizeof pointer);
+        const std::string data = std::string("DATAPOINTER=") + pointer;
+        const std::string line = "LINEOFFSET=" + std::to_string(int64_t(tw) * 4);
+        const char* bandOptions[] = {data.c_str(), "PIXELOFFSET=4", line.c_str(), nullptr};
+        if (warped->AddBand(GDT_Byte, const_cast<char**>(bandOptions)) != CE_None)
+            throw Error(msg(path, ": GDAL cannot make the drape's bands: ", CPLGetLastErrorMsg()));
+    }
+    // The whole result's geotransform, its origin moved down `row` rows.
+    const GeoTransform& g = target.geo;
+    const double sx = double(target.width) / tw, sy = double(target.height) / th;
+    GeoTransform dst{g[0] + g[2] * sy * row, g[1] * sx, g[2] * sy,
+                     g[3] + g[5] * sy * row, g[4] * sx, g[5] * sy};
+    warped->SetGeoTransform(dst.data());
+    warped->SetProjection(target.wkt.c_str());
+    std::vector<const char*> args{"-r", resampling == Resampling::Cubic ? "cubic" : "bilinear",
+                                  "-dstalpha"};
+    if (sourceAlpha) args.push_back("-srcalpha");
+    args.push_back(nullptr);
+    GDALWarpAppOptions* warpOptions =
+        GDALWarpAppOptionsNew(const_cast<char**>(args.data()), nullptr);
+    GDALDatasetH sources[] = {GDALDataset::ToHandle(&source)};
+    int usageError = 0;
+    GDALDatasetH result = GDALWarp(nullptr, GDALDataset::ToHandle(warped.get()), 1, sources,
+                                   warpOptions, &usageError);
+    GDALWarpAppOptionsFree(warpOptions);
+    if (!result) throw Error(msg(path, ": GDAL cannot warp the drape: ", CPLGetLastErrorMsg()));
+    warped->FlushCache();
+    if (colourBands == 1)
+        for (size_t k = 0; k < size_t(tw) * size_t(rows) * 4; k += 4)
+            rgba[k + 1] = rgba[k + 2] = rgba[k];
+}
+
 }  // namespace
 
-DrapeImage readDrape(const std::string& path, const DrapeOptions& options) {
+DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options, int stripRows,
+                           const std::function<void(const DrapeImage&)>& onSize,
+                           const std::function<void(const DrapeStrip&)>& onStrip) {
     regularFileSize(path);  // missing files and devices are refused before GDAL opens them
     GDALAllRegister();
     CPLPushErrorHandler(CPLQuietErrorHandler);  // one message: GDAL's last goes into the Error
@@ -222,52 +269,49 @@ DrapeImage readDrape(const std::string& path, const DrapeOptions& options) {
     const auto fp = footprint(path, *source, target, out.reprojected);
     const auto [tw, th] = drapeSize(fp, *source, target, options, out);
 
-    // The memory raster over the grid's pixel corners, its bands the result's
-    // own bytes (no second copy of a large drape): R, G, B and alpha, or grey
-    // in R (copied to G and B after the warp) and alpha.
     out.width = tw;
     out.height = th;
-    out.rgba.assign(size_t(tw) * size_t(th) * 4, 0);
+    onSize(out);
+
+    // GDAL's block cache holds what the warp reads of the source: capped while
+    // it reads, so a large image is not cached whole beside the strips.
+    const GIntBig cache = GDALGetCacheMax64();
+    GDALSetCacheMax64(std::min<GIntBig>(cache, GIntBig(256) << 20));
+    struct RestoreCache {
+        GIntBig bytes;
+        ~RestoreCache() { GDALSetCacheMax64(bytes); }
+    } restoreCache{cache};
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     if (!mem) throw Error("GDAL has no MEM driver");
-    Dataset warped(mem->Create("", tw, th, 0, GDT_Byte, nullptr));
-    if (!warped) throw Error(msg(path, ": GDAL cannot make a ", tw, "x", th, " raster"));
-    for (int b = 0; b <= colourBands; ++b) {
-        const int offset = b == colourBands ? 3 : b;  // alpha last
-        char pointer[64];
-        CPLPrintPointer(pointer, out.rgba.data() + offset, sizeof pointer);
-        const std::string data = std::string("DATAPOINTER=") + pointer;
-        const std::string line = "LINEOFFSET=" + std::to_string(int64_t(tw) * 4);
-        const char* bandOptions[] = {data.c_str(), "PIXELOFFSET=4", line.c_str(), nullptr};
-        if (warped->AddBand(GDT_Byte, const_cast<char**>(bandOptions)) != CE_None)
-            throw Error(msg(path, ": GDAL cannot make the drape's bands: ", CPLGetLastErrorMsg()));
-    }
-    GeoTransform dst{
-        target.geo[0], target.geo[1] * target.width / tw, target.geo[2] * target.height / th,
-        target.geo[3], target.geo[4] * target.width / tw, target.geo[5] * target.height / th};
-    warped->SetGeoTransform(dst.data());
-    warped->SetProjection(target.wkt.c_str());
-    std::vector<const char*> args{
-        "-r", options.resampling == Resampling::Cubic ? "cubic" : "bilinear", "-dstalpha"};
-    if (sourceAlpha) args.push_back("-srcalpha");
-    args.push_back(nullptr);
-    GDALWarpAppOptions* warpOptions =
-        GDALWarpAppOptionsNew(const_cast<char**>(args.data()), nullptr);
-    GDALDatasetH sources[] = {GDALDataset::ToHandle(source)};
-    int usageError = 0;
-    GDALDatasetH result = GDALWarp(nullptr, GDALDataset::ToHandle(warped.get()), 1, sources,
-                                   warpOptions, &usageError);
-    GDALWarpAppOptionsFree(warpOptions);
-    if (!result) throw Error(msg(path, ": GDAL cannot warp the drape: ", CPLGetLastErrorMsg()));
-    warped->FlushCache();
-    if (colourBands == 1)
-        for (size_t k = 0; k < out.rgba.size(); k += 4)
-            out.rgba[k + 1] = out.rgba[k + 2] = out.rgba[k];
+    const int rows = std::clamp(stripRows, 1, th);
+    std::vector<uint8_t> strip(size_t(tw) * size_t(rows) * 4);
     size_t reached = 0;
-    for (size_t k = 3; k < out.rgba.size(); k += 4) reached += out.rgba[k] > 0;
+    for (int row = 0; row < th; row += rows) {
+        const int n = std::min(rows, th - row);
+        std::fill(strip.begin(), strip.end(), uint8_t(0));
+        warpStrip(path, *mem, *source, target, {tw, th}, row, n, colourBands, sourceAlpha,
+                  options.resampling, strip.data());
+        for (size_t k = 3; k < size_t(tw) * size_t(n) * 4; k += 4) reached += strip[k] > 0;
+        onStrip({row, n, tw, strip.data()});
+    }
     out.coverage = double(reached) / (double(tw) * th);
     if (reached == 0) throw Error(msg(path, ": the drape lies wholly outside the terrain"));
     return out;
+}
+
+DrapeImage readDrape(const std::string& path, const DrapeOptions& options) {
+    DrapeImage image;
+    DrapeImage header = readDrapeStrips(
+        path, options, 1 << 30,
+        [&](const DrapeImage& size) {
+            image.rgba.assign(size_t(size.width) * size_t(size.height) * 4, 0);
+        },
+        [&](const DrapeStrip& s) {
+            std::copy(s.rgba, s.rgba + size_t(s.width) * size_t(s.rows) * 4,
+                      image.rgba.begin() + ptrdiff_t(s.row) * s.width * 4);
+        });
+    header.rgba = std::move(image.rgba);
+    return header;
 }
 #endif
 

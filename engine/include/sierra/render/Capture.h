@@ -4,7 +4,6 @@
 // encoder threads call them).
 
 #include <sierra/gpu/ReadBack.h>
-#include <sierra/scene/Scene.h>
 
 #include <cstdint>
 #include <span>
@@ -13,27 +12,29 @@
 
 namespace sierra::render {
 
+// zlib's effort for a PNG: Fast is level 1 with the Sub filter (for frame
+// sequences), Default level 6 and Best level 9, both with the filter chosen
+// per row.
+enum class PngCompression { Fast, Default, Best };
+
 // How an image file is written; the format follows the file name (.jpg and
 // .jpeg: JPEG, anything else: PNG).
 struct ImageEncoding {
-    scene::PngCompression png = scene::PngCompression::Fast;
+    PngCompression png = PngCompression::Fast;
     int jpegQuality = 90;  // 1..100
     bool alpha = false;    // PNG: RGBA instead of RGB; JPEG refuses it
 };
 
-// The encoding of a scene's frames (output.png_compression, jpeg_quality, alpha).
-ImageEncoding frameEncoding(const scene::OutputDesc& output);
-
 // An RGBA8 image as an 8-bit RGB PNG (RGBA with `alpha`), through libspng.
 // Throws sierra::Error for an empty or inconsistent image.
 std::vector<uint8_t> encodePng(const gpu::Image& image, bool alpha = false,
-                               scene::PngCompression compression = scene::PngCompression::Fast);
+                               PngCompression compression = PngCompression::Fast);
 // A 16-bit grey PNG of `width` x `height` samples, rows top first.
 std::vector<uint8_t> encodePngGrey16(int width, int height, std::span<const uint16_t> samples,
-                                     scene::PngCompression compression);
+                                     PngCompression compression);
 // An 8-bit grey PNG (masks, zone ids), rows top first.
 std::vector<uint8_t> encodePngGrey8(int width, int height, std::span<const uint8_t> samples,
-                                    scene::PngCompression compression);
+                                    PngCompression compression);
 // An RGBA8 image as a baseline JPEG (alpha dropped), through libjpeg-turbo;
 // `quality` 1..100.
 std::vector<uint8_t> encodeJpeg(const gpu::Image& image, int quality = 90);

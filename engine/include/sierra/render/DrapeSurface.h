@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace sierra::render {
@@ -25,9 +26,12 @@ struct DrapeLayer {
 
 // The layers composed into one map per channel, albedo = base * multiplier +
 // added, at the finest layer's size (coarser layers resampled bilinearly):
-// RGBA8 images, alpha unused (255).
+// RGBA8 images. Replace layers alone multiply by a grey: `added` then holds
+// 1 - that grey as its alpha and the shader reads it alone; otherwise alpha
+// is 255 in both.
 struct DrapeMaps {
     int width = 0, height = 0;
+    bool replaceOnly = true;
     std::vector<uint8_t> multiplier;
     std::vector<uint8_t> added;
 };
@@ -38,6 +42,17 @@ DrapeMaps composeDrapes(std::span<const DrapeLayer> layers);
 // texture limit (readDrape's maxTexels should be that limit).
 std::unique_ptr<Surface> makeDrapeSurface(std::unique_ptr<Surface> base,
                                           std::span<const DrapeLayer> layers);
+
+// One replace layer read from `path` strip by strip (terrain::readDrapeStrips)
+// straight into its texture, premultiplied by its alpha times `opacity`: the
+// image is never held whole, for drapes near the texture limit. maxTexels is
+// lowered to the driver's limit. `header`, when given, receives the drape's
+// size, flags and coverage.
+std::unique_ptr<Surface> makeStreamedDrapeSurface(std::unique_ptr<Surface> base,
+                                                  const std::string& path,
+                                                  const terrain::DrapeOptions& options,
+                                                  float opacity = 1.0f,
+                                                  terrain::DrapeImage* header = nullptr);
 
 // The driver's largest texture side (GL_MAX_TEXTURE_SIZE).
 int maxTextureSide();

@@ -12,6 +12,20 @@ namespace sierra::render {
 inline constexpr GLuint kFrameUniformBinding = 0;
 inline constexpr GLuint kTerrainUniformBinding = 1;
 
+// Automatic fog (Lighting::fogDensity < 0): aerial perspective over the framed
+// terrain whatever the camera's distance. No haze up to the near edge of the
+// terrain's bounding sphere seen from the eye; from there the haze grows
+// exponentially, to kAutoFogFarEdge of the way to the sky colour at the
+// sphere's far edge (a camera inside the sphere: from the eye to the far edge).
+inline constexpr float kAutoFogFarEdge = 0.4f;
+struct FogRange {
+    float density = 0.0f;  // per world unit
+    float start = 0.0f;    // world units from the eye where the haze begins
+};
+// eyeToCentre: distance from the eye to the sphere's centre; radius: the
+// sphere's, both world units (> 0; a radius <= 0 gives no fog).
+FogRange automaticFog(float eyeToCentre, float radius);
+
 // Field for field the layout of `uniform Frame` in shaders/frame.glsl.
 struct FrameUniformData {
     glm::mat4 viewProj{1.0f};

@@ -46,7 +46,7 @@ struct Lighting {
     // Towards the sun (unit): compass bearing 232.1 degrees (south-west), 52.8 degrees up.
     glm::vec3 sunDirection = glm::normalize(glm::vec3(-0.45f, 0.75f, 0.35f));
     float ambient = 0.32f;  // light that reaches faces turned away, 0..1
-    // Haze per world unit; 0 = off; < 0 = automatic (scene::automaticFog over
+    // Haze per world unit; 0 = off; < 0 = automatic (automaticFog over
     // the terrain's bounding sphere; perspective only).
     float fogDensity = -1.0f;
     glm::vec3 sky{0.62f, 0.74f, 0.86f};  // sky and fog colour, linear 0..1

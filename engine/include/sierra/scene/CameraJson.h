@@ -2,7 +2,7 @@
 // The camera metadata of dataset outputs as JSON: one file per frame
 // (cameraJson) and, for a sequence, one transforms.json in the NeRF /
 // instant-ngp convention (transformsJson). The numbers come as plain data
-// (render::cameraRecord fills them from a camera), so this module writes JSON
+// (facade::cameraRecord fills them from a render::Camera), so this module writes JSON
 // without knowing the renderer. The JSON forms are described in
 // docs/dataset.md.
 

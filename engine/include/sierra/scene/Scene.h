@@ -12,6 +12,7 @@
 // horizon) is (sin a cos e, sin e, -cos a cos e).
 
 #include <sierra/analysis/Style.h>
+#include <sierra/scene/MapLayers.h>
 #include <sierra/scene/Terrain.h>
 #include <sierra/zones/ZoneMap.h>
 
@@ -252,6 +253,7 @@ struct Scene {
     OutputDesc output;
     StyleDesc style;
     ZonesDesc zones;
+    MapLayersDesc layers;  // drapes, vector layers, labels, map furniture
     bool operator==(const Scene&) const = default;
 };
 
@@ -275,20 +277,6 @@ struct SunAngles {
 // Throws sierra::Error when a time has no place (a DEM without a
 // georeference and no latitude and longitude).
 SunAngles sceneSun(const Scene& scene, const terrain::Heightfield& field, int frame);
-
-// Automatic fog (lighting.fog absent): aerial perspective over the framed
-// terrain whatever the camera's distance. No haze up to the near edge of the
-// terrain's bounding sphere seen from the eye; from there the haze grows
-// exponentially, to kAutoFogFarEdge of the way to the sky colour at the
-// sphere's far edge (a camera inside the sphere: from the eye to the far edge).
-inline constexpr float kAutoFogFarEdge = 0.4f;
-struct FogRange {
-    float density = 0.0f;  // per world unit
-    float start = 0.0f;    // world units from the eye where the haze begins
-};
-// eyeToCentre: distance from the eye to the sphere's centre; radius: the
-// sphere's, both world units (> 0; a radius <= 0 gives no fog).
-FogRange automaticFog(float eyeToCentre, float radius);
 
 // Names used by the command line and the JSON form (the terrains are in
 // Terrain.h); parse* throw sierra::Error

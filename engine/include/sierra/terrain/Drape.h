@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,5 +64,19 @@ struct DrapeImage {
 // transformation to the grid's, or an image that reaches no texel of the
 // grid. Built without GDAL, throws saying so.
 DrapeImage readDrape(const std::string& path, const DrapeOptions& options);
+
+// Rows of a drape as they are warped, top first.
+struct DrapeStrip {
+    int row = 0, rows = 0, width = 0;
+    const uint8_t* rgba = nullptr;  // width * rows * 4 bytes, valid during the call
+};
+
+// readDrape in strips of at most `stripRows` rows, so a large drape is never
+// held whole: onSize gets the result's size and flags (rgba empty) before the
+// first strip, onStrip each strip in turn; returns the same header with the
+// coverage. GDAL's block cache is capped at 256 MiB while it reads.
+DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options, int stripRows,
+                           const std::function<void(const DrapeImage&)>& onSize,
+                           const std::function<void(const DrapeStrip&)>& onStrip);
 
 }  // namespace sierra::terrain

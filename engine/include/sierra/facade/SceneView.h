@@ -4,6 +4,7 @@
 // lighting.
 
 #include <sierra/render/Camera.h>
+#include <sierra/render/Capture.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Scene.h>
 
@@ -11,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace sierra::render {
+namespace sierra::facade {
 
 // The cameras of the scene's sequence (path.frames of them; the range, if
 // any, is the caller's to pick), for a terrain with `bounds`, one frame at a
@@ -28,44 +29,45 @@ namespace sierra::render {
 // at once.
 class SceneCameraPath {
   public:
-    SceneCameraPath(const scene::Scene& scene, const SceneBounds& bounds);
+    SceneCameraPath(const scene::Scene& scene, const render::SceneBounds& bounds);
     int frames() const { return frames_; }
     // Frame k, 0 <= k < frames(); throws sierra::Error for a camera whose
     // position is its target.
-    Camera at(int k) const;
+    render::Camera at(int k) const;
 
   private:
     scene::PathType type_;
     int frames_;
-    SceneBounds bounds_;
+    render::SceneBounds bounds_;
     float aspect_, fov_, elevation_;
-    Projection projection_;
+    render::Projection projection_;
     glm::vec3 target_;
     bool moveTarget_ = false;        // orbit: around the scene's target, not the default
     std::optional<float> distance_;  // orbit: the scene's distance
     float orbitDistance_ = 0.0f;     // orbit: the framing distance of the whole path
     float orthoHeight_ = 0.0f;       // orbit, orthographic: the framed view height
-    std::vector<Keyframe> keys_;
-    Camera still_;  // path none
+    std::vector<render::Keyframe> keys_;
+    render::Camera still_;  // path none
 };
 
 // Frame k's camera alone (a SceneCameraPath made for it).
-Camera sceneCamera(const scene::Scene& scene, const SceneBounds& bounds, int k);
+render::Camera sceneCamera(const scene::Scene& scene, const render::SceneBounds& bounds, int k);
 // Every camera of the sequence, SceneCameraPath's for each frame.
-std::vector<Camera> sceneCameras(const scene::Scene& scene, const SceneBounds& bounds);
+std::vector<render::Camera> sceneCameras(const scene::Scene& scene,
+                                         const render::SceneBounds& bounds);
 
 // The cameras of a debug snapshot, whose frame is `frameWidth` pixels wide
 // beside the panel column: sceneCameras for that narrower frame, so a camera
 // framed automatically keeps the whole terrain in view; a fixed one is unchanged.
-std::vector<Camera> snapshotCameras(const scene::Scene& scene, const SceneBounds& bounds,
-                                    int frameWidth);
-SceneCameraPath snapshotCameraPath(const scene::Scene& scene, const SceneBounds& bounds,
+std::vector<render::Camera> snapshotCameras(const scene::Scene& scene,
+                                            const render::SceneBounds& bounds, int frameWidth);
+SceneCameraPath snapshotCameraPath(const scene::Scene& scene, const render::SceneBounds& bounds,
                                    int frameWidth);
 
 // The draw options of the scene; lighting.sunDirection is the scene's fixed
 // sun (lighting.sun_azimuth / sun_altitude): with a sun time, set each
 // frame's from sceneSunDirections.
-DrawOptions sceneDrawOptions(const scene::Scene& scene);
+render::DrawOptions sceneDrawOptions(const scene::Scene& scene);
 
 // The direction towards the sun in frame k of the scene's sequence
 // (scene::sceneSun) over `field` as loaded: O(1). Throws sierra::Error as
@@ -86,16 +88,20 @@ std::vector<glm::vec3> sceneSunDirections(const scene::Scene& scene,
 // The renderer's description of the scene's terrain: `field` as loaded by
 // scene::loadTerrain, the sea level from scene::resolveSeaLevel, metric
 // colouring when its heights are metres.
-TerrainDesc sceneTerrainDesc(const scene::Scene& scene, const terrain::Heightfield& field,
-                             float seaLevel);
-Lighting sceneLighting(const scene::LightingDesc& lighting, bool transparent);
+render::TerrainDesc sceneTerrainDesc(const scene::Scene& scene, const terrain::Heightfield& field,
+                                     float seaLevel);
+render::Lighting sceneLighting(const scene::LightingDesc& lighting, bool transparent);
 
 glm::vec3 toGlm(const scene::Vec3& v);
+
+// The encoding of a scene's frames (output.png_compression, jpeg_quality, alpha).
+render::ImageEncoding frameEncoding(const scene::OutputDesc& output);
+render::PngCompression pngCompression(scene::PngCompression compression);
 
 // Gives the renderer the scene's surface when it is not the default colour
 // ramp (zone tiles), and returns one line saying what was built ("" for none).
 // `field` and `seaLevel` as for sceneTerrainDesc.
-std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& scene,
+std::string applySceneSurface(render::TerrainRenderer& renderer, const scene::Scene& scene,
                               const terrain::Heightfield& field, float seaLevel);
 // Gives the renderer the scene's TIN (lod.mesh, an OBJ from sierra-tin) and
 // returns one line saying what was loaded ("" for none; sceneDrawOptions then
@@ -103,7 +109,7 @@ std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& sce
 // i * spacing, z = j * spacing, within 1e-3 of a sample) with its height
 // (within 1e-3 of the height range): a mesh made for another terrain is
 // refused with sierra::Error naming the file.
-std::string applySceneMesh(TerrainRenderer& renderer, const scene::Scene& scene,
+std::string applySceneMesh(render::TerrainRenderer& renderer, const scene::Scene& scene,
                            const terrain::Heightfield& field);
 
 // What addOverlayPasses added.
@@ -120,6 +126,6 @@ struct OverlayInfo {
 // on the GPU once (twice with an automatic scale, StyleParams::autoScale: the
 // second at the scale the first asks for), the lines traced once from it.
 // Nothing when the style has no overlay layer.
-OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& scene);
+OverlayInfo addOverlayPasses(render::TerrainRenderer& renderer, const scene::Scene& scene);
 
-}  // namespace sierra::render
+}  // namespace sierra::facade

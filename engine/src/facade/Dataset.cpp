@@ -1,9 +1,10 @@
-#include <sierra/render/Dataset.h>
+#include <sierra/facade/Dataset.h>
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 #include <sierra/core/Npy.h>
-#include <sierra/render/CameraRecord.h>
+#include <sierra/facade/CameraRecord.h>
+#include <sierra/facade/SceneView.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/Exr.h>
 #include <sierra/scene/Assets.h>
@@ -11,18 +12,18 @@
 
 #include <filesystem>
 
-namespace sierra::render {
+namespace sierra::facade {
 
 namespace {
 
-void writeNormals(const std::string& path, const LabelImage& labels, bool half) {
+void writeNormals(const std::string& path, const render::LabelImage& labels, bool half) {
     if (lowerExtension(path) == ".exr") {
-        writeFileAtomic(path,
-                        encodeExr({.width = labels.width,
-                                   .height = labels.height,
-                                   .channels = {"R", "G", "B"},
-                                   .values = labels.normals,
-                                   .precision = half ? ExrPrecision::Half : ExrPrecision::Float}));
+        writeFileAtomic(path, render::encodeExr({.width = labels.width,
+                                                 .height = labels.height,
+                                                 .channels = {"R", "G", "B"},
+                                                 .values = labels.normals,
+                                                 .precision = half ? render::ExrPrecision::Half
+                                                                   : render::ExrPrecision::Float}));
         return;
     }
     const int shape[] = {labels.height, labels.width, 3};
@@ -54,18 +55,19 @@ void DatasetWriter::checkLocations() const {
 }
 
 std::string DatasetWriter::framePath(const std::string& base, int k) const {
-    return sequence_ ? sequencePath(base, k) : base;
+    return sequence_ ? render::sequencePath(base, k) : base;
 }
 
 std::string DatasetWriter::palettePath(const std::string& zoneIds) {
     return std::filesystem::path(zoneIds).replace_extension(".json").string();
 }
 
-void DatasetWriter::write(TerrainRenderer& renderer, const terrain::Heightfield& field, int k,
-                          const Camera& camera, int width, int height, const DrawOptions& options) {
+void DatasetWriter::write(render::TerrainRenderer& renderer, const terrain::Heightfield& field,
+                          int k, const render::Camera& camera, int width, int height,
+                          const render::DrawOptions& options) {
     const scene::OutputDesc& o = output_;
     if (!o.depth.empty()) {
-        DepthImage depth = renderer.renderDepth(camera, width, height, options);
+        render::DepthImage depth = renderer.renderDepth(camera, width, height, options);
         writeFileAtomic(framePath(o.depth, k),
                         encodeNpyFloat32(depth.height, depth.width, depth.depth));
     }
@@ -73,17 +75,19 @@ void DatasetWriter::write(TerrainRenderer& renderer, const terrain::Heightfield&
     if (!o.normals.empty() || !o.zoneIds.empty() || !o.mask.empty()) {
         SIERRA_CHECK(o.zoneIds.empty() || renderer.hasZoneIds(), "--zones-out ", o.zoneIds,
                      " needs the zone surface, and the renderer has none");
-        LabelImage labels = renderer.renderLabels(
+        render::LabelImage labels = renderer.renderLabels(
             camera, width, height, options,
             o.normalsSpace == "camera" ? openCvRotation(camera) : glm::mat3(1.0f));
         if (!o.normals.empty())
             writeNormals(framePath(o.normals, k), labels, o.normalsPrecision == "float16");
         if (!o.mask.empty())
             writeFileAtomic(framePath(o.mask, k),
-                            encodePngGrey8(width, height, labels.mask, o.pngCompression));
+                            render::encodePngGrey8(width, height, labels.mask,
+                                                   pngCompression(o.pngCompression)));
         if (!o.zoneIds.empty()) {
             writeFileAtomic(framePath(o.zoneIds, k),
-                            encodePngGrey8(width, height, labels.zones, o.pngCompression));
+                            render::encodePngGrey8(width, height, labels.zones,
+                                                   pngCompression(o.pngCompression)));
             if (!paletteWritten_) {
                 writeFileAtomic(palettePath(o.zoneIds),
                                 scene::zonePaletteJson(zones::loadPalette(palette_, false)));
@@ -105,4 +109,4 @@ void DatasetWriter::finish() {
     writeFileAtomic(output_.transforms, scene::transformsJson(frames_));
 }
 
-}  // namespace sierra::render
+}  // namespace sierra::facade

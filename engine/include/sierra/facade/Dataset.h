@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace sierra::render {
+namespace sierra::facade {
 
 class DatasetWriter {
   public:
@@ -30,8 +30,9 @@ class DatasetWriter {
     // width x height with `options`) over `field` (the terrain as loaded: its
     // spacing and georeference go into the camera JSON), and keeps its camera
     // for finish().
-    void write(TerrainRenderer& renderer, const terrain::Heightfield& field, int k,
-               const Camera& camera, int width, int height, const DrawOptions& options);
+    void write(render::TerrainRenderer& renderer, const terrain::Heightfield& field, int k,
+               const render::Camera& camera, int width, int height,
+               const render::DrawOptions& options);
     // Writes transforms.json for the frames written so far (nothing when it
     // is not asked for or no frame was written).
     void finish();
@@ -49,4 +50,4 @@ class DatasetWriter {
     std::vector<scene::TransformsFrame> frames_;
 };
 
-}  // namespace sierra::render
+}  // namespace sierra::facade

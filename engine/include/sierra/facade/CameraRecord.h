@@ -8,7 +8,7 @@
 #include <sierra/scene/CameraJson.h>
 #include <sierra/terrain/Heightfield.h>
 
-namespace sierra::render {
+namespace sierra::facade {
 
 // The record of `camera` drawing a width x height frame over `field` (the
 // terrain as loaded: its spacing, vertical scale and georeference map world
@@ -16,16 +16,16 @@ namespace sierra::render {
 // at pixel (u, v) (DepthImage: distance along the view direction) is the z of
 // the camera-axes point K^-1 (u, v, 1) z for perspective, (K^-1 (u, v, 1))
 // with z = depth for orthographic; the world point is then R^T (p - t).
-scene::CameraRecord cameraRecord(const Camera& camera, int width, int height,
+scene::CameraRecord cameraRecord(const render::Camera& camera, int width, int height,
                                  const terrain::Heightfield& field);
 
 // R of the record: the world-to-camera rotation into OpenCV's axes (x right,
 // y down, z forward), GL's view rotation with y and z turned round.
-glm::mat3 openCvRotation(const Camera& camera);
+glm::mat3 openCvRotation(const render::Camera& camera);
 
 // The CRS position (X, Y, stored height) of world point `world` over `field`
 // (which must have a georeference): grid position (x / sx, z / sz) in
 // samples, through the geotransform at the samples' pixel centres.
 std::array<double, 3> worldToCrs(const glm::dvec3& world, const terrain::Heightfield& field);
 
-}  // namespace sierra::render
+}  // namespace sierra::facade

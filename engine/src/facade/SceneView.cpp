@@ -1,4 +1,4 @@
-#include <sierra/render/SceneView.h>
+#include <sierra/facade/SceneView.h>
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Log.h>
@@ -18,7 +18,27 @@
 #include <memory>
 #include <vector>
 
-namespace sierra::render {
+namespace sierra::facade {
+
+using namespace sierra::render;
+
+render::PngCompression pngCompression(scene::PngCompression compression) {
+    switch (compression) {
+        case scene::PngCompression::Default:
+            return render::PngCompression::Default;
+        case scene::PngCompression::Best:
+            return render::PngCompression::Best;
+        case scene::PngCompression::Fast:
+            break;
+    }
+    return render::PngCompression::Fast;
+}
+
+ImageEncoding frameEncoding(const scene::OutputDesc& output) {
+    return {.png = pngCompression(output.pngCompression),
+            .jpegQuality = output.jpegQuality,
+            .alpha = output.alpha};
+}
 
 glm::vec3 toGlm(const scene::Vec3& v) {
     return {v.x, v.y, v.z};
@@ -434,4 +454,4 @@ OverlayInfo addOverlayPasses(TerrainRenderer& renderer, const scene::Scene& s) {
     return info;
 }
 
-}  // namespace sierra::render
+}  // namespace sierra::facade

@@ -1,4 +1,4 @@
-#include <sierra/render/CameraRecord.h>
+#include <sierra/facade/CameraRecord.h>
 
 #include <sierra/core/Error.h>
 
@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-namespace sierra::render {
+namespace sierra::facade {
 
 namespace {
 
@@ -20,7 +20,7 @@ scene::Mat4 rowsOf(const glm::mat4& m) {
 
 }  // namespace
 
-glm::mat3 openCvRotation(const Camera& camera) {
+glm::mat3 openCvRotation(const render::Camera& camera) {
     const glm::mat3 flip(glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f),
                          glm::vec3(0.0f, 0.0f, -1.0f));
     return flip * glm::mat3(camera.view());
@@ -36,14 +36,14 @@ std::array<double, 3> worldToCrs(const glm::dvec3& world, const terrain::Heightf
             world.y / double(field.verticalScale())};
 }
 
-scene::CameraRecord cameraRecord(const Camera& camera, int width, int height,
+scene::CameraRecord cameraRecord(const render::Camera& camera, int width, int height,
                                  const terrain::Heightfield& field) {
     SIERRA_CHECK(width > 0 && height > 0, "a camera record needs a frame size, got ", width, "x",
                  height);
     scene::CameraRecord r;
     r.width = width;
     r.height = height;
-    r.orthographic = camera.projection == Projection::Orthographic;
+    r.orthographic = camera.projection == render::Projection::Orthographic;
     const float aspect = float(width) / float(height);
     // Square pixels: the GL projection's horizontal extent is the vertical
     // one times the aspect ratio, so fx = fy.
@@ -83,4 +83,4 @@ scene::CameraRecord cameraRecord(const Camera& camera, int width, int height,
     return r;
 }
 
-}  // namespace sierra::render
+}  // namespace sierra::facade
