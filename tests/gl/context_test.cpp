@@ -122,8 +122,10 @@ TEST_F(GlContext, EveryShaderFileCompilesAndLinks) {
             EXPECT_NO_THROW(gpu::Program::create(desc)) << name;
         } else {
             for (const std::string& surface : surfaces) {
-                gpu::IncludeAlias alias{"surface.glsl", surface};
-                desc.aliases = std::span<const gpu::IncludeAlias>(&alias, 1);
+                // A surface over another (the drapes) over the ramp.
+                const gpu::IncludeAlias aliases[] = {
+                    {"surface.glsl", surface}, {"surface_base.glsl", "surface_hypsometric.glsl"}};
+                desc.aliases = std::span<const gpu::IncludeAlias>(aliases, 2);
                 EXPECT_NO_THROW(gpu::Program::create(desc)) << name << " with " << surface;
             }
         }
