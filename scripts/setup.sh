@@ -18,6 +18,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev glslang-tools clang-format
   libspng-dev libjpeg62-turbo-dev libgdal-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
+  libopenexr-dev
   python-matplotlib-data
   fonts-dejavu-core
   python3-dev python3-numpy python3-pytest pybind11-dev

@@ -79,4 +79,44 @@ TEST(Npy, RejectsAWrongValueCountOrAnEmptyExtent) {
     EXPECT_THROW(encodeNpyFloat32(zero, std::vector<float>{}), Error);
 }
 
+TEST(Npy, HalfFloatsRoundToNearestEven) {
+    EXPECT_EQ(floatToHalf(1.0f), 0x3c00);
+    EXPECT_EQ(floatToHalf(-2.0f), 0xc000);
+    EXPECT_EQ(floatToHalf(0.1f), 0x2e66);                   // 0.0999756
+    EXPECT_EQ(floatToHalf(65504.0f), 0x7bff);               // the largest half
+    EXPECT_EQ(floatToHalf(65520.0f), 0x7c00);               // halfway to the next: infinity
+    EXPECT_EQ(floatToHalf(2049.0f), 0x6800);                // a tie rounds to the even 2048
+    EXPECT_EQ(floatToHalf(2051.0f), 0x6802);                // ... and to the even 2052
+    EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -24)), 0x0001);  // the smallest subnormal
+    EXPECT_EQ(floatToHalf(std::ldexp(3.0f, -16)), 0x0300);  // a subnormal with bits
+    EXPECT_EQ(floatToHalf(std::ldexp(1.0f, -26)), 0x0000);  // underflows to zero
+    EXPECT_EQ(floatToHalf(-std::numeric_limits<float>::infinity()), 0xfc00);
+    const uint16_t nan = floatToHalf(std::numeric_limits<float>::quiet_NaN());
+    EXPECT_EQ(nan & 0x7c00, 0x7c00);
+    EXPECT_NE(nan & 0x3ff, 0);
+}
+
+TEST(Npy, Float16ArrayHeaderAndPayload) {
+    const int shape[] = {2, 1, 3};
+    const std::vector<float> values = {1.0f, -2.0f,    0.5f,
+                                       0.0f, 65504.0f, std::numeric_limits<float>::quiet_NaN()};
+    const std::vector<uint8_t> bytes = encodeNpyFloat16(shape, values);
+    const std::string h = header(bytes);
+    EXPECT_NE(h.find("'descr': '<f2'"), std::string::npos);
+    EXPECT_NE(h.find("'shape': (2, 1, 3)"), std::string::npos);
+    EXPECT_EQ((10 + h.size()) % 64, 0u);
+    ASSERT_EQ(bytes.size(), 10 + h.size() + 2 * values.size());
+    const size_t start = 10 + h.size();
+    auto half = [&](size_t k) {
+        return uint16_t(bytes[start + 2 * k] | bytes[start + 2 * k + 1] << 8);
+    };
+    EXPECT_EQ(half(0), 0x3c00);
+    EXPECT_EQ(half(1), 0xc000);
+    EXPECT_EQ(half(2), 0x3800);
+    EXPECT_EQ(half(3), 0x0000);
+    EXPECT_EQ(half(4), 0x7bff);
+    EXPECT_GT(half(5) & 0x3ff, 0);
+    EXPECT_THROW(encodeNpyFloat16(shape, std::vector<float>(5)), Error);
+}
+
 }  // namespace

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -52,6 +53,11 @@ TEST(TerrainGeoTiff, ValuesSpacingAndNoData) {
     EXPECT_FALSE(field.valid(1, 1));
     EXPECT_TRUE(field.valid(0, 0));
     EXPECT_TRUE(std::isfinite(field.at(1, 1)));
+    // The geotransform and reference system are kept as the file has them.
+    ASSERT_TRUE(field.georeference().has_value());
+    EXPECT_EQ(field.georeference()->geoTransform,
+              (std::array<double, 6>{500000.0, 25.0, 0.0, 4000000.0, 0.0, -25.0}));
+    EXPECT_NE(field.georeference()->crsWkt.find("UTM zone 33N"), std::string::npos);
     std::filesystem::remove(path);
 }
 

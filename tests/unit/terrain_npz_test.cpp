@@ -183,6 +183,22 @@ TEST(TerrainNpz, GeographicBoundsGiveMetres) {
     EXPECT_NEAR(north.spacingX(), step * radians * a / w * 0.5, 1e-4);
     EXPECT_NEAR(north.spacingZ(), step * radians * a * (1.0 - e2) / (w * w * w), 1e-4);
     EXPECT_TRUE(north.metres());
+    // The georeference: WGS 84 degrees, pixel corners from the west and north
+    // edges; bounds spanning the samples (3 steps for 4 columns) are their
+    // centres, so the edges lie half a step outside, and cells' bounds (4
+    // steps for 4 columns at the equator) are the edges themselves.
+    ASSERT_TRUE(north.georeference().has_value());
+    const auto& g = north.georeference()->geoTransform;
+    EXPECT_NEAR(g[0], -84.0 - 0.5 * step, 1e-12);
+    EXPECT_NEAR(g[1], step, 1e-15);
+    EXPECT_NEAR(g[3], 60.0 + 1.5 * step, 1e-12);
+    EXPECT_NEAR(g[5], -step, 1e-15);
+    EXPECT_EQ(g[2], 0.0);
+    EXPECT_EQ(g[4], 0.0);
+    EXPECT_NE(north.georeference()->crsWkt.find("EPSG\",\"4326"), std::string::npos);
+    ASSERT_TRUE(equator.georeference().has_value());
+    EXPECT_NEAR(equator.georeference()->geoTransform[0], 10.0, 1e-12);
+    EXPECT_NEAR(equator.georeference()->geoTransform[3], 1.5 * step, 1e-12);
 }
 
 // dx and dy without geographic bounds are taken in the file's own unit, and
@@ -194,6 +210,7 @@ TEST(TerrainNpz, SpacingWithoutGeographicBoundsIsTakenAsGiven) {
     EXPECT_EQ(plain.spacingX(), 25.0f);
     EXPECT_EQ(plain.spacingZ(), 30.0f);
     EXPECT_FALSE(plain.metres());
+    EXPECT_FALSE(plain.georeference().has_value());
     // Projected bounds (UTM metres) are not degrees.
     Heightfield utm = decodeHeightfield(
         "t.npz", georeferenced(30.0, 30.0, 500000.0, 500120.0, 4100000.0, 4100090.0));
@@ -243,6 +260,12 @@ TEST(TerrainNpz, LatitudeAndLongitudeListsGiveMetresNorthUp) {
     EXPECT_NEAR(dem.spacingZ(), 1.0 * radians * a * (1.0 - e2) / (w * w * w), 1e-2);
     EXPECT_EQ(dem.at(0, 0), 8.0f) << "the northernmost row (46 degrees) first";
     EXPECT_EQ(dem.at(3, 2), 3.0f);
+    // Sample (0, 0) is the north-west one: its pixel centre at 0 E, 46 N.
+    ASSERT_TRUE(dem.georeference().has_value());
+    const auto& g = dem.georeference()->geoTransform;
+    EXPECT_NEAR(g[0] + 0.5 * g[1], 0.0, 1e-12);
+    EXPECT_NEAR(g[3] + 0.5 * g[5], 46.0, 1e-12);
+    EXPECT_NEAR(g[5], -1.0, 1e-12);
     // Stored north first and east first: the columns are flipped.
     Heightfield eastFirst =
         decodeHeightfield("t.npz", zipOf({{"topo.npy", npy(3, 4)},

@@ -1,6 +1,7 @@
 #include <sierra/facade/SceneRenderer.h>
 
 #include <sierra/core/Log.h>
+#include <sierra/facade/CameraRecord.h>
 #include <sierra/facade/SceneView.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/scene/Terrain.h>
@@ -102,6 +103,31 @@ DepthImage SceneRenderer::depth(int k) {
     const Camera view = camera(k);
     context_->makeCurrent();
     return terrain_->renderDepth(view, target_.width(), target_.height(), drawOptions(k));
+}
+
+render::LabelImage SceneRenderer::labels(int k, bool cameraSpace) {
+    const Camera view = camera(k);
+    context_->makeCurrent();
+    return terrain_->renderLabels(view, target_.width(), target_.height(), drawOptions(k),
+                                  cameraSpace ? openCvRotation(view) : glm::mat3(1.0f));
+}
+
+scene::CameraRecord SceneRenderer::cameraRecord(int k) const {
+    return facade::cameraRecord(camera(k), target_.width(), target_.height(), field_);
+}
+
+void SceneRenderer::writeDataset(int k) {
+    const Camera view = camera(k);
+    if (!dataset_) {
+        dataset_ = std::make_unique<DatasetWriter>(scene_, frameCount() > 1);
+        dataset_->checkLocations();
+    }
+    context_->makeCurrent();
+    dataset_->write(*terrain_, field_, k, view, target_.width(), target_.height(), drawOptions(k));
+}
+
+void SceneRenderer::finishDataset() {
+    if (dataset_) dataset_->finish();
 }
 
 }  // namespace sierra::facade

@@ -177,6 +177,19 @@ std::vector<uint8_t> encodePngGrey16(int width, int height, std::span<const uint
                       });
 }
 
+std::vector<uint8_t> encodePngGrey8(int width, int height, std::span<const uint8_t> samples,
+                                    PngCompression compression) {
+    SIERRA_CHECK(width > 0 && height > 0 && samples.size() == size_t(width) * size_t(height),
+                 "cannot encode an 8-bit PNG: ", width, "x", height, " needs ",
+                 size_t(std::max(width, 0)) * size_t(std::max(height, 0)), " samples, got ",
+                 samples.size());
+    return encodeSpng(width, height, SPNG_COLOR_TYPE_GRAYSCALE, 8, size_t(width), compression,
+                      [&](int y, uint8_t* row) {
+                          std::memcpy(row, samples.data() + size_t(y) * size_t(width),
+                                      size_t(width));
+                      });
+}
+
 std::vector<uint8_t> encodeJpeg(const gpu::Image& image, int quality) {
     checkImage(image, "JPEG");
     SIERRA_CHECK(quality >= 1 && quality <= 100, "JPEG quality must be 1..100, got ", quality);

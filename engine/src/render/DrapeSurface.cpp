@@ -54,6 +54,8 @@ class DrapeSurface final : public Surface {
         return base_->defines() + (multiplier_ ? "#define SIERRA_DRAPE_MULTIPLY 1\n" : "");
     }
     bool lit() const override { return base_->lit(); }
+    // bind() binds the base's textures and blocks, its zone field among them.
+    bool zoneIds() const override { return base_->zoneIds(); }
     void bind() const override {
         base_->bind();
         glBindTextureUnit(9, added_.id());

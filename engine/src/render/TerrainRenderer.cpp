@@ -22,7 +22,9 @@ struct TerrainRenderer::State {
     std::unique_ptr<PointsPass> points;            // built on first use
     std::unique_ptr<DebugColourPass> debugColour;  // built on first use
     std::vector<std::unique_ptr<Pass>> extra;
-    std::unique_ptr<DepthPass> depth;  // built on first use, per frame size
+    std::unique_ptr<DepthPass> depth;       // built on first use, per frame size
+    std::unique_ptr<LabelPass> labels;      // built on first use, per frame size and surface
+    const Surface* labelSurface = nullptr;  // the zone surface `labels` was built for
     gpu::Query timer;
     bool timerPending = false;
 };
@@ -174,6 +176,33 @@ DepthImage TerrainRenderer::renderDepth(const Camera& camera, int width, int hei
     return s.depth->read();
 }
 
+LabelImage TerrainRenderer::renderLabels(const Camera& camera, int width, int height,
+                                         const DrawOptions& options,
+                                         const glm::mat3& normalRotation) {
+    State& s = *state_;
+    const Surface* zones = hasZoneIds() ? &s.shaded->surface() : nullptr;
+    if (!s.labels || s.labels->width() != width || s.labels->height() != height ||
+        s.labelSurface != zones) {
+        s.labels = LabelPass::create(width, height, zones);
+        s.labelSurface = zones;
+    }
+    s.labels->setNormalRotation(normalRotation);
+    MeshStats stats;
+    MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height, lodSettings(options), stats);
+    FrameUniformData uniforms = frameUniforms(camera, width, height, options);
+    GLint previousBlock = 0;
+    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kFrameUniformBinding, &previousBlock);
+    s.uniforms.update(uniforms);
+    s.labels->draw({s.terrain, mesh, uniforms, camera, width, height});
+    glBindBufferBase(GL_UNIFORM_BUFFER, kFrameUniformBinding, GLuint(previousBlock));
+    s.stream.finishFrame();
+    return s.labels->read();
+}
+
+bool TerrainRenderer::hasZoneIds() const {
+    return state_->shaded->surface().zoneIds();
+}
+
 void TerrainRenderer::collectGpuTime(DrawStats& stats) {
     if (!state_->timerPending) return;
     GLuint64 ns = 0;
@@ -185,6 +214,9 @@ void TerrainRenderer::collectGpuTime(DrawStats& stats) {
 void TerrainRenderer::setSurface(std::unique_ptr<Surface> surface) {
     if (!state_->ramp) state_->ramp = std::move(state_->shaded);
     state_->shaded = TerrainPass::create(std::move(surface));
+    // The label pass binds the surface it was built for.
+    state_->labels.reset();
+    state_->labelSurface = nullptr;
 }
 
 void TerrainRenderer::addPass(std::unique_ptr<Pass> pass) {

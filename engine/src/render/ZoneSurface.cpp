@@ -66,6 +66,7 @@ class ZoneSurface final : public Surface {
         d += "#define SIERRA_GROUND_BILINEAR_HEIGHT 1\n";
         return d;
     }
+    bool zoneIds() const override { return true; }
     void bind() const override {
         glBindTextureUnit(3, tiles_.id());
         glBindTextureUnit(4, field_.id());

@@ -239,6 +239,54 @@ void validateVideo(const OutputDesc& o) {
                  o.frame, "')"));
 }
 
+// The dataset outputs: each file type by its extension (only the normals
+// take .exr: float images), their settings, and the frame image's name kept
+// apart from them.
+void validateDataset(const OutputDesc& o) {
+    if (!o.normals.empty() && lowerExtension(o.normals) != ".npy" &&
+        lowerExtension(o.normals) != ".exr")
+        fail("output.normals", "--normals-out",
+             msg("must be a .npy or .exr file (float images), got '", o.normals, "'"));
+    if (o.normalsSpace != "camera" && o.normalsSpace != "world")
+        fail("output.normals_space", "--normals-space",
+             msg("must be camera or world, got '", o.normalsSpace, "'"));
+    if (o.normalsPrecision != "float32" && o.normalsPrecision != "float16")
+        fail("output.normals_precision", "--normals-precision",
+             msg("must be float32 or float16, got '", o.normalsPrecision, "'"));
+    auto png = [](const std::string& path, const char* key, const char* option, const char* what) {
+        if (!path.empty() && lowerExtension(path) != ".png")
+            fail(key, option,
+                 msg("must be a .png file (", what, " are 8-bit grey PNG), got '", path,
+                     lowerExtension(path) == ".exr" ? "'; .exr holds float images, the normals"
+                                                    : "'"));
+    };
+    png(o.zoneIds, "output.zone_ids", "--zones-out", "zone ids");
+    png(o.mask, "output.mask", "--mask-out", "masks");
+    for (auto [path, key, option] :
+         {std::tuple{&o.camera, "output.camera", "--camera-out"},
+          std::tuple{&o.transforms, "output.transforms", "--transforms-out"}})
+        if (!path->empty() && lowerExtension(*path) != ".json")
+            fail(key, option, msg("must be a .json file, got '", *path, "'"));
+    if (!o.transforms.empty() && isVideoOutput(o.frame))
+        fail("output.transforms", "--transforms-out",
+             msg("names frame images, and --out '", o.frame,
+                 "' is a video; give a .png or .jpg frame name"));
+    // Two outputs of one name would overwrite each other frame by frame.
+    const std::pair<const std::string*, const char*> named[] = {
+        {&o.frame, "--out"},
+        {&o.depth, "--depth-out"},
+        {&o.normals, "--normals-out"},
+        {&o.zoneIds, "--zones-out"},
+        {&o.mask, "--mask-out"},
+        {&o.camera, "--camera-out"},
+        {&o.transforms, "--transforms-out"}};
+    for (size_t a = 0; a < std::size(named); ++a)
+        for (size_t b = a + 1; b < std::size(named); ++b)
+            if (!named[a].first->empty() && *named[a].first == *named[b].first)
+                throw Error(msg(named[a].second, " and ", named[b].second, " both name '",
+                                *named[a].first, "'; each output needs its own file"));
+}
+
 void validateOutput(const OutputDesc& o) {
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
         fail("output.width/height", "--size",
@@ -278,6 +326,7 @@ void validateOutput(const OutputDesc& o) {
     png(o.snapshotOnly, "output.snapshot_only", "--snapshot-only");
     if (!o.depth.empty() && lowerExtension(o.depth) != ".npy")
         fail("output.depth", "--depth-out", msg("must be a .npy file, got '", o.depth, "'"));
+    validateDataset(o);
 }
 
 }  // namespace
@@ -368,6 +417,9 @@ void validateScene(const Scene& scene) {
     validateStyle(scene.style);
     validateZones(scene.zones);
     validateOutput(scene.output);
+    if (!scene.output.zoneIds.empty() && scene.zones.map.empty())
+        fail("output.zone_ids", "--zones-out",
+             "needs zones (--zones auto or a zone map): the ids are the zone map's");
 }
 
 SunAngles sceneSun(const Scene& scene, const terrain::Heightfield& field, int frame) {

@@ -39,6 +39,18 @@ void Heightfield::setGeoCentre(std::optional<GeoPoint> centre) {
     geoCentre_ = centre;
 }
 
+void Heightfield::setGeoreference(std::optional<Georeference> georeference) {
+    if (georeference) {
+        const auto& g = georeference->geoTransform;
+        bool finite = true;
+        for (double v : g) finite = finite && std::isfinite(v);
+        SIERRA_CHECK(finite && g[1] * g[5] - g[2] * g[4] != 0.0,
+                     "a georeference needs a finite, invertible geotransform, got ", g[0], ", ",
+                     g[1], ", ", g[2], ", ", g[3], ", ", g[4], ", ", g[5]);
+    }
+    georeference_ = std::move(georeference);
+}
+
 void Heightfield::setMask(std::vector<uint8_t> mask) {
     SIERRA_CHECK(mask.empty() || mask.size() == samples_.size(), "mask has ", mask.size(),
                  " entries for ", samples_.size(), " samples");

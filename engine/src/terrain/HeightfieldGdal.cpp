@@ -133,6 +133,16 @@ Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
         }
         field.setGeoCentre(geographicCentre(*srs, geo, width, height));
     }
+    if (data->GetGeoTransform(geo) == CE_None) {
+        Heightfield::Georeference ref;
+        std::copy(geo, geo + 6, ref.geoTransform.begin());
+        if (srs) {
+            char* wkt = nullptr;
+            if (srs->exportToWkt(&wkt) == OGRERR_NONE && wkt) ref.crsWkt = wkt;
+            CPLFree(wkt);
+        }
+        field.setGeoreference(std::move(ref));
+    }
     return field;
 }
 #endif

@@ -207,6 +207,14 @@ void flip(Heightfield& field, bool byRows) {
 //   east first is flipped to that order; the spacing is the mean step.
 // Degrees become metres on WGS 84 at the grid's middle latitude, and the
 // heights are then taken as metres. An archive with neither keeps spacing 1.
+namespace {
+// The reference system of an .npz's degrees: WGS 84 geographic, longitude
+// east first as the geotransform's X (GDAL's traditional GIS axis order).
+constexpr const char* kWgs84Wkt =
+    "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],"
+    "PRIMEM[\"Greenwich\",0],UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
+}  // namespace
+
 void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& bytes,
                           Heightfield& field) {
     // Numbers and lists of numbers (0-d and 1-d arrays of a little-endian
@@ -272,6 +280,17 @@ void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& b
             spans(*y0, *y1, *dy, field.height())) {
             toMetres(*dx, *dy, 0.5 * (*y0 + *y1));
             field.setGeoCentre(Heightfield::GeoPoint{0.5 * (*y0 + *y1), 0.5 * (*x0 + *x1)});
+            // Bounds a step short of the samples are their centres, else the
+            // cells' outer edges. Row 0 is the north (Sierra's -z).
+            auto edge = [&](double a, double b, double step, int samples) {
+                const double steps = std::abs(b - a) / step;
+                return std::abs(steps - samples) <= std::abs(steps - (samples - 1)) ? 0.0
+                                                                                    : 0.5 * step;
+            };
+            const double west = std::min(*x0, *x1) - edge(*x0, *x1, *dx, field.width());
+            const double north = std::max(*y0, *y1) + edge(*y0, *y1, *dy, field.height());
+            field.setGeoreference(
+                Heightfield::Georeference{{west, *dx, 0.0, north, 0.0, -*dy}, kWgs84Wkt});
         } else {
             field.setSpacing(float(*dx), float(*dy));
         }
@@ -300,6 +319,12 @@ void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& b
                                              0.5 * (lon->front() + lon->back())});
     if (northward) flip(field, true);
     if (!eastward) flip(field, false);
+    // After the flips row 0 is the northernmost latitude and column 0 the
+    // westernmost longitude; the lists give sample centres.
+    const double west = std::min(lon->front(), lon->back()) - 0.5 * east;
+    const double top = std::max(lat->front(), lat->back()) + 0.5 * north;
+    field.setGeoreference(
+        Heightfield::Georeference{{west, east, 0.0, top, 0.0, -north}, kWgs84Wkt});
 }
 
 }  // namespace sierra::terrain::detail

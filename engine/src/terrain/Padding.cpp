@@ -39,6 +39,7 @@ Heightfield padToPowerOfTwoPlusOne(const Heightfield& field) {
     padded.setVerticalScale(field.verticalScale());
     padded.setMetres(field.metres());
     padded.setGeoCentre(field.geoCentre());
+    padded.setGeoreference(field.georeference());
     std::vector<uint8_t> mask(size_t(side) * side, 0);
     for (int j = 0; j < side; ++j) {
         const int sj = std::min(j, height - 1);

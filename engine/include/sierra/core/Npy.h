@@ -1,6 +1,7 @@
 #pragma once
-// NumPy .npy encoding (format version 1.0) of float32 arrays: the one
-// writer behind heightfield exports, depth images and curvature fields.
+// NumPy .npy encoding (format version 1.0) of float32 and float16 arrays:
+// the one writer behind heightfield exports, depth images, normal images and
+// curvature fields.
 
 #include <cstdint>
 #include <span>
@@ -16,5 +17,10 @@ std::vector<uint8_t> encodeNpyFloat32(int rows, int cols, std::span<const float>
 // {rows, cols, 4} for a curvature field. Every extent > 0; values.size() is
 // their product.
 std::vector<uint8_t> encodeNpyFloat32(std::span<const int> shape, std::span<const float> values);
+// The same as little-endian IEEE half floats ('<f2'), each value rounded to
+// the nearest half (ties to even; beyond 65504 infinity; NaN stays NaN).
+std::vector<uint8_t> encodeNpyFloat16(std::span<const int> shape, std::span<const float> values);
+// One float as an IEEE 754 binary16 bit pattern, rounded as above.
+uint16_t floatToHalf(float value);
 
 }  // namespace sierra

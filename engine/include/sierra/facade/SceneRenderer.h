@@ -14,6 +14,7 @@
 // renderer can be used from any thread, one call at a time (the caller keeps
 // it to one: nothing here locks).
 
+#include <sierra/facade/Dataset.h>
 #include <sierra/facade/SceneView.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/gpu/ReadBack.h>
@@ -62,6 +63,19 @@ class SceneRenderer {
     gpu::Image frame(int k = 0);
     // Linear eye-space depth of frame k (world units, NaN where no terrain).
     render::DepthImage depth(int k = 0);
+    // The dataset labels of frame k (render::LabelPass): unit normals in
+    // world axes, or with `cameraSpace` in the camera's OpenCV axes (x right,
+    // y down, z forward: R times the world normal), the terrain mask, and
+    // zone ids when the scene has zones. One pass renders all three.
+    render::LabelImage labels(int k = 0, bool cameraSpace = false);
+    // Frame k's camera for dataset outputs: K, R|t, GL matrices, georeference.
+    scene::CameraRecord cameraRecord(int k = 0) const;
+    // Writes every dataset output the scene asks for of frame k
+    // (scene.output: depth, normals, zone ids, mask, camera JSON;
+    // DatasetWriter), and finishDataset() the transforms.json of the frames
+    // written.
+    void writeDataset(int k);
+    void finishDataset();
 
     // Frame k drawn into the frame target and resolved, its read-back started
     // through pixel-buffer objects (frame k is copied while frame k + 1 is
@@ -112,6 +126,7 @@ class SceneRenderer {
     std::string description_, loaded_;
     OverlayInfo overlays_;
     std::unique_ptr<gpu::PixelReader> reader_;  // made by the first submitFrame
+    std::unique_ptr<DatasetWriter> dataset_;    // made by the first writeDataset
 };
 
 }  // namespace sierra::facade

@@ -32,6 +32,9 @@ std::vector<uint8_t> encodePng(const gpu::Image& image, bool alpha = false,
 // A 16-bit grey PNG of `width` x `height` samples, rows top first.
 std::vector<uint8_t> encodePngGrey16(int width, int height, std::span<const uint16_t> samples,
                                      PngCompression compression);
+// An 8-bit grey PNG (masks, zone ids), rows top first.
+std::vector<uint8_t> encodePngGrey8(int width, int height, std::span<const uint8_t> samples,
+                                    PngCompression compression);
 // An RGBA8 image as a baseline JPEG (alpha dropped), through libjpeg-turbo;
 // `quality` 1..100.
 std::vector<uint8_t> encodeJpeg(const gpu::Image& image, int quality = 90);

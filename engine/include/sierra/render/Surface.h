@@ -26,6 +26,9 @@ class Surface {
     // paper of the line styles): the pass then compiles the lighting out
     // (SIERRA_UNLIT) and computes no relief fields for it.
     virtual bool lit() const { return true; }
+    // True for the zone surface: its bind() binds the zone field and block
+    // that shaders/zone_field.glsl reads (the label pass's zone ids).
+    virtual bool zoneIds() const { return false; }
     // Binds the surface's textures and blocks (inside the terrain pass's state scope).
     virtual void bind() const = 0;
     // A surface over another (the drapes): the shader file that stands for

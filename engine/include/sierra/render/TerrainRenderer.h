@@ -14,6 +14,7 @@
 #include <sierra/render/Surface.h>
 #include <sierra/render/TerrainGpu.h>
 #include <sierra/render/passes/DepthPass.h>
+#include <sierra/render/passes/LabelPass.h>
 #include <sierra/terrain/Heightfield.h>
 
 #include <cstdint>
@@ -109,6 +110,15 @@ class TerrainRenderer {
     std::vector<std::string> addedPassNames() const;
     // The linear eye-space depth of the terrain from `camera` (NaN where none).
     DepthImage renderDepth(const Camera& camera, int width, int height, const DrawOptions& options);
+    // The dataset labels of the terrain from `camera` (LabelPass): normals
+    // rotated by `normalRotation` (identity: world axes), the mask, and the
+    // zone ids when the surface is the zone surface (hasZoneIds()). The same
+    // mesh as renderDepth for the same camera, so the mask is exactly where
+    // the depth is not NaN.
+    LabelImage renderLabels(const Camera& camera, int width, int height, const DrawOptions& options,
+                            const glm::mat3& normalRotation);
+    // True when the surface set with setSurface() gives zone ids.
+    bool hasZoneIds() const;
 
     // The frame's clear colour: the sky, alpha 0 when transparent.
     static glm::vec4 clearColour(const Lighting& lighting);

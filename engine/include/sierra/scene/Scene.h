@@ -168,6 +168,17 @@ struct OutputDesc {
     // Sequences: frames read back but not yet written, at most; 0 = automatic
     // (render::defaultQueuedFrames: from the memory available, 2..16).
     int maxQueuedFrames = 0;
+    // Dataset outputs per frame (sequences: NAME_0000.EXT, as the depth);
+    // empty = none. docs/dataset.md describes the files.
+    std::string normals;  // unit normals, height x width x 3, .npy or .exr; NaN = no terrain
+    std::string normalsSpace =
+        "camera";  // camera (OpenCV axes: x right, y down, z forward) or world
+    std::string normalsPrecision = "float32";  // float32 or float16
+    std::string zoneIds;  // zone ids as a uint8 grey .png (255 = no terrain) and NAME.json beside
+                          // it (id -> name, colour); needs zones
+    std::string mask;     // terrain 255 against sky 0, a uint8 grey .png
+    std::string camera;   // the camera JSON of each frame (K, R|t, GL matrices, georeference)
+    std::string transforms;  // one NeRF / instant-ngp transforms.json for the frames rendered
     bool operator==(const OutputDesc&) const = default;
 };
 

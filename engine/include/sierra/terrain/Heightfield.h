@@ -7,9 +7,11 @@
 
 #include <sierra/core/Error.h>
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace sierra::terrain {
@@ -56,6 +58,21 @@ class Heightfield {
     const std::optional<GeoPoint>& geoCentre() const { return geoCentre_; }
     void setGeoCentre(std::optional<GeoPoint> centre);
 
+    // Where the grid lies in the file's coordinate reference system, when the
+    // file says (a GeoTIFF's geotransform and reference system, an .npz's
+    // geographic bounds on WGS 84). geoTransform is GDAL's affine map of
+    // pixel corners: sample (i, j) covers pixel column i, row j, and its
+    // centre is at X = g[0] + (i + 0.5) g[1] + (j + 0.5) g[2],
+    // Y = g[3] + (i + 0.5) g[4] + (j + 0.5) g[5], in the system's units
+    // (degrees for a geographic one). Heights stay the stored heights.
+    struct Georeference {
+        std::array<double, 6> geoTransform{0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+        std::string crsWkt;  // the reference system as OGC WKT; "" = unknown
+        bool operator==(const Georeference&) const = default;
+    };
+    const std::optional<Georeference>& georeference() const { return georeference_; }
+    void setGeoreference(std::optional<Georeference> georeference);
+
     // World height of sample (i, j): at(i, j) * verticalScale().
     float worldHeight(int i, int j) const { return at(i, j) * verticalScale_; }
 
@@ -77,6 +94,7 @@ class Heightfield {
     float verticalScale_ = 1.0f;
     bool metres_ = false;
     std::optional<GeoPoint> geoCentre_;
+    std::optional<Georeference> georeference_;
     std::vector<float> samples_;
     std::vector<uint8_t> mask_;
 };

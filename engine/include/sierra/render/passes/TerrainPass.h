@@ -44,6 +44,7 @@ class TerrainPass final : public Pass {
 
     // False for an unlit surface (Surface::lit): the relief fields do not show.
     bool lit() const { return lit_; }
+    const Surface& surface() const { return *surface_; }
 
   private:
     const gpu::Program& program(bool contours, bool relief);
