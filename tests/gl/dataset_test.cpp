@@ -13,6 +13,7 @@
 #include <sierra/render/Capture.h>
 #include <sierra/render/Exr.h>
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/zones/Palette.h>
 #include <sierra/zones/ZoneMap.h>
 
@@ -347,7 +348,7 @@ zones::ZoneMap twoZones(const zones::Palette& palette, int side, int split) {
 
 TEST_F(Dataset, ZoneIdsMatchTheZoneMapAndTheMaskTheDepth) {
     const std::filesystem::path dir = tempDir("zones");
-    const zones::Palette palette = zones::loadPalette(scene::assetPath("palettes/default.json"));
+    const zones::Palette palette = scene::loadPalette(scene::assetPath("palettes/default.json"));
     const int side = 65, split = 40;
     const zones::ZoneMap map = twoZones(palette, side, split);
     writeFileAtomic((dir / "map.png").string(), zones::encodeZoneMapPng(map, palette));

@@ -8,6 +8,7 @@
 #include <sierra/render/Capture.h>
 #include <sierra/render/Exr.h>
 #include <sierra/scene/Assets.h>
+#include <sierra/scene/PaletteJson.h>
 #include <sierra/zones/Palette.h>
 
 #include <filesystem>
@@ -90,7 +91,7 @@ void DatasetWriter::write(render::TerrainRenderer& renderer, const terrain::Heig
                                                    pngCompression(o.pngCompression)));
             if (!paletteWritten_) {
                 writeFileAtomic(palettePath(o.zoneIds),
-                                scene::zonePaletteJson(zones::loadPalette(palette_, false)));
+                                scene::zonePaletteJson(scene::loadPalette(palette_, false)));
                 paletteWritten_ = true;
             }
         }
