@@ -33,24 +33,26 @@ std::unique_ptr<Surface> makePaperSurface() {
     return std::make_unique<PaperSurface>();
 }
 
-std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
+terrain::ColourRamp surfaceRamp(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
     // The ramp spans the terrain's heights in stored units (the shader looks it
     // up by world height over the same range, linearly), so metric stops stay
     // in metres whatever the vertical scale.
     glm::vec2 range = terrain.worldRange() / terrain.verticalScale();
+    if (!desc.cpt.empty()) return terrain::readCpt(desc.cpt).ramp(range.x, range.y);
     // Without water the ramp's sea level sits below the lowest height, so no
     // sample is coloured as sea or beach.
     float sea = terrain.hasWater() ? terrain.seaLevel() : range.x - (range.y - range.x);
-    terrain::ColourRamp ramp(
+    return terrain::ColourRamp(
         {.scheme = desc.metric ? terrain::RampScheme::Elevation : terrain::RampScheme::Hypsometric,
          .minHeight = range.x,
          .maxHeight = range.y,
          .seaLevel = sea,
          .treeLine = desc.treeLine,
          .snowLine = desc.snowLine});
-    std::vector<uint8_t> table =
-        desc.cpt.empty() ? ramp.table(kRampEntries)
-                         : terrain::readCpt(desc.cpt).ramp(range.x, range.y).table(kRampEntries);
+}
+
+std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
+    std::vector<uint8_t> table = surfaceRamp(terrain, desc).table(kRampEntries);
     gpu::Texture texture =
         gpu::Texture::create({.target = GL_TEXTURE_1D, .format = GL_RGBA8, .width = kRampEntries});
     texture.upload(GL_RGBA, GL_UNSIGNED_BYTE, table.data());

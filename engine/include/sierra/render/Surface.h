@@ -7,6 +7,7 @@
 // terrain shader.
 
 #include <sierra/gpu/Objects.h>
+#include <sierra/terrain/ColourRamp.h>
 
 #include <memory>
 #include <string>
@@ -55,5 +56,9 @@ std::unique_ptr<Surface> makePaperSurface();
 
 std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain,
                                          const RampSurfaceDesc& desc = {});
+
+// The ramp makeRampSurface draws with, over the terrain's stored heights (a
+// legend shows it).
+terrain::ColourRamp surfaceRamp(const TerrainGpu& terrain, const RampSurfaceDesc& desc = {});
 
 }  // namespace sierra::render
