@@ -9,6 +9,7 @@
 #include <sierra/core/Npy.h>
 #include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
+#include <sierra/facade/Dataset.h>
 #include <sierra/facade/DebugSnapshot.h>
 #include <sierra/facade/SceneRenderer.h>
 #include <sierra/facade/SceneView.h>
@@ -207,9 +208,11 @@ int run(const scene::Scene& s) {
 
     // Every output location is checked before any work, so a bad path fails
     // at once rather than after the frames.
-    for (const std::string* path :
-         {video ? &videoPath : &s.output.frame, &s.output.debug, &s.output.depth})
+    for (const std::string* path : {video ? &videoPath : &s.output.frame, &s.output.debug})
         if (!path->empty()) ensureWritableLocation(*path);
+    // Depth, normals, zone ids, mask and cameras (docs/dataset.md).
+    const facade::DatasetWriter dataset(s, frameCount > 1);
+    dataset.checkLocations();
 
     Stopwatch total;
     // The context comes first: its texture limit bounds the grid the loader takes.
@@ -263,11 +266,7 @@ int run(const scene::Scene& s) {
         if (!s.output.debug.empty() && s.output.snapshotEvery > 0 &&
             (k - first) % s.output.snapshotEvery == 0)
             snapshot(k, framePath(s.output.debug, k));
-        if (!s.output.depth.empty()) {
-            render::DepthImage depth = r.depth(k);
-            writeFileAtomic(framePath(s.output.depth, k),
-                            encodeNpyFloat32(depth.height, depth.width, depth.depth));
-        }
+        if (dataset.any()) r.writeDataset(k);
         rendered = k;
         progress.update(int64_t(k) - first + 1);
     }
@@ -275,6 +274,7 @@ int run(const scene::Scene& s) {
     // whether the sequence ended or was stopped.
     if (r.finishFrames(image)) writer.write(image);
     writer.finish();
+    if (dataset.any()) r.finishDataset();
     progress.finish();
     // A stopped video is finished too: it plays with the frames so far.
     if (encoder && stopSignal != 0) encoder->finish();

@@ -41,6 +41,44 @@ void outputEntries(std::vector<OptionEntry>& out) {
               "linear eye-space depth of each pixel (float32 `.npy`, NaN where no terrain); "
               "`\"\"` = none"},
              [](Scene& s) -> std::string& { return s.output.depth; });
+    b.string({"--normals-out", "FILE.npy|FILE.exr", "output.normals", "string",
+              "Unit normals per pixel, .npy (H x W x 3) or .exr (R, G, B = x, y, z); NaN where "
+              "no terrain",
+              "unit normals of each pixel, `.npy` (height x width x 3) or `.exr` (channels R, G, "
+              "B = x, y, z); NaN where no terrain; `\"\"` = none (docs/dataset.md)"},
+             [](Scene& s) -> std::string& { return s.output.normals; });
+    b.string(
+        {"--normals-space", "camera|world", "output.normals_space", "`\"camera\"`, `\"world\"`",
+         "Normals in camera axes (OpenCV: x right, y down, z forward) or world axes (x east, "
+         "y up, z south)",
+         "the axes of the normals: camera (OpenCV: x right, y down, z forward) or world (x "
+         "east, y up, z south)"},
+        [](Scene& s) -> std::string& { return s.output.normalsSpace; });
+    b.string({"--normals-precision", "float32|float16", "output.normals_precision",
+              "`\"float32\"`, `\"float16\"`", "Bits of each stored normal component",
+              "the stored type of each normal component"},
+             [](Scene& s) -> std::string& { return s.output.normalsPrecision; });
+    b.string({"--zones-out", "FILE.png", "output.zone_ids", "string",
+              "Zone ids per pixel as an 8-bit grey PNG (255 = no terrain), the palette as "
+              "NAME.json beside it; needs --zones",
+              "the zone id of each pixel, an 8-bit grey PNG (255 = no terrain), with the palette "
+              "as `NAME.json` beside it; needs zones; `\"\"` = none"},
+             [](Scene& s) -> std::string& { return s.output.zoneIds; });
+    b.string({"--mask-out", "FILE.png", "output.mask", "string",
+              "Terrain (255) against sky (0) per pixel, an 8-bit grey PNG",
+              "terrain (255) against sky (0), an 8-bit grey PNG; `\"\"` = none"},
+             [](Scene& s) -> std::string& { return s.output.mask; });
+    b.string({"--camera-out", "FILE.json", "output.camera", "string",
+              "Each frame's camera as JSON: K, R|t (OpenCV), the GL view and projection, near "
+              "and far, the position in the DEM's reference system",
+              "each frame's camera: intrinsics K, world-to-camera R and t (OpenCV), the GL view "
+              "and projection matrices, near and far, the position in the terrain's reference "
+              "system and its georeference; `\"\"` = none"},
+             [](Scene& s) -> std::string& { return s.output.camera; });
+    b.string({"--transforms-out", "FILE.json", "output.transforms", "string",
+              "One NeRF / instant-ngp transforms.json for the frames rendered",
+              "one NeRF / instant-ngp `transforms.json` of the frames rendered; `\"\"` = none"},
+             [](Scene& s) -> std::string& { return s.output.transforms; });
     b.flag(
         {"--alpha", "", "output.alpha", "boolean", "RGBA PNG with a transparent sky",
          "RGBA PNG whose sky is transparent; not with a JPEG frame or a video"},
