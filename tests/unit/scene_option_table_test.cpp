@@ -103,6 +103,26 @@ class OptionTable : public test::TempDirTest {
             {"--msaa", {"--msaa", "8"}},
             {"--out", {"--out", "x/frame.png"}},
             {"--depth-out", {"--depth-out", "x/depth.npy"}},
+            {"--normals-out", {"--normals-out", "x/n.exr"}},
+            {"--normals-space", {"--normals-space", "world"}},
+            {"--normals-precision", {"--normals-precision", "float16"}},
+            {"--zones-out", {"--zones", "auto", "--zones-out", "x/z.png"}},
+            {"--mask-out", {"--mask-out", "x/m.png"}},
+            {"--camera-out", {"--camera-out", "x/c.json"}},
+            {"--transforms-out", {"--transforms-out", "x/transforms.json"}},
+            {"--drape", {"--drape", "a.tif:0.5", "--drape", "b.png:multiply"}},
+            {"--drape-bounds", {"--drape", "a.tif", "--drape-bounds", "0,0,10,10"}},
+            {"--drape-bounds-units",
+             {"--drape", "a.tif", "--drape-bounds", "0,1,2,0", "--drape-bounds-units", "crs"}},
+            {"--vector", {"--vector", "r.geojson:colour=#ff0000,width=3", "--vector", "s.gpkg"}},
+            {"--vector-where", {"--vector", "r.geojson", "--vector-where", "kind = 'river'"}},
+            {"--label-field", {"--vector", "r.geojson", "--label-field", "name"}},
+            {"--label", {"--label", "Hut@10,20", "--label", "Peak@6.8E,45.8N"}},
+            {"--scale-bar", {"--scale-bar"}},
+            {"--north-arrow", {"--north-arrow"}},
+            {"--title", {"--title", "A valley"}},
+            {"--legend", {"--legend"}},
+            {"--text-size", {"--text-size", "20"}},
             {"--alpha", {"--alpha"}},
             {"--png-compression", {"--png-compression", "best"}},
             {"--jpeg-quality", {"--jpeg-quality", "70"}},
@@ -317,6 +337,23 @@ TEST_F(OptionTable, EveryKeyIsWrittenAndReadOnItsOwn) {
     changed.output.videoCodec = "hevc";
     changed.output.videoPreset = "slow";
     changed.output.bitrate = 8000000;  // with crf: the file is not checked here
+    changed.output.normals = "n.npy";
+    changed.output.normalsSpace = "world";
+    changed.output.normalsPrecision = "float16";
+    changed.output.zoneIds = "z.png";
+    changed.output.mask = "m.png";
+    changed.output.camera = "c.json";
+    changed.output.transforms = "t.json";
+    changed.layers.drapes = {{.image = "a.tif",
+                              .opacity = 0.5f,
+                              .blend = "multiply",
+                              .bounds = std::array<double, 4>{0, 1, 2, 3},
+                              .boundsUnits = "crs"}};
+    changed.layers.vectors = {
+        {.file = "r.geojson", .where = "a = 1", .labelField = "name", .width = 3.0f}};
+    changed.layers.labels = {{.text = "Hut", .x = 1.0, .z = 2.0, .geographic = true}};
+    changed.layers.furniture = {
+        .scaleBar = true, .northArrow = true, .title = "T", .legend = true, .textPixels = 20.0f};
     const Scene defaults;
     const Json written = sceneToJson(changed);
     for (const OptionEntry& e : optionTable()) {

@@ -55,8 +55,17 @@ void check(bool ok, const std::string& key, const std::string& option, const std
 
 }  // namespace
 
-DrapeDesc parseDrapeSpec(const std::string& text, const std::string& what) {
+DrapeDesc parseDrapeSpec(const std::string& spec, const std::string& what) {
     DrapeDesc d;
+    std::string text = spec;
+    for (const char* blend : {"multiply", "replace"}) {
+        const std::string suffix = std::string(":") + blend;
+        if (text.size() > suffix.size() && text.ends_with(suffix)) {
+            d.blend = blend;
+            text.resize(text.size() - suffix.size());
+            break;
+        }
+    }
     d.image = text;
     const size_t colon = text.rfind(':');
     if (colon != std::string::npos && colon + 1 < text.size()) {

@@ -280,5 +280,6 @@ void debugEntries(std::vector<OptionEntry>& out);
 void zoneEntries(std::vector<OptionEntry>& out);
 void styleEntries(std::vector<OptionEntry>& out);
 void overlayEntries(std::vector<OptionEntry>& out);
+void layerEntries(std::vector<OptionEntry>& out);
 
 }  // namespace sierra::scene::detail

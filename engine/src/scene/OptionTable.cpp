@@ -484,6 +484,7 @@ const std::vector<OptionEntry>& optionTable() {
         zoneEntries(t);
         styleEntries(t);
         overlayEntries(t);
+        layerEntries(t);
         return t;
     }();
     return table;

@@ -16,8 +16,10 @@ CLI::Option* SceneOptions::add(const OptionEntry& e) {
         std::vector<std::string>& storage = values_.emplace_back();
         words = &storage;
         option = app_.add_option(e.flag, storage, e.help);
-        // Given twice, the last one counts (as a later word overrides an earlier one).
-        option->expected(e.count)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+        // Given twice, the last one counts (as a later word overrides an earlier one),
+        // unless each occurrence adds one (--drape a --drape b).
+        option->expected(e.count)->multi_option_policy(
+            e.repeatable ? CLI::MultiOptionPolicy::TakeAll : CLI::MultiOptionPolicy::TakeLast);
         option->type_name(e.words);
         const std::string shown = e.shown ? e.shown(defaults_) : std::string();
         if (!shown.empty()) option->default_str(shown);

@@ -64,8 +64,9 @@ struct MapLayersDesc {
     bool empty() const { return *this == MapLayersDesc{}; }
 };
 
-// "IMAGE" or "IMAGE:OPACITY" (the last colon followed by a number in 0..1;
-// any other colon belongs to the path). Throws sierra::Error naming `what`.
+// "IMAGE", "IMAGE:OPACITY" (the last colon followed by a number in 0..1; any
+// other colon belongs to the path), either followed by ":multiply" (or
+// ":replace", the default). Throws sierra::Error naming `what`.
 DrapeDesc parseDrapeSpec(const std::string& text, const std::string& what);
 
 // "FILE" or "FILE:STYLE", STYLE a comma-separated list of colour=#RRGGBB,

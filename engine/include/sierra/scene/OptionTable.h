@@ -51,7 +51,10 @@ enum OptionGroup : unsigned {
     // How a renderer shades zones: --blend linear|height, --triplanar, --no-tile-variation,
     // --debug-view none|zones|bands
     kZoneShadingOptions = 1u << 10,
-    kAllOptions = (1u << 11) - 1,
+    // --drape IMAGE[:OPACITY][:multiply], --drape-bounds, --vector FILE[:STYLE], --vector-where,
+    // --label-field, --label TEXT@X,Z, --scale-bar, --north-arrow, --title, --legend, --text-size
+    kLayerOptions = 1u << 11,
+    kAllOptions = (1u << 12) - 1,
 };
 
 // A finite float option value, or sierra::Error "OPTION 'TEXT': expected
@@ -65,6 +68,7 @@ struct OptionEntry {
     std::string flag;                   // "--fov"
     std::string words;                  // what --help shows for the values ("DEG"); "" for a flag
     int count = 1;                      // values taken: 0 (a flag), 1, or 3 (X Y Z)
+    bool repeatable = false;            // given again, adds a value (--drape a --drape b)
     unsigned group = 0;                 // the OptionGroup registering it
     std::string heading;                // its --help heading
     std::string help;                   // its --help text
@@ -91,8 +95,8 @@ struct OptionEntry {
 const std::vector<OptionEntry>& optionTable();
 
 // The parts of a scene file, in the order they are written.
-inline constexpr const char* kSceneParts[] = {"terrain", "camera", "path",  "lighting",
-                                              "lod",     "output", "style", "zones"};
+inline constexpr const char* kSceneParts[] = {"terrain", "camera", "path",  "lighting", "lod",
+                                              "output",  "style",  "zones", "layers"};
 
 // The shortest decimal (at most 9 significant digits) that reads back as `f`;
 // null for a value that is not finite.
