@@ -44,8 +44,9 @@ SceneRenderer SceneRenderer::create(const scene::Scene& scene,
     r.terrain_ = std::make_unique<TerrainRenderer>(
         TerrainRenderer::create(sceneTerrainDesc(scene, r.field_, seaLevel)));
     r.description_ = "terrain: " + r.loaded_;
-    for (const std::string& line : {applySceneSurface(*r.terrain_, scene, r.field_, seaLevel),
-                                    applySceneMesh(*r.terrain_, scene, r.field_)}) {
+    for (const std::string& line :
+         {applySceneSurface(*r.terrain_, scene, r.field_, seaLevel, &r.layers_),
+          applySceneMesh(*r.terrain_, scene, r.field_)}) {
         report(line);
         if (!line.empty()) r.description_ += "; " + line;
     }
@@ -69,8 +70,19 @@ DrawOptions SceneRenderer::drawOptions(int k) const {
 }
 
 DrawStats SceneRenderer::drawFrame(const Camera& camera, const DrawOptions& options) {
+    const int width = target_.width(), height = target_.height();
+    // Labels hide behind terrain by its depth, drawn first into a target of its own.
+    std::optional<DepthImage> depth;
+    if (layers_.drawsOver() && layers_.labelsNeedDepth)
+        depth = terrain_->renderDepth(camera, width, height, options);
     target_.begin(TerrainRenderer::clearColour(options.lighting));
-    return terrain_->draw(camera, target_.width(), target_.height(), options);
+    DrawStats stats = terrain_->draw(camera, width, height, options);
+    if (layers_.drawsOver()) {
+        if (!furniture_)
+            furniture_ = std::make_unique<AnnotationOverlay>(layers_.annotations.textPixels);
+        drawMapLayers(*furniture_, layers_, camera, width, height, depth ? &*depth : nullptr);
+    }
+    return stats;
 }
 
 gpu::Image SceneRenderer::frame(int k) {

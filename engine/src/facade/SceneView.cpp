@@ -221,34 +221,45 @@ std::vector<glm::vec3> sceneSunDirections(const scene::Scene& s,
 }
 
 std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s,
-                              const terrain::Heightfield& field, float seaLevel) {
+                              const terrain::Heightfield& field, float seaLevel,
+                              MapLayers* layers) {
     const scene::ZonesDesc& z = s.zones;
+    std::unique_ptr<Surface> surface;
+    std::string description;
     if (!s.style.overlay.layers.shaded) {
         // Line and hatch styles without shading draw on plain paper, as the
         // curvature document's figures do.
-        renderer.setSurface(makePaperSurface());
-        return "surface: paper (style without shaded)";
+        surface = makePaperSurface();
+        description = "surface: paper (style without shaded)";
+    } else if (!z.map.empty()) {
+        ZoneSurfaceDesc desc;
+        desc.paletteName =
+            z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+        desc.palette = scene::loadPalette(desc.paletteName);
+        desc.map = z.map;
+        desc.band = z.band;
+        desc.epsilon = z.epsilon;
+        desc.heightBlend = z.blend == "height";
+        desc.triplanar = z.triplanar;
+        desc.variation = z.variation;
+        desc.debugView = z.debugView == "zones"   ? ZoneDebugView::Zones
+                         : z.debugView == "bands" ? ZoneDebugView::Bands
+                                                  : ZoneDebugView::None;
+        desc.autoZones = scene::autoZoneDesc(z, seaLevel, field);
+        ZoneSurfaceInfo info;
+        surface = makeZoneSurface(renderer.terrain(), field, desc, &info);
+        description =
+            msg("zones: ", z.map == "auto" ? std::string("auto") : z.map, ", ", info.mapWidth, "x",
+                info.mapHeight, ", ", info.zoneCount, " surface types, ", info.borderEdges,
+                " borderline edges, band ", info.band, " px, field ", info.texelsPerPixel,
+                " texel(s) per pixel, built in ", info.buildMs, " ms");
     }
-    if (z.map.empty()) return {};
-    ZoneSurfaceDesc desc;
-    desc.map = z.map;
-    desc.paletteName = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
-    desc.palette = scene::loadPalette(desc.paletteName);
-    desc.band = z.band;
-    desc.epsilon = z.epsilon;
-    desc.heightBlend = z.blend == "height";
-    desc.triplanar = z.triplanar;
-    desc.variation = z.variation;
-    desc.debugView = z.debugView == "zones"   ? ZoneDebugView::Zones
-                     : z.debugView == "bands" ? ZoneDebugView::Bands
-                                              : ZoneDebugView::None;
-    desc.autoZones = scene::autoZoneDesc(z, seaLevel, field);
-    ZoneSurfaceInfo info;
-    renderer.setSurface(makeZoneSurface(renderer.terrain(), field, desc, &info));
-    return msg("zones: ", z.map == "auto" ? std::string("auto") : z.map, ", ", info.mapWidth, "x",
-               info.mapHeight, ", ", info.zoneCount, " surface types, ", info.borderEdges,
-               " borderline edges, band ", info.band, " px, field ", info.texelsPerPixel,
-               " texel(s) per pixel, built in ", info.buildMs, " ms");
+    // The layers wrap the surface in their drapes and set it (or set it alone).
+    MapLayers applied = applyMapLayers(renderer, s, field, std::move(surface));
+    for (const std::string& line : applied.notes)
+        description += (description.empty() ? "" : "; ") + line;
+    if (layers) *layers = std::move(applied);
+    return description;
 }
 
 TerrainDesc sceneTerrainDesc(const scene::Scene& s, const terrain::Heightfield& field,

@@ -125,8 +125,10 @@ class SceneRenderer {
     render::DrawStats stats_;
     std::string description_, loaded_;
     OverlayInfo overlays_;
-    std::unique_ptr<gpu::PixelReader> reader_;  // made by the first submitFrame
-    std::unique_ptr<DatasetWriter> dataset_;    // made by the first writeDataset
+    MapLayers layers_;                                      // labels and furniture over each frame
+    std::unique_ptr<render::AnnotationOverlay> furniture_;  // made by the first frame drawing them
+    std::unique_ptr<gpu::PixelReader> reader_;              // made by the first submitFrame
+    std::unique_ptr<DatasetWriter> dataset_;                // made by the first writeDataset
 };
 
 }  // namespace sierra::facade

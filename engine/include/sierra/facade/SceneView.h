@@ -3,6 +3,7 @@
 // what the renderer draws: the cameras of its frames, the draw options and
 // lighting.
 
+#include <sierra/facade/MapLayers.h>
 #include <sierra/render/Camera.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/TerrainRenderer.h>
@@ -99,10 +100,13 @@ render::ImageEncoding frameEncoding(const scene::OutputDesc& output);
 render::PngCompression pngCompression(scene::PngCompression compression);
 
 // Gives the renderer the scene's surface when it is not the default colour
-// ramp (zone tiles), and returns one line saying what was built ("" for none).
+// ramp (zone tiles, paper), with the scene's layers over it (applyMapLayers:
+// drapes, vector lines and fills; their labels and furniture go to `layers`
+// when given), and returns one line saying what was built ("" for none).
 // `field` and `seaLevel` as for sceneTerrainDesc.
 std::string applySceneSurface(render::TerrainRenderer& renderer, const scene::Scene& scene,
-                              const terrain::Heightfield& field, float seaLevel);
+                              const terrain::Heightfield& field, float seaLevel,
+                              MapLayers* layers = nullptr);
 // Gives the renderer the scene's TIN (lod.mesh, an OBJ from sierra-tin) and
 // returns one line saying what was loaded ("" for none; sceneDrawOptions then
 // picks Lod::Mesh). Every OBJ vertex must be a real sample of `field` (x =

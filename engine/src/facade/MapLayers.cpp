@@ -1,0 +1,237 @@
+#include <sierra/facade/MapLayers.h>
+
+#include <sierra/core/Error.h>
+#include <sierra/core/Log.h>
+#include <sierra/render/DrapeSurface.h>
+#include <sierra/render/TerrainGpu.h>
+#include <sierra/render/VectorOverlay.h>
+#include <sierra/render/passes/LinePass.h>
+#include <sierra/scene/Assets.h>
+#include <sierra/scene/PaletteJson.h>
+#include <sierra/scene/Terrain.h>
+#include <sierra/terrain/Drape.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sierra::facade {
+
+using namespace sierra::render;
+
+TerrainPlacement terrainPlacement(const TerrainRenderer& renderer,
+                                  const terrain::Heightfield& field) {
+    const SceneBounds b = renderer.bounds();
+    TerrainPlacement p;
+    p.width = std::clamp(int(std::lround(b.max.x / field.spacingX())) + 1, 1, field.width());
+    p.height = std::clamp(int(std::lround(b.max.z / field.spacingZ())) + 1, 1, field.height());
+    if (const auto& g = field.georeference())
+        p.placement = terrain::GridPlacement{g->geoTransform, g->crsWkt, p.width, p.height};
+    return p;
+}
+
+namespace {
+
+void note(MapLayers& layers, const std::string& line, bool warning = false) {
+    if (warning) log::warn(line);
+    layers.notes.push_back(line);
+}
+
+render::RampSurfaceDesc rampDesc(const scene::Scene& s, const terrain::Heightfield& field) {
+    return {.metric = scene::metricHeights(s.terrain, field),
+            .treeLine = s.style.treeLine,
+            .snowLine = s.style.snowLine,
+            .cpt = s.style.cpt};
+}
+
+// The world point on the field's surface at sample coordinates (i, j).
+glm::vec3 groundAt(const terrain::Heightfield& field, double i, double j) {
+    const int i0 = std::clamp(int(std::floor(i)), 0, field.width() - 1);
+    const int j0 = std::clamp(int(std::floor(j)), 0, field.height() - 1);
+    const int i1 = std::min(i0 + 1, field.width() - 1), j1 = std::min(j0 + 1, field.height() - 1);
+    const float fi = float(std::clamp(i - i0, 0.0, 1.0)), fj = float(std::clamp(j - j0, 0.0, 1.0));
+    const float h = (1 - fi) * (1 - fj) * field.worldHeight(i0, j0) +
+                    fi * (1 - fj) * field.worldHeight(i1, j0) +
+                    (1 - fi) * fj * field.worldHeight(i0, j1) + fi * fj * field.worldHeight(i1, j1);
+    return {float(i) * field.spacingX(), h, float(j) * field.spacingZ()};
+}
+
+terrain::DrapeOptions drapeOptions(const scene::DrapeDesc& d, const TerrainPlacement& place) {
+    terrain::DrapeOptions o{
+        .placement = place.placement, .width = place.width, .height = place.height};
+    if (d.bounds)
+        o.bounds =
+            terrain::DrapeBounds{d.boundsUnits == "crs" ? terrain::DrapeBounds::Units::Crs
+                                                        : terrain::DrapeBounds::Units::Samples,
+                                 (*d.bounds)[0], (*d.bounds)[1], (*d.bounds)[2], (*d.bounds)[3]};
+    o.resampling =
+        d.resampling == "cubic" ? terrain::Resampling::Cubic : terrain::Resampling::Bilinear;
+    o.maxTexels = maxTextureSide();
+    return o;
+}
+
+void describeDrape(MapLayers& layers, const std::string& image, const terrain::DrapeImage& d) {
+    note(layers, msg("drape: ", image, ", ", d.width, "x", d.height, " texels, ",
+                     int(std::lround(d.coverage * 100.0)), "% of the terrain",
+                     d.reprojected ? ", reprojected" : ""));
+    if (d.stretched)
+        note(layers, "drape " + image + " has no georeference to go by: stretched over the terrain",
+             true);
+    if (d.reducedFrom[0] > 0)
+        note(layers,
+             msg("drape ", image, " reduced from ", d.reducedFrom[0], "x", d.reducedFrom[1], " to ",
+                 d.width, "x", d.height, " texels (this GPU's texture limit)"),
+             true);
+}
+
+// Vector layers: lines as passes, fills as drape layers, labels for the frames.
+void addVectors(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field,
+                const TerrainPlacement& place, std::vector<terrain::DrapeImage>& fills,
+                std::vector<DrapeLayer>& fillLayers, MapLayers& layers) {
+    for (const scene::VectorDesc& v : s.layers.vectors) {
+        const terrain::VectorLayer layer =
+            terrain::readVectorLayer(v.file, {.placement = place.placement,
+                                              .width = place.width,
+                                              .height = place.height,
+                                              .where = v.where,
+                                              .labelField = v.labelField});
+        note(layers, msg("vector: ", v.file, ", ", layer.features.size(), " features, ",
+                         layer.vertices, " vertices", layer.reprojected ? ", reprojected" : ""));
+        if (layer.assumedGridSystem)
+            note(layers, v.file + " has no reference system: the terrain's is assumed", true);
+        if (layer.outside > 0)
+            note(layers,
+                 msg(v.file, ": ", layer.outside, " of ", layer.read,
+                     " features lie outside the terrain",
+                     layer.features.empty() ? " (all of them: nothing is drawn)"
+                                            : " and are dropped"),
+                 true);
+        const glm::vec4 colour(v.colour[0], v.colour[1], v.colour[2], v.opacity);
+        const analysis::LineSet lines = vectorLines(layer, true, 1.0f);
+        if (lines.polylineCount() > 0)
+            renderer.addPass(
+                LinePass::create(lines, {.width = v.width, .colour = colour, .thin = false}));
+        if (v.fillOpacity > 0.0f) {
+            terrain::DrapeImage fill =
+                polygonDrape(layer, place.width, place.height, colour, v.fillOpacity);
+            if (fill.coverage > 0.0) fills.push_back(std::move(fill));
+        }
+        for (Label label : vectorLabels(layer, field))
+            layers.annotations.labels.push_back(std::move(label));
+    }
+    for (const terrain::DrapeImage& fill : fills) fillLayers.push_back({&fill});
+}
+
+std::vector<Label> sceneLabels(const scene::Scene& s, const terrain::Heightfield& field,
+                               const TerrainPlacement& place) {
+    std::vector<Label> labels;
+    for (const scene::LabelDesc& l : s.layers.labels) {
+        double i = l.x / field.spacingX(), j = l.z / field.spacingZ();
+        if (l.geographic) {
+            if (!place.placement)
+                throw Error(msg("label \"", l.text, "\" at ", l.x, "E, ", l.z,
+                                "N needs a georeferenced terrain; give world x, z instead"));
+            const terrain::GridPoint p = terrain::geographicToSamples(*place.placement, l.x, l.z);
+            i = p.i, j = p.j;
+        }
+        if (!(i >= 0.0 && j >= 0.0 && i <= place.width - 1.0 && j <= place.height - 1.0))
+            throw Error(msg("label \"", l.text, "\" lies outside the terrain (sample ", i, ", ", j,
+                            " of ", place.width, "x", place.height, ")"));
+        labels.push_back({l.text, groundAt(field, i, j), 2.0f});  // before the layers' labels
+    }
+    return labels;
+}
+
+}  // namespace
+
+MapLayers applyMapLayers(TerrainRenderer& renderer, const scene::Scene& s,
+                         const terrain::Heightfield& field, std::unique_ptr<Surface> surface) {
+    MapLayers layers;
+    const TerrainPlacement place = terrainPlacement(renderer, field);
+    std::vector<terrain::DrapeImage> fills;
+    std::vector<DrapeLayer> fillLayers;
+    layers.annotations.labels = sceneLabels(s, field, place);
+    addVectors(renderer, s, field, place, fills, fillLayers, layers);
+
+    const auto& drapes = s.layers.drapes;
+    if (!drapes.empty() || !fillLayers.empty()) {
+        if (!surface) surface = makeRampSurface(renderer.terrain(), rampDesc(s, field));
+        if (drapes.size() == 1 && drapes[0].blend == "replace" && fillLayers.empty()) {
+            // One image: streamed into its texture, never held whole.
+            terrain::DrapeImage header;
+            surface = makeStreamedDrapeSurface(std::move(surface), drapes[0].image,
+                                               drapeOptions(drapes[0], place), drapes[0].opacity,
+                                               &header);
+            describeDrape(layers, drapes[0].image, header);
+        } else {
+            std::vector<terrain::DrapeImage> images;
+            images.reserve(drapes.size());
+            std::vector<DrapeLayer> stack;
+            for (const scene::DrapeDesc& d : drapes) {
+                images.push_back(terrain::readDrape(d.image, drapeOptions(d, place)));
+                describeDrape(layers, d.image, images.back());
+            }
+            for (size_t k = 0; k < drapes.size(); ++k)
+                stack.push_back(
+                    {&images[k], drapes[k].opacity,
+                     drapes[k].blend == "multiply" ? DrapeBlend::Multiply : DrapeBlend::Replace});
+            stack.insert(stack.end(), fillLayers.begin(), fillLayers.end());
+            surface = makeDrapeSurface(std::move(surface), stack);
+        }
+    }
+    if (surface) renderer.setSurface(std::move(surface));
+
+    const scene::FurnitureDesc& f = s.layers.furniture;
+    AnnotationDesc& a = layers.annotations;
+    a.textPixels = f.textPixels;
+    a.scaleBar = f.scaleBar;
+    a.northArrow = f.northArrow;
+    a.title = f.title;
+    a.unitsPerMetre = scene::metricHeights(s.terrain, field) ? 1.0f : 0.0f;
+    if (f.legend) a.legend = sceneLegend(renderer, s, field);
+    layers.labelsNeedDepth = !a.labels.empty();
+    return layers;
+}
+
+Legend sceneLegend(TerrainRenderer& renderer, const scene::Scene& s,
+                   const terrain::Heightfield& field) {
+    Legend legend;
+    if (!s.zones.map.empty()) {
+        legend.title = "Zones";
+        const zones::Palette palette = scene::loadPalette(
+            s.zones.palette.empty() ? scene::assetPath("palettes/default.json") : s.zones.palette,
+            false);
+        for (const zones::SurfaceType& t : palette.surfaces)
+            legend.swatches.push_back(
+                {{float((t.colour >> 16) & 255) / 255.0f, float((t.colour >> 8) & 255) / 255.0f,
+                  float(t.colour & 255) / 255.0f},
+                 t.name});
+        return legend;
+    }
+    const bool metric = scene::metricHeights(s.terrain, field);
+    legend.title = "Elevation";
+    legend.units = metric ? "m" : "";
+    const TerrainGpu& gpu = renderer.terrain();
+    const terrain::ColourRamp ramp = surfaceRamp(gpu, rampDesc(s, field));
+    const glm::vec2 range = gpu.worldRange() / gpu.verticalScale();  // stored units, as the ramp
+    const float lo = range.x, hi = range.y;
+    for (int k = 0; k <= 5; ++k) {
+        // Round values: the legend reads 0, 250, 500 rather than 3.7, 251.3.
+        const float raw = lo + (hi - lo) * float(k) / 5.0f;
+        const float step = std::pow(10.0f, std::floor(std::log10(std::max(hi - lo, 1e-6f))) - 1.0f);
+        const float value = k == 0 ? lo : k == 5 ? hi : std::round(raw / step) * step;
+        const terrain::Rgb c = ramp.colourAt(value);
+        legend.ramp.push_back(
+            {std::round(value * 100.0f) / 100.0f, {c.r / 255.0f, c.g / 255.0f, c.b / 255.0f}});
+    }
+    return legend;
+}
+
+void drawMapLayers(AnnotationOverlay& overlay, const MapLayers& layers, const Camera& camera,
+                   int width, int height, const DepthImage* depth) {
+    if (!layers.drawsOver()) return;
+    const AnnotationLayout layout =
+        layoutAnnotations(layers.annotations, camera, width, height, depth, overlay.measurer());
+    overlay.draw(layers.annotations, layout);
+}
+
+}  // namespace sierra::facade
