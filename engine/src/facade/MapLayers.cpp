@@ -43,18 +43,6 @@ render::RampSurfaceDesc rampDesc(const scene::Scene& s, const terrain::Heightfie
             .cpt = s.style.cpt};
 }
 
-// The world point on the field's surface at sample coordinates (i, j).
-glm::vec3 groundAt(const terrain::Heightfield& field, double i, double j) {
-    const int i0 = std::clamp(int(std::floor(i)), 0, field.width() - 1);
-    const int j0 = std::clamp(int(std::floor(j)), 0, field.height() - 1);
-    const int i1 = std::min(i0 + 1, field.width() - 1), j1 = std::min(j0 + 1, field.height() - 1);
-    const float fi = float(std::clamp(i - i0, 0.0, 1.0)), fj = float(std::clamp(j - j0, 0.0, 1.0));
-    const float h = (1 - fi) * (1 - fj) * field.worldHeight(i0, j0) +
-                    fi * (1 - fj) * field.worldHeight(i1, j0) +
-                    (1 - fi) * fj * field.worldHeight(i0, j1) + fi * fj * field.worldHeight(i1, j1);
-    return {float(i) * field.spacingX(), h, float(j) * field.spacingZ()};
-}
-
 terrain::DrapeOptions drapeOptions(const scene::DrapeDesc& d, const TerrainPlacement& place) {
     terrain::DrapeOptions o{
         .placement = place.placement, .width = place.width, .height = place.height};
@@ -136,7 +124,7 @@ std::vector<Label> sceneLabels(const scene::Scene& s, const terrain::Heightfield
         if (!(i >= 0.0 && j >= 0.0 && i <= place.width - 1.0 && j <= place.height - 1.0))
             throw Error(msg("label \"", l.text, "\" lies outside the terrain (sample ", i, ", ", j,
                             " of ", place.width, "x", place.height, ")"));
-        labels.push_back({l.text, groundAt(field, i, j), 2.0f});  // before the layers' labels
+        labels.push_back({l.text, surfacePoint(field, i, j), 2.0f});  // before the layers' labels
     }
     return labels;
 }

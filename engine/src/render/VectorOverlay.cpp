@@ -86,10 +86,6 @@ terrain::DrapeImage polygonDrape(const terrain::VectorLayer& layer, int gridWidt
     return d;
 }
 
-namespace {
-
-// The world point on the field's surface at sample coordinates (i, j):
-// bilinear between the four samples around it.
 glm::vec3 surfacePoint(const terrain::Heightfield& field, double i, double j) {
     const int i0 = std::clamp(int(std::floor(i)), 0, field.width() - 1);
     const int j0 = std::clamp(int(std::floor(j)), 0, field.height() - 1);
@@ -100,8 +96,6 @@ glm::vec3 surfacePoint(const terrain::Heightfield& field, double i, double j) {
                     (1 - fi) * fj * field.worldHeight(i0, j1) + fi * fj * field.worldHeight(i1, j1);
     return {float(i) * field.spacingX(), h, float(j) * field.spacingZ()};
 }
-
-}  // namespace
 
 std::vector<Label> vectorLabels(const terrain::VectorLayer& layer,
                                 const terrain::Heightfield& field) {

@@ -49,4 +49,8 @@ terrain::DrapeImage polygonDrape(const terrain::VectorLayer& layer, int gridWidt
 std::vector<Label> vectorLabels(const terrain::VectorLayer& layer,
                                 const terrain::Heightfield& field);
 
+// The world point on `field`'s surface at sample coordinates (i, j): the
+// bilinear height of the four samples around it (clamped to the grid).
+glm::vec3 surfacePoint(const terrain::Heightfield& field, double i, double j);
+
 }  // namespace sierra::render
