@@ -175,3 +175,22 @@ def test_two_renderers_are_independent():
     b.render(heights, width=64, height=36, msaa=0)
     del b  # its context goes; a's stays usable
     assert np.array_equal(a.render(heights, **SMALL), first)
+
+
+def test_layers_are_keywords_too(renderer, tmp_path):
+    # The scene's layers (docs/layers.md): labels and furniture change the
+    # frame, a vector layer off the terrain is no error, a bad drape is one.
+    heights = np.outer(np.linspace(0, 20, 65), np.ones(65)).astype(np.float32)
+    plain = renderer.render(heights, width=160, height=90)
+    marked = renderer.render(heights, width=160, height=90, scale_bar=True, title="T",
+                             labels=[{"text": "Hut", "x": 32, "z": 32, "geographic": False}])
+    assert marked.shape == plain.shape
+    assert (marked != plain).any(axis=2).sum() > 100
+    far = tmp_path / "far.geojson"
+    far.write_text(json.dumps({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {},
+         "geometry": {"type": "Point", "coordinates": [5000, 5000]}}]}))
+    assert renderer.render(heights, width=160, height=90,
+                           vectors=[{"file": str(far)}]).shape == plain.shape
+    with pytest.raises(sierra.Error, match="missing.tif"):
+        renderer.render(heights, width=160, height=90, drapes=[{"image": str(tmp_path / "missing.tif")}])
