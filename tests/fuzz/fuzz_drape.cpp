@@ -5,32 +5,16 @@
 // finding, and so is a drape that breaks readDrape's promises (a size within
 // the texture limit, width * height * 4 bytes, coverage in (0, 1]).
 
+#include "MemoryFile.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/terrain/Drape.h>
-
-#include <sys/mman.h>
-#include <unistd.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 namespace {
-
-struct MemoryFile {
-    int fd = ::memfd_create("fuzz.drape", MFD_CLOEXEC);
-    std::string path = "/proc/self/fd/" + std::to_string(fd);
-    ~MemoryFile() { ::close(fd); }
-
-    void fill(const uint8_t* data, size_t size) {
-        if (fd < 0 || ::ftruncate(fd, 0) != 0) __builtin_trap();
-        for (size_t done = 0; done < size;) {
-            const ssize_t n = ::pwrite(fd, data + done, size - done, off_t(done));
-            if (n <= 0) __builtin_trap();
-            done += size_t(n);
-        }
-    }
-};
 
 // WGS 84, 64 x 32 samples 0.01 degrees apart from 10 E, 47 N (the seeds' area).
 const char* kWgs84 =
@@ -40,7 +24,7 @@ const char* kWgs84 =
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    static MemoryFile file;
+    static sierra::fuzz::MemoryFile file("fuzz.drape");
     file.fill(data, size);
     try {
         // A small texture limit keeps a huge declared image cheap to place.

@@ -6,32 +6,16 @@
 // finding, and so is an ObjFile that breaks readObj's promises (every face
 // index inside positions, every face UV -1 or inside uvs, one material per face).
 
+#include "MemoryFile.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/tin/Export.h>
-
-#include <sys/mman.h>
-#include <unistd.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 namespace {
-
-struct MemoryFile {
-    int fd = ::memfd_create("fuzz.obj", MFD_CLOEXEC);
-    std::string path = "/proc/self/fd/" + std::to_string(fd);
-    ~MemoryFile() { ::close(fd); }
-
-    void fill(const uint8_t* data, size_t size) {
-        if (fd < 0 || ::ftruncate(fd, 0) != 0) __builtin_trap();
-        for (size_t done = 0; done < size;) {
-            const ssize_t n = ::pwrite(fd, data + done, size - done, off_t(done));
-            if (n <= 0) __builtin_trap();
-            done += size_t(n);
-        }
-    }
-};
 
 bool inside(int32_t index, size_t count) {
     return index >= 0 && size_t(index) < count;
@@ -40,7 +24,7 @@ bool inside(int32_t index, size_t count) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    static MemoryFile file;
+    static sierra::fuzz::MemoryFile file("fuzz.obj");
     file.fill(data, size);
     try {
         const sierra::tin::ObjFile obj = sierra::tin::readObj(file.path);

@@ -7,11 +7,10 @@
 // or more, polygon rings closed, coordinates finite, every kept feature
 // touching the grid, counts consistent).
 
+#include "MemoryFile.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/terrain/Vector.h>
-
-#include <sys/mman.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstddef>
@@ -19,21 +18,6 @@
 #include <string>
 
 namespace {
-
-struct MemoryFile {
-    int fd = ::memfd_create("fuzz.vector", MFD_CLOEXEC);
-    std::string path = "/proc/self/fd/" + std::to_string(fd);
-    ~MemoryFile() { ::close(fd); }
-
-    void fill(const uint8_t* data, size_t size) {
-        if (fd < 0 || ::ftruncate(fd, 0) != 0) __builtin_trap();
-        for (size_t done = 0; done < size;) {
-            const ssize_t n = ::pwrite(fd, data + done, size - done, off_t(done));
-            if (n <= 0) __builtin_trap();
-            done += size_t(n);
-        }
-    }
-};
 
 // WGS 84, 101 x 51 samples 0.01 degrees apart from 10 E, 47 N (the seeds' area).
 const char* kWgs84 =
@@ -43,7 +27,7 @@ const char* kWgs84 =
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    static MemoryFile file;
+    static sierra::fuzz::MemoryFile file("fuzz.vector");
     file.fill(data, size);
     using sierra::terrain::VectorFeature;
     try {

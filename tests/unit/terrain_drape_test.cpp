@@ -4,6 +4,7 @@
 // SIERRA_WITH_GDAL (on by default when GDAL is installed).
 #ifdef SIERRA_WITH_GDAL
 
+#include "gdal_test_util.h"
 #include "temp_dir_test_util.h"
 
 #include <sierra/terrain/Drape.h>
@@ -22,16 +23,6 @@ namespace {
 using terrain::DrapeBounds;
 using terrain::DrapeOptions;
 using terrain::GridPlacement;
-
-std::string wktOf(int epsg) {
-    OGRSpatialReference srs;
-    EXPECT_EQ(srs.importFromEPSG(epsg), OGRERR_NONE);
-    char* text = nullptr;
-    srs.exportToWkt(&text);
-    std::string wkt = text;
-    CPLFree(text);
-    return wkt;
-}
 
 using Colour = std::function<std::array<uint8_t, 4>(int x, int y)>;
 

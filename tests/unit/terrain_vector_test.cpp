@@ -3,6 +3,7 @@
 // Built with SIERRA_WITH_GDAL (on by default when GDAL is installed).
 #ifdef SIERRA_WITH_GDAL
 
+#include "gdal_test_util.h"
 #include "temp_dir_test_util.h"
 
 #include <sierra/terrain/Vector.h>
@@ -17,16 +18,6 @@ namespace {
 using terrain::GridPlacement;
 using terrain::VectorFeature;
 using terrain::VectorReadOptions;
-
-std::string wktOf(int epsg) {
-    OGRSpatialReference srs;
-    EXPECT_EQ(srs.importFromEPSG(epsg), OGRERR_NONE);
-    char* text = nullptr;
-    srs.exportToWkt(&text);
-    std::string wkt = text;
-    CPLFree(text);
-    return wkt;
-}
 
 // A FeatureCollection in WGS 84 longitude, latitude (GeoJSON's own system).
 std::string collection(const std::string& features) {

@@ -5,6 +5,8 @@
 // Built with SIERRA_WITH_GDAL; without it, readDrape says so.
 #include <sierra/terrain/Drape.h>
 
+#include "terrain/GdalSession.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 
@@ -30,10 +32,7 @@ DrapeImage readDrape(const std::string& path, const DrapeOptions&) {
 #else
 namespace {
 
-struct Closer {
-    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using Dataset = std::unique_ptr<GDALDataset, Closer>;
+using Dataset = detail::GdalDataset;
 
 using GeoTransform = std::array<double, 6>;
 
@@ -224,12 +223,7 @@ DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options,
                            const std::function<void(const DrapeImage&)>& onSize,
                            const std::function<void(const DrapeStrip&)>& onStrip) {
     regularFileSize(path);  // missing files and devices are refused before GDAL opens them
-    GDALAllRegister();
-    CPLPushErrorHandler(CPLQuietErrorHandler);  // one message: GDAL's last goes into the Error
-    struct PopHandler {
-        ~PopHandler() { CPLPopErrorHandler(); }
-    } popHandler;
-    CPLErrorReset();
+    const detail::GdalSession session;
     Dataset file(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
     if (!file) {
         const std::string reason = CPLGetLastErrorMsg();

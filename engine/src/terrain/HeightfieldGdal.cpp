@@ -4,6 +4,7 @@
 // SIERRA_WITH_GDAL; without it this file is empty.
 #include "HeightfieldLoaders.h"
 
+#include "terrain/GdalSession.h"
 #include "terrain/Npz.h"
 
 #include <sierra/core/Files.h>
@@ -63,20 +64,9 @@ std::optional<Heightfield::GeoPoint> geographicCentre(const OGRSpatialReference&
 }
 
 Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
-    regularFileSize(path);  // a FIFO or a device is refused before GDAL opens it
-    GDALAllRegister();
-    // One message for the user: GDAL's own error printing is silenced, its last
-    // message goes into the sierra::Error.
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    struct PopHandler {
-        ~PopHandler() { CPLPopErrorHandler(); }
-    } popHandler;
-    CPLErrorReset();
-    struct Closer {
-        void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-    };
-    std::unique_ptr<GDALDataset, Closer> data(
-        GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+    regularFileSize(path);      // a FIFO or a device is refused before GDAL opens it
+    const GdalSession session;  // one message: GDAL's last error goes into the sierra::Error
+    GdalDataset data(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
     if (!data) {
         std::string reason = CPLGetLastErrorMsg();
         throw Error(msg("cannot open ", path, " with GDAL: ",

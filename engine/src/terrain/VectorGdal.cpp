@@ -2,6 +2,8 @@
 // SIERRA_WITH_GDAL; without it, readVectorLayer says so.
 #include <sierra/terrain/Vector.h>
 
+#include "terrain/GdalSession.h"
+
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 
@@ -119,9 +121,6 @@ class Converter {
     int width_ = 0, height_ = 0;
 };
 
-struct Closer {
-    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
 struct TransformDeleter {
     void operator()(OGRCoordinateTransformation* t) const {
         OGRCoordinateTransformation::DestroyCT(t);
@@ -155,14 +154,8 @@ std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> toGrid(
 
 VectorLayer readVectorLayer(const std::string& path, const VectorReadOptions& options) {
     regularFileSize(path);  // missing files and devices are refused before GDAL opens them
-    GDALAllRegister();
-    CPLPushErrorHandler(CPLQuietErrorHandler);  // one message: GDAL's last goes into the Error
-    struct PopHandler {
-        ~PopHandler() { CPLPopErrorHandler(); }
-    } popHandler;
-    CPLErrorReset();
-    std::unique_ptr<GDALDataset, Closer> data(
-        GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    const detail::GdalSession session;
+    detail::GdalDataset data(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
     if (!data) {
         const std::string reason = CPLGetLastErrorMsg();
         throw Error(msg("cannot open ", path, " as a vector layer: ",
