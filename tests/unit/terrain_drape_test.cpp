@@ -27,7 +27,7 @@ using terrain::GridPlacement;
 using Colour = std::function<std::array<uint8_t, 4>(int x, int y)>;
 
 // Writes a `bands`-band 8-bit image through GDAL's `driver` (GTiff, PNG),
-// pixel (x, y) coloured by `colour` (its first `bands` channels), with a
+// pixel (x, y) coloured by `colour` (its first `bands` channels, 255 beyond four), with a
 // geotransform and system when given.
 std::string writeImage(const std::string& path, const char* driver, int width, int height,
                        int bands, const Colour& colour,
@@ -39,7 +39,8 @@ std::string writeImage(const std::string& path, const char* driver, int width, i
     for (int b = 0; b < bands; ++b) {
         std::vector<uint8_t> plane(size_t(width) * height);
         for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) plane[size_t(y) * width + x] = colour(x, y)[size_t(b)];
+            for (int x = 0; x < width; ++x)  // bands past the fourth (a bad image): 255
+                plane[size_t(y) * width + x] = b < 4 ? colour(x, y)[size_t(b)] : 255;
         EXPECT_EQ(mem->GetRasterBand(b + 1)->RasterIO(GF_Write, 0, 0, width, height, plane.data(),
                                                       width, height, GDT_Byte, 0, 0, nullptr),
                   CE_None);
