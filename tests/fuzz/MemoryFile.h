@@ -1,6 +1,6 @@
 #pragma once
-// One in-memory file (memfd_create) that a fuzz target refills with each
-// input and hands to a reader that takes a path, through /proc/self/fd: no
+// What the fuzz targets that read a path share. One in-memory file (memfd_create) that a fuzz
+// target refills with each input and hands to a reader that takes a path, through /proc/self/fd: no
 // disk traffic per run.
 
 #include <sys/mman.h>
@@ -31,5 +31,12 @@ struct MemoryFile {
     int fd;
     std::string path = "/proc/self/fd/" + std::to_string(fd);
 };
+
+// WGS 84 as WKT: the reference system of the georeferenced grid the drape
+// and vector targets place their inputs on (10 E, 47 N, 0.01 degrees a sample,
+// where their seeds lie).
+inline constexpr const char* kWgs84 =
+    "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],"
+    "PRIMEM[\"Greenwich\",0],UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
 
 }  // namespace sierra::fuzz

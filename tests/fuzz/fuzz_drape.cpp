@@ -14,15 +14,6 @@
 #include <cstdint>
 #include <string>
 
-namespace {
-
-// WGS 84, 64 x 32 samples 0.01 degrees apart from 10 E, 47 N (the seeds' area).
-const char* kWgs84 =
-    "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],"
-    "PRIMEM[\"Greenwich\",0],UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static sierra::fuzz::MemoryFile file("fuzz.drape");
     file.fill(data, size);
@@ -31,7 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const auto drape = sierra::terrain::readDrape(
             file.path, {.placement =
                             sierra::terrain::GridPlacement{
-                                {10.0, 0.01, 0.0, 47.0, 0.0, -0.01}, kWgs84, 64, 32},
+                                {10.0, 0.01, 0.0, 47.0, 0.0, -0.01}, sierra::fuzz::kWgs84, 64, 32},
                         .maxTexels = 256});
         if (drape.width < 1 || drape.height < 1 || drape.width > 256 || drape.height > 256 ||
             drape.rgba.size() != size_t(drape.width) * size_t(drape.height) * 4 ||

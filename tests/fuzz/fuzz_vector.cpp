@@ -17,15 +17,6 @@
 #include <cstdint>
 #include <string>
 
-namespace {
-
-// WGS 84, 101 x 51 samples 0.01 degrees apart from 10 E, 47 N (the seeds' area).
-const char* kWgs84 =
-    "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],"
-    "PRIMEM[\"Greenwich\",0],UNIT[\"degree\",0.0174532925199433],AUTHORITY[\"EPSG\",\"4326\"]]";
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static sierra::fuzz::MemoryFile file("fuzz.vector");
     file.fill(data, size);
@@ -33,7 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         const auto layer = sierra::terrain::readVectorLayer(
             file.path, {.placement = sierra::terrain::GridPlacement{
-                            {10.0, 0.01, 0.0, 47.0, 0.0, -0.01}, kWgs84, 101, 51}});
+                            {10.0, 0.01, 0.0, 47.0, 0.0, -0.01}, sierra::fuzz::kWgs84, 101, 51}});
         if (layer.outside > layer.read ||
             int64_t(layer.features.size()) < layer.read - layer.outside)
             __builtin_trap();

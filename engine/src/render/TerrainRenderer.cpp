@@ -159,20 +159,26 @@ DrawStats TerrainRenderer::draw(const Camera& camera, int width, int height,
     return stats;
 }
 
-DepthImage TerrainRenderer::renderDepth(const Camera& camera, int width, int height,
-                                        const DrawOptions& options) {
+void TerrainRenderer::drawAlone(Pass& pass, const Camera& camera, int width, int height,
+                                const DrawOptions& options) {
     State& s = *state_;
-    if (!s.depth || s.depth->width() != width || s.depth->height() != height)
-        s.depth = DepthPass::create(width, height);
     MeshStats stats;
     MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height, lodSettings(options), stats);
     FrameUniformData uniforms = frameUniforms(camera, width, height, options);
     GLint previousBlock = 0;
     glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kFrameUniformBinding, &previousBlock);
     s.uniforms.update(uniforms);
-    s.depth->draw({s.terrain, mesh, uniforms, camera, width, height});
+    pass.draw({s.terrain, mesh, uniforms, camera, width, height});
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameUniformBinding, GLuint(previousBlock));
     s.stream.finishFrame();
+}
+
+DepthImage TerrainRenderer::renderDepth(const Camera& camera, int width, int height,
+                                        const DrawOptions& options) {
+    State& s = *state_;
+    if (!s.depth || s.depth->width() != width || s.depth->height() != height)
+        s.depth = DepthPass::create(width, height);
+    drawAlone(*s.depth, camera, width, height, options);
     return s.depth->read();
 }
 
@@ -187,15 +193,7 @@ LabelImage TerrainRenderer::renderLabels(const Camera& camera, int width, int he
         s.labelSurface = zones;
     }
     s.labels->setNormalRotation(normalRotation);
-    MeshStats stats;
-    MeshDraw mesh = s.stream.prepare(s.terrain, camera, width, height, lodSettings(options), stats);
-    FrameUniformData uniforms = frameUniforms(camera, width, height, options);
-    GLint previousBlock = 0;
-    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kFrameUniformBinding, &previousBlock);
-    s.uniforms.update(uniforms);
-    s.labels->draw({s.terrain, mesh, uniforms, camera, width, height});
-    glBindBufferBase(GL_UNIFORM_BUFFER, kFrameUniformBinding, GLuint(previousBlock));
-    s.stream.finishFrame();
+    drawAlone(*s.labels, camera, width, height, options);
     return s.labels->read();
 }
 

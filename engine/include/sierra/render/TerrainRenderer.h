@@ -135,6 +135,10 @@ class TerrainRenderer {
     explicit TerrainRenderer(std::unique_ptr<State> state);
     FrameUniformData frameUniforms(const Camera& camera, int width, int height,
                                    const DrawOptions& options) const;
+    // The frame's mesh and uniforms drawn by `pass` alone into its own target
+    // (the depth and label outputs), the uniform binding left as found.
+    void drawAlone(Pass& pass, const Camera& camera, int width, int height,
+                   const DrawOptions& options);
     std::unique_ptr<State> state_;
 };
 
