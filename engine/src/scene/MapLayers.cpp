@@ -204,8 +204,8 @@ void validateMapLayers(const MapLayersDesc& layers) {
             check(std::abs(l.z) <= 90.0, key + ".latitude", "--label", "must be within 90 degrees");
     }
     const FurnitureDesc& f = layers.furniture;
-    check(f.textPixels >= 6.0f && f.textPixels <= 128.0f, "layers.furniture.text_pixels",
-          "--text-size", msg("must be 6..128 pixels, got ", f.textPixels));
+    check(f.textPixels >= 6.0f && f.textPixels <= 128.0f, "layers.text_pixels", "--text-size",
+          msg("must be 6..128 pixels, got ", f.textPixels));
 }
 
 }  // namespace sierra::scene
