@@ -2,7 +2,9 @@
 // The subcommands of sierra-gen, each registering itself on the app.
 
 #include <sierra/analysis/Curvature.h>
+#include <sierra/scene/Scene.h>
 #include <sierra/terrain/Heightfield.h>
+#include <sierra/terrain/Maps.h>
 
 #include <CLI/CLI.hpp>
 
@@ -21,5 +23,11 @@ void addCurvatureCommand(CLI::App& app);
 // sierra-gen (sierra-gen itself links no GL and runs it for that option).
 analysis::CurvatureField computeCurvatureOnGpu(const terrain::Heightfield& field,
                                                const analysis::CurvatureOptions& options);
+
+// `map` with labels or map furniture, in sierra-gen-gpu: `s.layers`' labels,
+// title, scale bar and north arrow drawn over `image`, the map of `field`
+// (one pixel a sample, row 0 at the top).
+void drawMapFurniture(terrain::RgbImage& image, const scene::Scene& s,
+                      const terrain::Heightfield& field);
 
 }  // namespace sierra::apps

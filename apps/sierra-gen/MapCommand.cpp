@@ -10,6 +10,9 @@
 // in world units: heights times the vertical scale, the terrain's spacing.
 // --values writes a scalar scheme's float32 field, NaN where gdaldem writes
 // its no-data value. docs/maps.md has every scheme's formula and option.
+// Labels and map furniture (--label, --title, --scale-bar, --north-arrow)
+// are drawn over the map by sierra-gen-gpu, which this program runs for them
+// (it links no GL); --legend is the colour bar.
 #include "Commands.h"
 
 #include "AppMain.h"
@@ -79,6 +82,15 @@ terrain::ColourRamp heightRamp(const Scheme& s, const std::optional<terrain::Cpt
 void runMap(const CLI::App& cmd, const MapOptions& o) {
     const Scheme s = map::parseScheme(o.scheme);
     map::checkMapOptions(cmd, s, o);
+    const scene::MapLayersDesc& layers = o.scene.layers;
+    const bool furniture = !layers.labels.empty() || layers.furniture.scaleBar ||
+                           layers.furniture.northArrow || !layers.furniture.title.empty();
+    if (furniture && o.out.empty())
+        throw UsageError("map: labels and map furniture need --out FILE.png to draw on");
+#ifndef SIERRA_GEN_GPU
+    if (furniture) execBeside("sierra-gen-gpu");
+#endif
+    const bool colourBar = o.colourBar || layers.furniture.legend;
     const terrain::DemFieldDesc desc = map::demFieldDesc(s, o);
 
     // The outputs and the table are checked before the work.
@@ -92,12 +104,17 @@ void runMap(const CLI::App& cmd, const MapOptions& o) {
     const bool metres = scene::metricHeights(o.scene.terrain, field);
 
     terrain::RgbImage image;
+    // The colour bar widens the image: it goes on after the furniture, which
+    // takes the map's pixels for its samples.
+    std::function<void(terrain::RgbImage&)> addBar;
     if (s.kind == Kind::Height || s.kind == Kind::Relief) {
         const terrain::ColourRamp ramp = heightRamp(s, cpt, field, o);
         if (s.kind == Kind::Height) {
             image = terrain::renderMap(field, ramp);
-            if (o.colourBar)
-                terrain::addColourBar(image, ramp, field.verticalScale(), metres ? "m" : "");
+            if (colourBar)
+                addBar = [ramp, &field, metres](terrain::RgbImage& m) {
+                    terrain::addColourBar(m, ramp, field.verticalScale(), metres ? "m" : "");
+                };
         } else {
             const std::vector<float> shade = terrain::demField(field, desc);
             const std::vector<float> sky = lightingField(field, s, o);
@@ -120,9 +137,16 @@ void runMap(const CLI::App& cmd, const MapOptions& o) {
         if (!o.out.empty()) {
             const map::FieldRamp ramp = map::fieldRamp(s, desc, values, metres);
             image = terrain::colourField(field.width(), field.height(), values, ramp.ramp);
-            if (o.colourBar) terrain::addColourBar(image, ramp.ramp, 1.0f, ramp.units);
+            if (colourBar)
+                addBar = [ramp](terrain::RgbImage& m) {
+                    terrain::addColourBar(m, ramp.ramp, 1.0f, ramp.units);
+                };
         }
     }
+#ifdef SIERRA_GEN_GPU
+    if (furniture) drawMapFurniture(image, o.scene, field);
+#endif
+    if (addBar) addBar(image);
     if (!o.out.empty()) {
         // Grey maps (hillshade, sky-view, ...) as grey PNGs: a third of the data.
         bool grey = true;
@@ -154,8 +178,8 @@ void addMapCommand(CLI::App& app) {
         "map",
         "2D map PNG (and float32 .npy field) of a heightfield: height colours, hillshade, "
         "slope, aspect, TRI, TPI, roughness, curvatures, shadow, sky-view, openness, relief");
-    state->sceneOptions =
-        std::make_unique<scene::SceneOptions>(*cmd, o.scene, scene::kTerrainOptions);
+    state->sceneOptions = std::make_unique<scene::SceneOptions>(
+        *cmd, o.scene, scene::kTerrainOptions | scene::kFurnitureOptions);
     map::addMapOptions(*cmd, o);
     cmd->footer(
         "Curvatures (1/world unit) follow Florinsky's sign convention: positive = convex "

@@ -42,6 +42,8 @@ void checkOptionsApply(const CLI::App& cmd, const Scheme& s, const MapOptions& o
          }},
         {"--colour-bar", "height schemes and the scalar schemes but hillshade and aspect",
          [](const Scheme& x, const MapOptions&) { return map::hasColourBar(x); }},
+        {"--legend", "height schemes and the scalar schemes but hillshade and aspect",
+         [](const Scheme& x, const MapOptions&) { return map::hasColourBar(x); }},
         {"--values", "the scalar schemes (all but the height schemes and relief)",
          [](const Scheme& x, const MapOptions&) { return map::hasValues(x); }},
         {"--algorithm", "hillshade, slope, aspect, the curvatures and relief",

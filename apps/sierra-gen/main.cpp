@@ -4,7 +4,8 @@
 //   itself sierra-gen tiles ...   procedural seamless surface tiles (PNG) sierra-gen curvature ...
 //   the 4-direction curvature field (.npy) and its Figure 2 image (PNG)
 // One source, two executables: sierra-gen links no GL; built with SIERRA_GEN_GPU
-// it is sierra-gen-gpu, which sierra-gen runs for `curvature --device gpu`.
+// it is sierra-gen-gpu, which sierra-gen runs for `curvature --device gpu` and for `map` with
+// labels or map furniture.
 
 #include "Commands.h"
 
@@ -16,7 +17,9 @@ int main(int argc, char** argv) {
         "sierra-gen"};
     app.require_subcommand(1);
 #ifdef SIERRA_GEN_GPU
-    // sierra-gen-gpu: the GL half of sierra-gen, run by it for `curvature --device gpu`.
+    // sierra-gen-gpu: the GL half of sierra-gen, run by it for `curvature --device gpu`
+    // and for maps with labels or furniture.
+    sierra::apps::addMapCommand(app);
     sierra::apps::addCurvatureCommand(app);
 #else
     sierra::apps::addMapCommand(app);

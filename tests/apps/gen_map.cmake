@@ -60,6 +60,26 @@ endif()
 run_app(map_dem EXPECT_OK COMMAND ${GEN} map --heightmap ${dem} --scheme hillshade --out dem.png)
 expect_png_size(${WORK_DIR}/dem.png 403 344)
 
+# Labels and map furniture (drawn by sierra-gen-gpu over the map): the map keeps
+# its size and changes; the scale bar is exact, the sample spacing along x
+# (74.5732 m) being a pixel: 5 km = 67.0 px; a label under the title is
+# crowded out, the one at Jellico placed.
+run_app(map_furniture EXPECT_OK MESSAGE "scale bar 5 km = 67.0 px"
+        COMMAND ${GEN} map --heightmap ${dem} --scheme hillshade --scale-bar --north-arrow
+                --title "Jacksboro fault" --label Jellico@84.127W,36.588N --label Hut@2000,3000
+                --out furniture.png)
+expect_png_size(${WORK_DIR}/furniture.png 403 344)
+expect_different(${WORK_DIR}/dem.png ${WORK_DIR}/furniture.png "--title --scale-bar")
+run_app(map_labels EXPECT_OK MESSAGE "1 of 2 labels placed"
+        COMMAND ${GEN} map --heightmap ${dem} --scheme hillshade --title "Jacksboro fault"
+                --label Jellico@84.127W,36.588N --label Hut@2000,3000 --out labels.png)
+# --legend is the map's colour bar: wider, as tall.
+run_app(map_legend EXPECT_OK COMMAND ${GEN} map --generate 129 --legend --title T --out legend.png)
+png_size(w h ${WORK_DIR}/legend.png)
+if(NOT h EQUAL 129 OR NOT w GREATER 129)
+  message(FATAL_ERROR "map --legend is ${w}x${h}: expected 129 rows and more than 129 columns")
+endif()
+
 # Bad input: exactly one error message (a command-line error adds CLI11's
 # "Run sierra-gen --help" hint), a non-zero exit (2 for the command line, an
 # input file that is missing included; 1 for a file that cannot be read or
@@ -120,6 +140,10 @@ expect_map_error(sun_size_not_for_sky 2 "--sun-size does not apply" sky_sun.png 
 expect_map_error(values_of_heights 2 "--values does not apply" heights.png --generate 129 --scheme atlas --values heights.npy)
 expect_map_error(values_not_npy 2 "--values must name a .npy" values.png --generate 129 --scheme slope --values slope.txt)
 expect_map_error(bad_generate_size 1 "2^n + 1" size.png --generate 100)
+expect_map_error(label_off_map 1 "lies outside the map" label.png --generate 129 --label X@99999,0)
+expect_map_error(label_geographic 1 "needs a georeferenced terrain" geo.png --generate 129 --label X@10E,45N)
+expect_map_error(legend_not_for_hillshade 2 "--legend does not apply" shade.png --generate 129 --scheme hillshade --legend)
+expect_map_error(text_size 2 "text_pixels" text.png --generate 129 --title T --text-size 1000)
 # Maps are PNG whatever their name: another extension is refused before the work.
 run_app(map_not_png EXPECT_FAIL EXIT 2 MESSAGE "--out must name a .png file" COMMAND ${GEN} map --generate 65 --out map.jpg)
 if(EXISTS ${WORK_DIR}/map.jpg)

@@ -142,8 +142,7 @@ OptionEntry& list(Builder& b, const Text& t, std::vector<T>& (*ref)(Scene&),
 }  // namespace
 
 void layerEntries(std::vector<OptionEntry>& out) {
-    Builder b(out, kLayerOptions,
-              "Layers: drapes, vectors, labels, map furniture (docs/layers.md)");
+    Builder b(out, kLayerOptions, "Layers: drapes and vectors (docs/layers.md)");
     list<DrapeDesc>(
         b,
         {"--drape", "IMAGE[:OPACITY][:multiply]", "layers.drapes", "array of objects",
@@ -191,8 +190,9 @@ void layerEntries(std::vector<OptionEntry>& out) {
         for (VectorDesc& v : s.layers.vectors)
             if (v.labelField.empty()) v.labelField = w[0];
     };
+    Builder f(out, kFurnitureOptions, "Labels and map furniture (docs/layers.md)");
     list<LabelDesc>(
-        b,
+        f,
         {"--label", "TEXT@X,Z|TEXT@LON,LAT", "layers.labels", "array of objects",
          "A label at world x, z, or at a longitude and latitude with hemisphere "
          "letters (Summit@15.25E,45.1N); repeat for more",
@@ -200,20 +200,20 @@ void layerEntries(std::vector<OptionEntry>& out) {
          "degrees when `geographic`)"},
         [](Scene& s) -> std::vector<LabelDesc>& { return s.layers.labels; }, parseLabelSpec,
         labelJson, labelFromJson);
-    b.flag(
+    f.flag(
         {"--scale-bar", "", "layers.scale_bar", "boolean",
          "A scale bar (exact in orthographic frames; at the target's distance in perspective)"},
         [](Scene& s) -> bool& { return s.layers.furniture.scaleBar; }, true);
-    b.flag(
+    f.flag(
         {"--north-arrow", "", "layers.north_arrow", "boolean", "A north arrow"},
         [](Scene& s) -> bool& { return s.layers.furniture.northArrow; }, true);
-    b.string({"--title", "TEXT", "layers.title", "string", "A title at the top left"},
+    f.string({"--title", "TEXT", "layers.title", "string", "A title at the top left"},
              [](Scene& s) -> std::string& { return s.layers.furniture.title; });
-    b.flag(
+    f.flag(
         {"--legend", "", "layers.legend", "boolean",
          "A legend of the colour ramp, the .cpt or the zone palette"},
         [](Scene& s) -> bool& { return s.layers.furniture.legend; }, true);
-    b.number({"--text-size", "PX", "layers.text_pixels", "number 6..128",
+    f.number({"--text-size", "PX", "layers.text_pixels", "number 6..128",
               "Label and map furniture text height, pixels"},
              [](Scene& s) -> float& { return s.layers.furniture.textPixels; });
 }

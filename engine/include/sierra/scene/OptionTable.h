@@ -51,10 +51,13 @@ enum OptionGroup : unsigned {
     // How a renderer shades zones: --blend linear|height, --triplanar, --no-tile-variation,
     // --debug-view none|zones|bands
     kZoneShadingOptions = 1u << 10,
-    // --drape IMAGE[:OPACITY][:multiply], --drape-bounds, --vector FILE[:STYLE], --vector-where,
-    // --label-field, --label TEXT@X,Z, --scale-bar, --north-arrow, --title, --legend, --text-size
+    // --drape IMAGE[:OPACITY][:multiply], --drape-bounds, --drape-bounds-units,
+    // --vector FILE[:STYLE], --vector-where, --label-field
     kLayerOptions = 1u << 11,
-    kAllOptions = (1u << 12) - 1,
+    // --label TEXT@X,Z, --scale-bar, --north-arrow, --title, --legend, --text-size: 3D frames
+    // and 2D maps (sierra-gen map) alike
+    kFurnitureOptions = 1u << 12,
+    kAllOptions = (1u << 13) - 1,
 };
 
 // A finite float option value, or sierra::Error "OPTION 'TEXT': expected
