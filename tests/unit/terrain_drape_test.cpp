@@ -140,7 +140,7 @@ TEST_F(Drapes, AUtmImageOnAGeographicGridIsWarped) {
     std::vector<uint8_t> strips;
     int sized = 0, next = 0;
     const auto header = terrain::readDrapeStrips(
-        file, {.placement = grid}, 7,
+        file, {.placement = grid}, size_t(d.width) * 4 * 7,
         [&](const terrain::DrapeImage& size) { sized = size.width * size.height; },
         [&](const terrain::DrapeStrip& s) {
             EXPECT_EQ(s.row, next);

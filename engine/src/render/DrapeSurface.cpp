@@ -177,7 +177,7 @@ std::unique_ptr<Surface> makeStreamedDrapeSurface(std::unique_ptr<Surface> base,
     limited.maxTexels = std::min(options.maxTexels, maxTextureSide());
     // Strips of about 16 MiB: each premultiplied and uploaded as it comes.
     const auto info = terrain::readDrapeStrips(
-        path, limited, 1 << 22,
+        path, limited, size_t(16) << 20,
         [&](const terrain::DrapeImage& size) { texture = drapeTexture(size.width, size.height); },
         [&](const terrain::DrapeStrip& s) {
             premultiplied.assign(s.rgba, s.rgba + size_t(s.width) * size_t(s.rows) * 4);

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <memory>
 
@@ -219,7 +220,7 @@ void warpStrip(const std::string& path, GDALDriver& mem, GDALDataset& source, co
 
 }  // namespace
 
-DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options, int stripRows,
+DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options, size_t stripBytes,
                            const std::function<void(const DrapeImage&)>& onSize,
                            const std::function<void(const DrapeStrip&)>& onStrip) {
     regularFileSize(path);  // missing files and devices are refused before GDAL opens them
@@ -270,14 +271,14 @@ DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options,
     // GDAL's block cache holds what the warp reads of the source: capped while
     // it reads, so a large image is not cached whole beside the strips.
     const GIntBig cache = GDALGetCacheMax64();
-    GDALSetCacheMax64(std::min<GIntBig>(cache, GIntBig(256) << 20));
+    GDALSetCacheMax64(std::min<GIntBig>(cache, GIntBig(64) << 20));
     struct RestoreCache {
         GIntBig bytes;
         ~RestoreCache() { GDALSetCacheMax64(bytes); }
     } restoreCache{cache};
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     if (!mem) throw Error("GDAL has no MEM driver");
-    const int rows = std::clamp(stripRows, 1, th);
+    const int rows = int(std::clamp<size_t>(stripBytes / (size_t(tw) * 4), size_t(1), size_t(th)));
     std::vector<uint8_t> strip(size_t(tw) * size_t(rows) * 4);
     size_t reached = 0;
     for (int row = 0; row < th; row += rows) {
@@ -296,7 +297,7 @@ DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options,
 DrapeImage readDrape(const std::string& path, const DrapeOptions& options) {
     DrapeImage image;
     DrapeImage header = readDrapeStrips(
-        path, options, 1 << 30,
+        path, options, SIZE_MAX,
         [&](const DrapeImage& size) {
             image.rgba.assign(size_t(size.width) * size_t(size.height) * 4, 0);
         },

@@ -20,6 +20,7 @@
 #include <sierra/terrain/Vector.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -71,11 +72,12 @@ struct DrapeStrip {
     const uint8_t* rgba = nullptr;  // width * rows * 4 bytes, valid during the call
 };
 
-// readDrape in strips of at most `stripRows` rows, so a large drape is never
-// held whole: onSize gets the result's size and flags (rgba empty) before the
-// first strip, onStrip each strip in turn; returns the same header with the
-// coverage. GDAL's block cache is capped at 256 MiB while it reads.
-DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options, int stripRows,
+// readDrape in strips of at most `stripBytes` bytes (RGBA8; at least one
+// row), so a large drape is never held whole: onSize gets the result's size
+// and flags (rgba empty) before the first strip, onStrip each strip in turn;
+// returns the same header with the coverage. GDAL's block cache is capped at
+// 64 MiB while it reads: a strip's source rows, not the image.
+DrapeImage readDrapeStrips(const std::string& path, const DrapeOptions& options, size_t stripBytes,
                            const std::function<void(const DrapeImage&)>& onSize,
                            const std::function<void(const DrapeStrip&)>& onStrip);
 
