@@ -10,6 +10,7 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Log.h>
 #include <sierra/core/Progress.h>
+#include <sierra/facade/MapLayers.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/gpu/Gl.h>
 #include <sierra/render/Annotations.h>
@@ -22,12 +23,7 @@
 namespace sierra::apps {
 
 render::AnnotationDesc mapAnnotations(const scene::Scene& s, const terrain::Heightfield& field) {
-    const scene::FurnitureDesc& f = s.layers.furniture;
-    render::AnnotationDesc a;
-    a.textPixels = f.textPixels;
-    a.scaleBar = f.scaleBar;
-    a.northArrow = f.northArrow;
-    a.title = f.title;
+    render::AnnotationDesc a = facade::furnitureAnnotations(s.layers.furniture);
     // Map space: x = i * spacingZ, z = j * spacingZ, so its pixels are square;
     // a pixel is then spacingX metres across, which the bar measures along x.
     const float sx = field.spacingX(), sz = field.spacingZ();

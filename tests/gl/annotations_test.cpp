@@ -5,6 +5,7 @@
 #include "GoldenCompare.h"
 
 #include <sierra/core/Error.h>
+#include <sierra/facade/MapLayers.h>
 #include <sierra/render/Annotations.h>
 #include <sierra/render/FrameTarget.h>
 
@@ -68,6 +69,38 @@ TEST(AnnotationLayout, OrthographicScaleBarIsTheTrueGroundDistance) {
         EXPECT_LE(layout.scaleBar->pixels, 0.25f * width);
         EXPECT_FALSE(layout.scaleBar->atTarget);
         EXPECT_EQ(layout.scaleBar->text.find("target"), std::string::npos);
+    }
+}
+
+TEST(AnnotationLayout, TheScenesCornersPlaceTheFurniture) {
+    const int width = 800, height = 500;
+    using scene::FrameCorner;
+    const FrameCorner all[] = {FrameCorner::TopLeft, FrameCorner::TopRight, FrameCorner::BottomLeft,
+                               FrameCorner::BottomRight};
+    for (int shift = 0; shift < 4; ++shift) {
+        scene::FurnitureDesc f;
+        f.title = "Title";
+        f.scaleBar = f.northArrow = true;
+        f.titleCorner = all[shift];
+        f.scaleBarCorner = all[(shift + 1) % 4];
+        f.northArrowCorner = all[(shift + 2) % 4];
+        const AnnotationDesc desc = facade::furnitureAnnotations(f);
+        auto layout =
+            render::layoutAnnotations(desc, nadir(), width, height, nullptr, fixedMeasure);
+        ASSERT_TRUE(layout.titleOrigin && layout.scaleBar && layout.northArrow);
+        // Each piece's point in the half of the frame its corner names.
+        auto inCorner = [&](glm::vec2 p, FrameCorner c) {
+            const bool right = c == FrameCorner::TopRight || c == FrameCorner::BottomRight;
+            const bool bottom = c == FrameCorner::BottomLeft || c == FrameCorner::BottomRight;
+            return (p.x > 0.5f * width) == right && (p.y > 0.5f * height) == bottom;
+        };
+        EXPECT_TRUE(inCorner(*layout.titleOrigin, f.titleCorner)) << scene::toString(f.titleCorner);
+        EXPECT_TRUE(
+            inCorner(layout.scaleBar->origin + glm::vec2(0.5f * layout.scaleBar->pixels, 0.0f),
+                     f.scaleBarCorner))
+            << scene::toString(f.scaleBarCorner);
+        EXPECT_TRUE(inCorner(layout.northArrow->centre, f.northArrowCorner))
+            << scene::toString(f.northArrowCorner);
     }
 }
 

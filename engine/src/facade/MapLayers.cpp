@@ -18,6 +18,35 @@ namespace sierra::facade {
 
 using namespace sierra::render;
 
+namespace {
+
+render::Corner frameCorner(scene::FrameCorner c) {
+    switch (c) {
+        case scene::FrameCorner::TopRight:
+            return render::Corner::TopRight;
+        case scene::FrameCorner::BottomLeft:
+            return render::Corner::BottomLeft;
+        case scene::FrameCorner::BottomRight:
+            return render::Corner::BottomRight;
+        default:
+            return render::Corner::TopLeft;
+    }
+}
+
+}  // namespace
+
+AnnotationDesc furnitureAnnotations(const scene::FurnitureDesc& f) {
+    AnnotationDesc a;
+    a.textPixels = f.textPixels;
+    a.scaleBar = f.scaleBar;
+    a.scaleBarCorner = frameCorner(f.scaleBarCorner);
+    a.northArrow = f.northArrow;
+    a.northArrowCorner = frameCorner(f.northArrowCorner);
+    a.title = f.title;
+    a.titleCorner = frameCorner(f.titleCorner);
+    return a;
+}
+
 TerrainPlacement terrainPlacement(const TerrainRenderer& renderer,
                                   const terrain::Heightfield& field) {
     const SceneBounds b = renderer.bounds();
@@ -170,12 +199,14 @@ MapLayers applyMapLayers(TerrainRenderer& renderer, const scene::Scene& s,
 
     const scene::FurnitureDesc& f = s.layers.furniture;
     AnnotationDesc& a = layers.annotations;
-    a.textPixels = f.textPixels;
-    a.scaleBar = f.scaleBar;
-    a.northArrow = f.northArrow;
-    a.title = f.title;
+    std::vector<Label> labels = std::move(a.labels);
+    a = furnitureAnnotations(f);
+    a.labels = std::move(labels);
     a.unitsPerMetre = scene::metricHeights(s.terrain, field) ? 1.0f : 0.0f;
-    if (f.legend) a.legend = sceneLegend(renderer, s, field);
+    if (f.legend) {
+        a.legend = sceneLegend(renderer, s, field);
+        a.legend->corner = frameCorner(f.legendCorner);
+    }
     layers.labelsNeedDepth = !a.labels.empty();
     return layers;
 }

@@ -1,5 +1,7 @@
 #include <sierra/scene/MapLayers.h>
 
+#include "scene/Names.h"
+
 #include <sierra/core/Error.h>
 
 #include <algorithm>
@@ -9,6 +11,24 @@
 #include <cstdlib>
 
 namespace sierra::scene {
+
+namespace {
+constexpr std::pair<const char*, FrameCorner> kCorners[] = {
+    {"top-left", FrameCorner::TopLeft},
+    {"top-right", FrameCorner::TopRight},
+    {"bottom-left", FrameCorner::BottomLeft},
+    {"bottom-right", FrameCorner::BottomRight}};
+}  // namespace
+
+const char* toString(FrameCorner corner) {
+    for (const auto& [name, value] : kCorners)
+        if (value == corner) return name;
+    return "top-left";
+}
+
+FrameCorner parseFrameCorner(const std::string& text, const std::string& what) {
+    return detail::parseName(text, what, kCorners);
+}
 
 namespace {
 

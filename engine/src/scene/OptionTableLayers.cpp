@@ -141,6 +141,9 @@ OptionEntry& list(Builder& b, const Text& t, std::vector<T>& (*ref)(Scene&),
 
 }  // namespace
 
+constexpr const char* kCornerNames =
+    "`\"top-left\"`, `\"top-right\"`, `\"bottom-left\"`, `\"bottom-right\"`";
+
 void layerEntries(std::vector<OptionEntry>& out) {
     Builder b(out, kLayerOptions, "Layers: drapes and vectors (docs/layers.md)");
     list<DrapeDesc>(
@@ -207,8 +210,9 @@ void layerEntries(std::vector<OptionEntry>& out) {
     f.flag(
         {"--north-arrow", "", "layers.north_arrow", "boolean", "A north arrow"},
         [](Scene& s) -> bool& { return s.layers.furniture.northArrow; }, true);
-    f.string({"--title", "TEXT", "layers.title", "string", "A title at the top left"},
-             [](Scene& s) -> std::string& { return s.layers.furniture.title; });
+    f.string(
+        {"--title", "TEXT", "layers.title", "string", "A title (top left unless --title-corner)"},
+        [](Scene& s) -> std::string& { return s.layers.furniture.title; });
     f.flag(
         {"--legend", "", "layers.legend", "boolean",
          "A legend of the colour ramp, the .cpt or the zone palette"},
@@ -216,6 +220,28 @@ void layerEntries(std::vector<OptionEntry>& out) {
     f.number({"--text-size", "PX", "layers.text_pixels", "number 6..128",
               "Label and map furniture text height, pixels"},
              [](Scene& s) -> float& { return s.layers.furniture.textPixels; });
+    const Text corners[] = {
+        {"--title-corner", "CORNER", "layers.title_corner", kCornerNames,
+         "The title's corner: top-left (default), top-right, bottom-left or bottom-right"},
+        {"--scale-bar-corner", "CORNER", "layers.scale_bar_corner", kCornerNames,
+         "The scale bar's corner (default bottom-left)"},
+        {"--north-arrow-corner", "CORNER", "layers.north_arrow_corner", kCornerNames,
+         "The north arrow's corner (default top-right)"},
+        {"--legend-corner", "CORNER", "layers.legend_corner", kCornerNames,
+         "The legend's corner (default bottom-right)"},
+    };
+    f.choice<FrameCorner>(
+        corners[0], [](Scene& s) -> FrameCorner& { return s.layers.furniture.titleCorner; },
+        parseFrameCorner, toString);
+    f.choice<FrameCorner>(
+        corners[1], [](Scene& s) -> FrameCorner& { return s.layers.furniture.scaleBarCorner; },
+        parseFrameCorner, toString);
+    f.choice<FrameCorner>(
+        corners[2], [](Scene& s) -> FrameCorner& { return s.layers.furniture.northArrowCorner; },
+        parseFrameCorner, toString);
+    f.choice<FrameCorner>(
+        corners[3], [](Scene& s) -> FrameCorner& { return s.layers.furniture.legendCorner; },
+        parseFrameCorner, toString);
 }
 
 }  // namespace sierra::scene::detail

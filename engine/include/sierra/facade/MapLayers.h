@@ -49,6 +49,11 @@ MapLayers applyMapLayers(render::TerrainRenderer& renderer, const scene::Scene& 
                          const terrain::Heightfield& field,
                          std::unique_ptr<render::Surface> surface);
 
+// The title, scale bar and north arrow of `f`, in their corners, with its
+// text size: what 3D frames and sierra-gen's maps draw (labels, the units
+// and the legend are the caller's).
+render::AnnotationDesc furnitureAnnotations(const scene::FurnitureDesc& f);
+
 // The legend of the scene's surface: the zone palette's swatches, or the ramp
 // or .cpt over the terrain's heights (in metres when they are metric).
 render::Legend sceneLegend(render::TerrainRenderer& renderer, const scene::Scene& scene,

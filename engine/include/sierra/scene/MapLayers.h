@@ -46,12 +46,21 @@ struct LabelDesc {
     bool operator==(const LabelDesc&) const = default;
 };
 
+// Where a piece of map furniture goes; several in one corner stack inwards.
+enum class FrameCorner { TopLeft, TopRight, BottomLeft, BottomRight };
+const char* toString(FrameCorner corner);  // "top-left" ... "bottom-right"
+FrameCorner parseFrameCorner(const std::string& text, const std::string& what);
+
 struct FurnitureDesc {
     bool scaleBar = false;
     bool northArrow = false;
     std::string title;         // "" = none
     bool legend = false;       // the colour ramp, the .cpt or the zone palette, with units
     float textPixels = 16.0f;  // text height, pixels, 6..128
+    FrameCorner titleCorner = FrameCorner::TopLeft;
+    FrameCorner scaleBarCorner = FrameCorner::BottomLeft;
+    FrameCorner northArrowCorner = FrameCorner::TopRight;
+    FrameCorner legendCorner = FrameCorner::BottomRight;
     bool operator==(const FurnitureDesc&) const = default;
 };
 
