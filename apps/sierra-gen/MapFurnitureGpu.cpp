@@ -16,7 +16,6 @@
 #include <sierra/render/Annotations.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/scene/Terrain.h>
-#include <sierra/terrain/Vector.h>
 
 #include <vector>
 
@@ -28,24 +27,10 @@ render::AnnotationDesc mapAnnotations(const scene::Scene& s, const terrain::Heig
     // a pixel is then spacingX metres across, which the bar measures along x.
     const float sx = field.spacingX(), sz = field.spacingZ();
     a.unitsPerMetre = scene::metricHeights(s.terrain, field) ? sz / sx : 0.0f;
-    std::optional<terrain::GridPlacement> placement;
-    if (const auto& g = field.georeference())
-        placement =
-            terrain::GridPlacement{g->geoTransform, g->crsWkt, field.width(), field.height()};
-    for (const scene::LabelDesc& l : s.layers.labels) {
-        double i = l.x / sx, j = l.z / sz;
-        if (l.geographic) {
-            if (!placement)
-                throw Error(msg("label \"", l.text, "\" at ", l.x, "E, ", l.z,
-                                "N needs a georeferenced terrain; give world x, z instead"));
-            const terrain::GridPoint p = terrain::geographicToSamples(*placement, l.x, l.z);
-            i = p.i, j = p.j;
-        }
-        if (!(i >= 0.0 && j >= 0.0 && i <= field.width() - 1.0 && j <= field.height() - 1.0))
-            throw Error(msg("label \"", l.text, "\" lies outside the map (sample ", i, ", ", j,
-                            " of ", field.width(), "x", field.height(), ")"));
-        a.labels.push_back({l.text, {float(i) * sz, 0.0f, float(j) * sz}, 1.0f});
-    }
+    const facade::TerrainPlacement place =
+        facade::terrainPlacement(field, field.width(), field.height());
+    for (const facade::LabelSample& l : facade::labelSamples(s, field, place))
+        a.labels.push_back({l.text, {float(l.i) * sz, 0.0f, float(l.j) * sz}, 1.0f});
     return a;
 }
 

@@ -140,7 +140,7 @@ expect_map_error(sun_size_not_for_sky 2 "--sun-size does not apply" sky_sun.png 
 expect_map_error(values_of_heights 2 "--values does not apply" heights.png --generate 129 --scheme atlas --values heights.npy)
 expect_map_error(values_not_npy 2 "--values must name a .npy" values.png --generate 129 --scheme slope --values slope.txt)
 expect_map_error(bad_generate_size 1 "2^n + 1" size.png --generate 100)
-expect_map_error(label_off_map 1 "lies outside the map" label.png --generate 129 --label X@99999,0)
+expect_map_error(label_off_map 1 "lies outside the terrain" label.png --generate 129 --label X@99999,0)
 expect_map_error(label_geographic 1 "needs a georeferenced terrain" geo.png --generate 129 --label X@10E,45N)
 expect_map_error(legend_not_for_hillshade 2 "--legend does not apply" shade.png --generate 129 --scheme hillshade --legend)
 expect_map_error(text_size 2 "text_pixels" text.png --generate 129 --title T --text-size 1000)

@@ -47,15 +47,41 @@ AnnotationDesc furnitureAnnotations(const scene::FurnitureDesc& f) {
     return a;
 }
 
-TerrainPlacement terrainPlacement(const TerrainRenderer& renderer,
-                                  const terrain::Heightfield& field) {
-    const SceneBounds b = renderer.bounds();
+std::vector<LabelSample> labelSamples(const scene::Scene& s, const terrain::Heightfield& field,
+                                      const TerrainPlacement& place) {
+    std::vector<LabelSample> out;
+    for (const scene::LabelDesc& l : s.layers.labels) {
+        double i = l.x / field.spacingX(), j = l.z / field.spacingZ();
+        if (l.geographic) {
+            if (!place.placement)
+                throw Error(msg("label \"", l.text, "\" at ", l.x, "E, ", l.z,
+                                "N needs a georeferenced terrain; give world x, z instead"));
+            const terrain::GridPoint p = terrain::geographicToSamples(*place.placement, l.x, l.z);
+            i = p.i, j = p.j;
+        }
+        if (!(i >= 0.0 && j >= 0.0 && i <= place.width - 1.0 && j <= place.height - 1.0))
+            throw Error(msg("label \"", l.text, "\" lies outside the terrain (sample ", i, ", ", j,
+                            " of ", place.width, "x", place.height, ")"));
+        out.push_back({l.text, i, j});
+    }
+    return out;
+}
+
+TerrainPlacement terrainPlacement(const terrain::Heightfield& field, int width, int height) {
     TerrainPlacement p;
-    p.width = std::clamp(int(std::lround(b.max.x / field.spacingX())) + 1, 1, field.width());
-    p.height = std::clamp(int(std::lround(b.max.z / field.spacingZ())) + 1, 1, field.height());
+    p.width = width;
+    p.height = height;
     if (const auto& g = field.georeference())
         p.placement = terrain::GridPlacement{g->geoTransform, g->crsWkt, p.width, p.height};
     return p;
+}
+
+TerrainPlacement terrainPlacement(const TerrainRenderer& renderer,
+                                  const terrain::Heightfield& field) {
+    const SceneBounds b = renderer.bounds();
+    return terrainPlacement(
+        field, std::clamp(int(std::lround(b.max.x / field.spacingX())) + 1, 1, field.width()),
+        std::clamp(int(std::lround(b.max.z / field.spacingZ())) + 1, 1, field.height()));
 }
 
 namespace {
@@ -141,20 +167,8 @@ void addVectors(TerrainRenderer& renderer, const scene::Scene& s, const terrain:
 std::vector<Label> sceneLabels(const scene::Scene& s, const terrain::Heightfield& field,
                                const TerrainPlacement& place) {
     std::vector<Label> labels;
-    for (const scene::LabelDesc& l : s.layers.labels) {
-        double i = l.x / field.spacingX(), j = l.z / field.spacingZ();
-        if (l.geographic) {
-            if (!place.placement)
-                throw Error(msg("label \"", l.text, "\" at ", l.x, "E, ", l.z,
-                                "N needs a georeferenced terrain; give world x, z instead"));
-            const terrain::GridPoint p = terrain::geographicToSamples(*place.placement, l.x, l.z);
-            i = p.i, j = p.j;
-        }
-        if (!(i >= 0.0 && j >= 0.0 && i <= place.width - 1.0 && j <= place.height - 1.0))
-            throw Error(msg("label \"", l.text, "\" lies outside the terrain (sample ", i, ", ", j,
-                            " of ", place.width, "x", place.height, ")"));
-        labels.push_back({l.text, surfacePoint(field, i, j), 2.0f});  // before the layers' labels
-    }
+    for (const LabelSample& l : labelSamples(s, field, place))  // before the layers' labels
+        labels.push_back({l.text, surfacePoint(field, l.i, l.j), 2.0f});
     return labels;
 }
 

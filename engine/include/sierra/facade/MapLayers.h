@@ -27,6 +27,19 @@ struct TerrainPlacement {
 };
 TerrainPlacement terrainPlacement(const render::TerrainRenderer& renderer,
                                   const terrain::Heightfield& field);
+// The same for a field whose first width x height samples are real (a 2D map:
+// all of them).
+TerrainPlacement terrainPlacement(const terrain::Heightfield& field, int width, int height);
+
+// The scene's --label places in sample coordinates (i, j) of `field`.
+// Throws sierra::Error for a longitude and latitude on a terrain with no
+// georeference, or a place off the real samples.
+struct LabelSample {
+    std::string text;
+    double i = 0.0, j = 0.0;
+};
+std::vector<LabelSample> labelSamples(const scene::Scene& scene, const terrain::Heightfield& field,
+                                      const TerrainPlacement& place);
 
 // What the layers put on the renderer and what each frame draws over it.
 struct MapLayers {
