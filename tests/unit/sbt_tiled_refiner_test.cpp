@@ -1,0 +1,140 @@
+// The tiled refinement against the in-memory one: with every tile resident
+// the same triangles in the same order; with tiles missing or partly loaded
+// a conforming mesh, drawn coarser where the data stops.
+#include <sierra/sbt/Refiner.h>
+#include <sierra/sbt/TiledRefiner.h>
+#include <sierra/sbt/VertexErrors.h>
+#include <sierra/terrain/DiamondSquare.h>
+
+#include "sbt_mesh_checks.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <random>
+#include <vector>
+
+namespace sierra::test {
+namespace {
+
+struct Grid {
+    terrain::Heightfield field;
+    sbt::VertexErrors errors;
+};
+
+Grid makeGrid(int side, uint32_t seed) {
+    Grid g{terrain::generateDiamondSquare({.size = side, .seed = seed, .roughness = 0.9f}), {}};
+    g.field.setVerticalScale(0.3f * float(side));
+    g.errors = sbt::computeVertexErrors(g.field, 1);
+    return g;
+}
+
+// A camera somewhere above or beside the grid looking at a point on it.
+sbt::ViewParams randomView(std::mt19937& random, int side, float tau, bool cull) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const float s = float(side - 1);
+    const std::array<float, 3> eye{(u(random) * 1.6f - 0.3f) * s, (0.05f + u(random)) * 0.6f * s,
+                                   (u(random) * 1.6f - 0.3f) * s};
+    const std::array<float, 3> target{u(random) * s, 0.0f, u(random) * s};
+    return sbt::lookAtView(eye, target, 0.9f, 16.0f / 9.0f, 720.0f, 0.5f, 10.0f * s, tau, cull);
+}
+
+// Each triangle turned so its least vertex comes first (its winding kept).
+std::vector<Tri> canonical(std::vector<Tri> tris) {
+    for (Tri& t : tris) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return tris;
+}
+
+TEST(TiledRefiner, EveryTileResidentGivesTheInMemoryTriangles) {
+    std::mt19937 random(5);
+    for (int side : {33, 129, 257}) {
+        const Grid g = makeGrid(side, uint32_t(side));
+        sbt::Refiner refiner(g.field, g.errors, {.threads = 1});
+        const int n = g.errors.n;
+        for (int k : {1, 3, n}) {
+            if (k > n) continue;
+            sbt::InMemoryTiles tiles(g.field, g.errors, k);
+            sbt::TiledRefiner tiled(tiles);
+            for (float tau : {1.0f, 4.0f, 8.0f})
+                for (bool cull : {true, false}) {
+                    const sbt::ViewParams view = randomView(random, side, tau, cull);
+                    sbt::StripMesh reference;
+                    refiner.refineViewReference(view, reference);
+                    sbt::TiledMesh mesh;
+                    tiled.refineView(view, mesh);
+                    SCOPED_TRACE(testing::Message() << side << "^2, k " << k << ", tau " << tau
+                                                    << (cull ? ", culled" : ""));
+                    EXPECT_EQ(mesh.triangleCount, reference.triangleCount);
+                    EXPECT_EQ(mesh.culledSubtrees, reference.culledSubtrees);
+                    EXPECT_EQ(mesh.coarseTiles, 0);
+                    EXPECT_EQ(canonical(sbt::decodeTiledStrip(mesh.strip, side)),
+                              canonical(sbt::decodeStrip(reference.indices)))
+                        << "the same triangles in the same order";
+                }
+        }
+    }
+}
+
+TEST(TiledRefiner, MissingTilesLeaveAConformingMesh) {
+    std::mt19937 random(9);
+    const int side = 257;
+    const Grid g = makeGrid(side, 3);
+    for (int k : {2, 4, 6}) {
+        sbt::InMemoryTiles tiles(g.field, g.errors, k);
+        sbt::TiledRefiner tiled(tiles);
+        const int t = tiles.tilesPerSide();
+        std::uniform_int_distribution<int> depth(0, 2 * k);
+        for (int round = 0; round < 6; ++round) {
+            for (int ty = 0; ty < t; ++ty)
+                for (int tx = 0; tx < t; ++tx) tiles.setResident(tx, ty, depth(random));
+            const sbt::ViewParams view = randomView(random, side, 1.0f, false);
+            sbt::TiledMesh mesh;
+            tiled.refineView(view, mesh);
+            SCOPED_TRACE(testing::Message() << "k " << k << ", round " << round);
+            // Without culling the mesh covers the square: every interior edge
+            // shared by two triangles, no T-junction, however little is loaded.
+            expectConforming(sbt::decodeTiledStrip(mesh.strip, side), side, true);
+            EXPECT_GT(mesh.coarseTiles, 0) << "random depths leave a tile short";
+            // The usable levels: never above what is resident, and edge
+            // neighbours at most one level apart.
+            const std::vector<int>& usable = tiled.usableLevels();
+            for (int ty = 0; ty < t; ++ty)
+                for (int tx = 0; tx < t; ++tx) {
+                    const int d = usable[size_t(ty * t + tx)];
+                    EXPECT_LE(d, tiles.residentLevels(tx, ty));
+                    if (tx + 1 < t) {
+                        EXPECT_LE(std::abs(d - usable[size_t(ty * t + tx + 1)]), 1);
+                    }
+                    if (ty + 1 < t) {
+                        EXPECT_LE(std::abs(d - usable[size_t((ty + 1) * t + tx)]), 1);
+                    }
+                }
+        }
+    }
+}
+
+TEST(TiledRefiner, NoTileLoadedDrawsEachTileAsItsTwoTriangles) {
+    const int side = 129;
+    const Grid g = makeGrid(side, 8);
+    sbt::InMemoryTiles tiles(g.field, g.errors, 4);  // 8 x 8 tiles of 16 cells
+    tiles.setAllResident(0);
+    sbt::TiledRefiner tiled(tiles);
+    // So close and so fine that the in-memory path splits everywhere it can.
+    const sbt::ViewParams view = sbt::lookAtView({64.0f, 30.0f, 64.0f}, {64.0f, 0.0f, 70.0f}, 1.2f,
+                                                 1.0f, 4000.0f, 0.5f, 2000.0f, 0.01f, false);
+    sbt::TiledMesh mesh;
+    tiled.refineView(view, mesh);
+    EXPECT_EQ(mesh.triangleCount, 2 * 8 * 8) << "the tile corners alone are readable";
+    EXPECT_EQ(mesh.coarseTiles, 8 * 8);
+    expectConforming(sbt::decodeTiledStrip(mesh.strip, side), side, true);
+    // One tile fully loaded in the middle: it refines, its neighbours step down to it.
+    tiles.setResident(3, 3, 8);
+    tiled.refineView(view, mesh);
+    EXPECT_GT(mesh.triangleCount, 2 * 8 * 8);
+    EXPECT_EQ(tiled.usableLevels()[3 * 8 + 3], 1) << "one level above its unloaded neighbours";
+    expectConforming(sbt::decodeTiledStrip(mesh.strip, side), side, true);
+}
+
+}  // namespace
+}  // namespace sierra::test
