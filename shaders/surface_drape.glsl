@@ -24,12 +24,26 @@ vec2 drapeUv(vec2 xz) {
     return (xz / uSpacingValid.xy + 0.5) / samples;
 }
 
+// Far vector lines (SIERRA_DRAPE_LINES; render/VectorOverlay.h): premultiplied,
+// each mip level drawn at its own resolution, so the level GL picks holds
+// the line at its width in pixels. Where the finest level is magnified
+// (level of detail < 0) the line fades out over one level: LinePass draws it
+// there as quads.
+#ifdef SIERRA_DRAPE_LINES
+layout(binding = 10) uniform sampler2D uDrapeLines;
+#endif
+
 vec3 surfaceAlbedo(vec3 world, Ground g) {
     vec2 uv = drapeUv(world.xz);
     vec4 added = texture(uDrapeAdded, uv);
 #ifdef SIERRA_DRAPE_MULTIPLY
-    return baseSurfaceAlbedo(world, g) * texture(uDrapeMultiplier, uv).rgb + added.rgb;
+    vec3 albedo = baseSurfaceAlbedo(world, g) * texture(uDrapeMultiplier, uv).rgb + added.rgb;
 #else
-    return baseSurfaceAlbedo(world, g) * (1.0 - added.a) + added.rgb;
+    vec3 albedo = baseSurfaceAlbedo(world, g) * (1.0 - added.a) + added.rgb;
 #endif
+#ifdef SIERRA_DRAPE_LINES
+    vec4 line = texture(uDrapeLines, uv) * clamp(1.0 + textureQueryLod(uDrapeLines, uv).y, 0.0, 1.0);
+    albedo = albedo * (1.0 - line.a) + line.rgb;
+#endif
+    return albedo;
 }

@@ -15,11 +15,13 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 
 namespace {
 
+namespace analysis = sierra::analysis;
 namespace render = sierra::render;
 namespace terrain = sierra::terrain;
 
@@ -88,9 +90,21 @@ void BM_DrapeFrame(benchmark::State& state) {
         s.renderer->setSurface(render::makeDrapeSurface(
             render::makeRampSurface(s.renderer->terrain()), std::span(&layer, 1)));
     }
-    if (variant == kVectors)
-        s.renderer->addPass(render::LinePass::create(render::vectorLines(s.vectors, true, 1.0f),
-                                                     {.width = 2.0f, .thin = false}));
+    static analysis::LineSet lines;
+    static std::optional<render::LinePyramid> pyramid;
+    if (variant == kVectors) {
+        // As facade::applyMapLayers draws them: the far field in a texture, the near as quads.
+        if (!pyramid) {
+            lines = render::vectorLines(s.vectors, true, 1.0f);
+            const render::LineLayer layer{&lines, {.width = 2.0f}};
+            pyramid = render::rasteriseLines(std::span(&layer, 1), kSide, kSide);
+        }
+        s.renderer->setSurface(render::makeDrapeSurface(
+            render::makeRampSurface(s.renderer->terrain()), {}, &*pyramid));
+        s.renderer->addPass(render::LinePass::create(
+            lines,
+            {.width = 2.0f, .thin = false, .nearTexelSize = 1.0f / pyramid->texelsPerSample}));
+    }
     const render::Camera camera =
         render::defaultCamera(s.renderer->bounds(), float(kWidth) / kHeight);
     if (variant == kFurniture) {

@@ -50,6 +50,41 @@ TEST(VectorOverlay, PolygonsFillTheTexelsInsideTheirRings) {
     EXPECT_NEAR(d.coverage, double(inside) / (128.0 * 64.0), 1e-12);
 }
 
+TEST(VectorOverlay, EveryTextureLevelHoldsTheLineAtItsWidthAndDashes) {
+    // A line along row 31.5 of a 64 x 64 grid: 2 texels a sample at level 0.
+    analysis::LineSet lines;
+    lines.vertices = {{2.0f, 31.5f, 1.0f}, {61.0f, 31.5f, 1.0f}};
+    lines.offsets = {0, 2};
+    for (float dash : {0.0f, 4.0f}) {
+        const render::LineLayer layer{
+            &lines, {.colour = {1, 0, 0, 1}, .width = 3.0f, .dashOn = dash, .dashOff = dash}};
+        const render::LinePyramid p = render::rasteriseLines(std::span(&layer, 1), 64, 64);
+        ASSERT_EQ(p.width, 128);
+        for (int level = 0; level < 4; ++level) {
+            const int w = p.levelWidth(level);
+            const auto& rgba = p.levels[size_t(level)];
+            // Across the line, in the middle: the coverage sums to the width, 3 texels.
+            float across = 0.0f;
+            const int x = w / 2 + (dash > 0.0f ? 1 : 0);
+            for (int y = 0; y < p.levelHeight(level); ++y)
+                across += rgba[(size_t(y) * w + x) * 4 + 3] / 255.0f;
+            if (dash == 0.0f) EXPECT_NEAR(across, 3.0f, 0.35f) << "level " << level;
+            // Along it: dashes of 4 texels on, 4 off, at every level.
+            if (dash > 0.0f && level == 0) {
+                const int y = int(std::floor((31.5 + 0.5) * 2.0));
+                int changes = 0;
+                bool on = rgba[(size_t(y) * w + 10) * 4 + 3] > 128;
+                for (int xx = 10; xx < 110; ++xx) {
+                    const bool now = rgba[(size_t(y) * w + xx) * 4 + 3] > 128;
+                    changes += now != on;
+                    on = now;
+                }
+                EXPECT_NEAR(changes, 25, 2) << "a change every 4 texels over 100";
+            }
+        }
+    }
+}
+
 TEST(VectorOverlay, LinesAreCutToFollowTheSurface) {
     VectorFeature line{VectorFeature::Kind::Line, {{{0, 0}, {10, 0}, {10, 2.5}}}, ""};
     VectorFeature area{VectorFeature::Kind::Polygon, {{{0, 0}, {3, 0}, {0, 3}, {0, 0}}}, ""};

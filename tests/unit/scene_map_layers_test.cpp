@@ -39,6 +39,10 @@ TEST(MapLayers, DrapeSpecsTakeAnOpacityAfterTheLastColon) {
 
 TEST(MapLayers, VectorSpecsTakeAStyle) {
     EXPECT_EQ(parseVectorSpec("rivers.geojson", "--vector").file, "rivers.geojson");
+    const auto dashed = parseVectorSpec("r.geojson:dash=8/4", "--vector");
+    EXPECT_EQ(dashed.dashOn, 8.0f);
+    EXPECT_EQ(dashed.dashOff, 4.0f);
+    EXPECT_THROW(parseVectorSpec("r.geojson:dash=8", "--vector"), sierra::Error);
     const auto v = parseVectorSpec(
         "roads.gpkg:colour=#ff8000,width=3.5,opacity=0.8,fill=0,field=name", "--vector");
     EXPECT_EQ(v.file, "roads.gpkg");

@@ -126,10 +126,14 @@ void describeDrape(MapLayers& layers, const std::string& image, const terrain::D
              true);
 }
 
-// Vector layers: lines as passes, fills as drape layers, labels for the frames.
+// Vector layers: lines into `lineTexture` for the far field and as passes
+// near the camera, fills as drape layers, labels for the frames.
 void addVectors(TerrainRenderer& renderer, const scene::Scene& s, const terrain::Heightfield& field,
                 const TerrainPlacement& place, std::vector<terrain::DrapeImage>& fills,
-                std::vector<DrapeLayer>& fillLayers, MapLayers& layers) {
+                std::vector<DrapeLayer>& fillLayers, std::optional<LinePyramid>& lineTexture,
+                MapLayers& layers) {
+    std::vector<analysis::LineSet> lineSets;
+    std::vector<LineStyle> styles;
     for (const scene::VectorDesc& v : s.layers.vectors) {
         const terrain::VectorLayer layer =
             terrain::readVectorLayer(v.file, {.placement = place.placement,
@@ -149,10 +153,12 @@ void addVectors(TerrainRenderer& renderer, const scene::Scene& s, const terrain:
                                             : " and are dropped"),
                  true);
         const glm::vec4 colour(v.colour[0], v.colour[1], v.colour[2], v.opacity);
-        const analysis::LineSet lines = vectorLines(layer, true, 1.0f);
-        if (lines.polylineCount() > 0)
-            renderer.addPass(
-                LinePass::create(lines, {.width = v.width, .colour = colour, .thin = false}));
+        analysis::LineSet lines = vectorLines(layer, true, 1.0f);
+        if (lines.polylineCount() > 0) {
+            lineSets.push_back(std::move(lines));
+            styles.push_back(
+                {.colour = colour, .width = v.width, .dashOn = v.dashOn, .dashOff = v.dashOff});
+        }
         if (v.fillOpacity > 0.0f) {
             terrain::DrapeImage fill =
                 polygonDrape(layer, place.width, place.height, colour, v.fillOpacity);
@@ -162,6 +168,17 @@ void addVectors(TerrainRenderer& renderer, const scene::Scene& s, const terrain:
             layers.annotations.labels.push_back(std::move(label));
     }
     for (const terrain::DrapeImage& fill : fills) fillLayers.push_back({&fill});
+    if (lineSets.empty()) return;
+    std::vector<LineLayer> lineLayers;
+    for (size_t k = 0; k < lineSets.size(); ++k) lineLayers.push_back({&lineSets[k], styles[k]});
+    lineTexture =
+        rasteriseLines(lineLayers, place.width, place.height, std::min(4096, maxTextureSide()));
+    const float texel = std::max(field.spacingX(), field.spacingZ()) / lineTexture->texelsPerSample;
+    for (size_t k = 0; k < lineSets.size(); ++k)
+        renderer.addPass(LinePass::create(lineSets[k], {.width = styles[k].width,
+                                                        .colour = styles[k].colour,
+                                                        .thin = false,
+                                                        .nearTexelSize = texel}));
 }
 
 std::vector<Label> sceneLabels(const scene::Scene& s, const terrain::Heightfield& field,
@@ -180,18 +197,20 @@ MapLayers applyMapLayers(TerrainRenderer& renderer, const scene::Scene& s,
     const TerrainPlacement place = terrainPlacement(renderer, field);
     std::vector<terrain::DrapeImage> fills;
     std::vector<DrapeLayer> fillLayers;
+    std::optional<LinePyramid> lineTexture;
     layers.annotations.labels = sceneLabels(s, field, place);
-    addVectors(renderer, s, field, place, fills, fillLayers, layers);
+    addVectors(renderer, s, field, place, fills, fillLayers, lineTexture, layers);
+    const LinePyramid* lines = lineTexture ? &*lineTexture : nullptr;
 
     const auto& drapes = s.layers.drapes;
-    if (!drapes.empty() || !fillLayers.empty()) {
+    if (!drapes.empty() || !fillLayers.empty() || lines) {
         if (!surface) surface = makeRampSurface(renderer.terrain(), rampDesc(s, field));
         if (drapes.size() == 1 && drapes[0].blend == "replace" && fillLayers.empty()) {
             // One image: streamed into its texture, never held whole.
             terrain::DrapeImage header;
             surface = makeStreamedDrapeSurface(std::move(surface), drapes[0].image,
                                                drapeOptions(drapes[0], place), drapes[0].opacity,
-                                               &header);
+                                               &header, lines);
             describeDrape(layers, drapes[0].image, header);
         } else {
             std::vector<terrain::DrapeImage> images;
@@ -206,7 +225,7 @@ MapLayers applyMapLayers(TerrainRenderer& renderer, const scene::Scene& s,
                     {&images[k], drapes[k].opacity,
                      drapes[k].blend == "multiply" ? DrapeBlend::Multiply : DrapeBlend::Replace});
             stack.insert(stack.end(), fillLayers.begin(), fillLayers.end());
-            surface = makeDrapeSurface(std::move(surface), stack);
+            surface = makeDrapeSurface(std::move(surface), stack, lines);
         }
     }
     if (surface) renderer.setSurface(std::move(surface));

@@ -1,5 +1,7 @@
 #include <sierra/render/DrapeSurface.h>
 
+#include <sierra/render/VectorOverlay.h>
+
 #include "render/TextureFiltering.h"
 
 #include <sierra/core/Error.h>
@@ -46,12 +48,16 @@ class DrapeSurface final : public Surface {
     // `multiplier` absent: replace layers only, `added` premultiplied with
     // alpha = 1 - the multiplier (surface_drape.glsl).
     DrapeSurface(std::unique_ptr<Surface> base, gpu::Texture added,
-                 std::optional<gpu::Texture> multiplier)
-        : base_(std::move(base)), added_(std::move(added)), multiplier_(std::move(multiplier)) {}
+                 std::optional<gpu::Texture> multiplier, std::optional<gpu::Texture> lines = {})
+        : base_(std::move(base)),
+          added_(std::move(added)),
+          multiplier_(std::move(multiplier)),
+          lines_(std::move(lines)) {}
     std::string shaderFile() const override { return "surface_drape.glsl"; }
     std::string baseShaderFile() const override { return base_->shaderFile(); }
     std::string defines() const override {
-        return base_->defines() + (multiplier_ ? "#define SIERRA_DRAPE_MULTIPLY 1\n" : "");
+        return base_->defines() + (multiplier_ ? "#define SIERRA_DRAPE_MULTIPLY 1\n" : "") +
+               (lines_ ? "#define SIERRA_DRAPE_LINES 1\n" : "");
     }
     bool lit() const override { return base_->lit(); }
     // bind() binds the base's textures and blocks, its zone field among them.
@@ -60,12 +66,14 @@ class DrapeSurface final : public Surface {
         base_->bind();
         glBindTextureUnit(9, added_.id());
         if (multiplier_) glBindTextureUnit(8, multiplier_->id());
+        if (lines_) glBindTextureUnit(10, lines_->id());
     }
 
   private:
     std::unique_ptr<Surface> base_;
     gpu::Texture added_;
     std::optional<gpu::Texture> multiplier_;
+    std::optional<gpu::Texture> lines_;
 };
 
 int mipLevels(int width, int height) {
@@ -155,20 +163,51 @@ int maxTextureSide() {
     return int(side);
 }
 
+// The far lines' texture, each level uploaded as rasterised; none without lines.
+std::optional<gpu::Texture> lineTextureOf(const LinePyramid* lines) {
+    if (!lines) return std::nullopt;
+    const int levels = int(lines->levels.size());
+    SIERRA_CHECK(
+        levels >= 1 && lines->width <= maxTextureSide() && lines->height <= maxTextureSide(),
+        "the vector lines' texture of ", lines->width, "x", lines->height,
+        " texels does not fit this driver");
+    gpu::Texture texture = gpu::Texture::create(
+        {.format = GL_RGBA8, .width = lines->width, .height = lines->height, .levels = levels});
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    for (int l = 0; l < levels; ++l)
+        glTextureSubImage2D(texture.id(), l, 0, 0, lines->levelWidth(l), lines->levelHeight(l),
+                            GL_RGBA, GL_UNSIGNED_BYTE, lines->levels[size_t(l)].data());
+    applyMipmapFiltering(texture, levels);
+    return texture;
+}
+
 std::unique_ptr<Surface> makeDrapeSurface(std::unique_ptr<Surface> base,
-                                          std::span<const DrapeLayer> layers) {
+                                          std::span<const DrapeLayer> layers,
+                                          const LinePyramid* lines) {
     SIERRA_CHECK(base != nullptr, "a drape needs a surface beneath it");
+    SIERRA_CHECK(!layers.empty() || lines, "a drape needs a layer or lines");
+    std::optional<gpu::Texture> lineTexture = lineTextureOf(lines);
+    if (layers.empty()) {
+        // Lines alone: a transparent texel stands for the drapes.
+        gpu::Texture none = gpu::Texture::create({.format = GL_RGBA8});
+        const uint8_t clear[4] = {0, 0, 0, 0};
+        none.upload(GL_RGBA, GL_UNSIGNED_BYTE, clear);
+        return std::make_unique<DrapeSurface>(std::move(base), std::move(none), std::nullopt,
+                                              std::move(lineTexture));
+    }
     DrapeMaps maps = composeDrapes(layers);
     gpu::Texture added = upload(maps, maps.added);
     std::optional<gpu::Texture> multiplier;
     if (!maps.replaceOnly) multiplier = upload(maps, maps.multiplier);
-    return std::make_unique<DrapeSurface>(std::move(base), std::move(added), std::move(multiplier));
+    return std::make_unique<DrapeSurface>(std::move(base), std::move(added), std::move(multiplier),
+                                          std::move(lineTexture));
 }
 
 std::unique_ptr<Surface> makeStreamedDrapeSurface(std::unique_ptr<Surface> base,
                                                   const std::string& path,
                                                   const terrain::DrapeOptions& options,
-                                                  float opacity, terrain::DrapeImage* header) {
+                                                  float opacity, terrain::DrapeImage* header,
+                                                  const LinePyramid* lines) {
     SIERRA_CHECK(base != nullptr, "a drape needs a surface beneath it");
     SIERRA_CHECK(opacity >= 0.0f && opacity <= 1.0f, "a drape's opacity is 0..1, got ", opacity);
     std::optional<gpu::Texture> texture;
@@ -194,7 +233,8 @@ std::unique_ptr<Surface> makeStreamedDrapeSurface(std::unique_ptr<Surface> base,
         });
     finish(*texture);
     if (header) *header = info;
-    return std::make_unique<DrapeSurface>(std::move(base), std::move(*texture), std::nullopt);
+    return std::make_unique<DrapeSurface>(std::move(base), std::move(*texture), std::nullopt,
+                                          lineTextureOf(lines));
 }
 
 }  // namespace sierra::render

@@ -1,6 +1,7 @@
 #include <sierra/render/VectorOverlay.h>
 
 #include <sierra/core/Error.h>
+#include <sierra/core/Parallel.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,103 @@
 namespace sierra::render {
 
 using terrain::VectorFeature;
+
+namespace {
+
+struct Point {
+    double x, y;  // texels of one level
+};
+
+// The polyline in a level's texels, reduced to points at least half a texel
+// apart (the last one kept), so a coarse level draws the path, not every
+// vertex of it.
+std::vector<Point> levelPath(std::span<const analysis::LineVertex> line, double perSampleX,
+                             double perSampleY) {
+    std::vector<Point> out;
+    for (size_t k = 0; k < line.size(); ++k) {
+        // Sample i's centre is texel (i + 0.5) * perSample: the drape's mapping.
+        const Point p{(line[k].x + 0.5) * perSampleX, (line[k].z + 0.5) * perSampleY};
+        if (!out.empty() && k + 1 < line.size() &&
+            std::hypot(p.x - out.back().x, p.y - out.back().y) < 0.5)
+            continue;
+        out.push_back(p);
+    }
+    return out;
+}
+
+// One level: each polyline's coverage (antialiased, 1 inside width / 2,
+// falling to 0 over one texel; the largest over the polyline's segments, so
+// joints do not darken), dashed by arc length, composed over `rgba`.
+void rasteriseLevel(const LineLayer& layer, int w, int h, double perSampleX, double perSampleY,
+                    std::vector<float>& coverage, std::vector<uint8_t>& rgba) {
+    const LineStyle& st = layer.style;
+    const double half = 0.5 * st.width, reach = half + 0.5;
+    const double period = st.dashOn > 0.0f ? double(st.dashOn) + st.dashOff : 0.0;
+    std::fill(coverage.begin(), coverage.end(), 0.0f);
+    for (size_t k = 0; k < layer.lines->polylineCount(); ++k) {
+        const std::vector<Point> path = levelPath(layer.lines->polyline(k), perSampleX, perSampleY);
+        double along = 0.0;
+        for (size_t s = 1; s < path.size(); ++s) {
+            const Point a = path[s - 1], b = path[s];
+            const double dx = b.x - a.x, dy = b.y - a.y, length2 = dx * dx + dy * dy;
+            const double length = std::sqrt(length2);
+            const int x0 = std::max(0, int(std::floor(std::min(a.x, b.x) - reach)));
+            const int x1 = std::min(w - 1, int(std::ceil(std::max(a.x, b.x) + reach)));
+            const int y0 = std::max(0, int(std::floor(std::min(a.y, b.y) - reach)));
+            const int y1 = std::min(h - 1, int(std::ceil(std::max(a.y, b.y) + reach)));
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x) {
+                    const double px = x + 0.5 - a.x, py = y + 0.5 - a.y;
+                    const double t =
+                        length2 > 0.0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
+                    if (period > 0.0 && std::fmod(along + t * length, period) >= st.dashOn)
+                        continue;
+                    const double d = std::hypot(px - t * dx, py - t * dy);
+                    const float c = float(std::clamp(reach - d, 0.0, 1.0));
+                    float& cell = coverage[size_t(y) * size_t(w) + size_t(x)];
+                    cell = std::max(cell, c);
+                }
+            along += length;
+        }
+    }
+    for (size_t t = 0; t < coverage.size(); ++t) {
+        const float a = coverage[t] * st.colour.a;
+        if (a <= 0.0f) continue;
+        uint8_t* p = &rgba[4 * t];
+        for (int c = 0; c < 3; ++c)
+            p[c] = uint8_t(std::lround(st.colour[c] * a * 255.0f + float(p[c]) * (1.0f - a)));
+        p[3] = uint8_t(std::lround(a * 255.0f + float(p[3]) * (1.0f - a)));
+    }
+}
+
+}  // namespace
+
+LinePyramid rasteriseLines(std::span<const LineLayer> layers, int gridWidth, int gridHeight,
+                           int maxSide) {
+    SIERRA_CHECK(gridWidth > 0 && gridHeight > 0 && maxSide >= 1, "line texture: bad grid ",
+                 gridWidth, "x", gridHeight);
+    for (const LineLayer& l : layers)
+        SIERRA_CHECK(
+            l.lines && l.style.width > 0.0f && l.style.dashOn >= 0.0f && l.style.dashOff >= 0.0f,
+            "line texture: a layer needs lines, a width > 0 and dashes >= 0");
+    LinePyramid p;
+    p.texelsPerSample = float(std::min(2.0, double(maxSide) / std::max(gridWidth, gridHeight)));
+    p.width = std::max(1, int(std::lround(gridWidth * double(p.texelsPerSample))));
+    p.height = std::max(1, int(std::lround(gridHeight * double(p.texelsPerSample))));
+    int count = 1;
+    while (p.levelWidth(count - 1) > 1 || p.levelHeight(count - 1) > 1) ++count;
+    p.levels.resize(size_t(count));
+    parallelFor(0, count, [&](int64_t level) {
+        const int w = p.levelWidth(int(level)), h = p.levelHeight(int(level));
+        std::vector<uint8_t>& rgba = p.levels[size_t(level)];
+        rgba.assign(size_t(w) * size_t(h) * 4, 0);
+        std::vector<float> coverage(size_t(w) * size_t(h));
+        for (const LineLayer& layer : layers)
+            rasteriseLevel(layer, w, h, double(w) / gridWidth, double(h) / gridHeight, coverage,
+                           rgba);
+    });
+    return p;
+}
 
 analysis::LineSet vectorLines(const terrain::VectorLayer& layer, bool outlines, float step) {
     SIERRA_CHECK(step > 0.0f && std::isfinite(step), "vector lines: step must be > 0, got ", step);

@@ -131,10 +131,17 @@ VectorDesc parseVectorSpec(const std::string& text, const std::string& what) {
             v.fillOpacity = float(requireNumber(value, what, "fill"));
         else if (key == "field")
             v.labelField = value;
-        else
-            throw Error(
-                msg(what, " style '", item,
-                    "': expected colour=#RRGGBB, width=PX, opacity=A, fill=A or field=NAME"));
+        else if (key == "dash") {
+            const size_t slash = value.find('/');
+            if (slash == std::string::npos)
+                throw Error(msg(what, " style '", item,
+                                "': expected dash=ON/OFF in pixels, e.g. dash=8/4"));
+            v.dashOn = float(requireNumber(value.substr(0, slash), what, "dash"));
+            v.dashOff = float(requireNumber(value.substr(slash + 1), what, "dash"));
+        } else
+            throw Error(msg(what, " style '", item,
+                            "': expected colour=#RRGGBB, width=PX, opacity=A, fill=A, field=NAME "
+                            "or dash=ON/OFF"));
     }
     return v;
 }
@@ -211,6 +218,10 @@ void validateMapLayers(const MapLayersDesc& layers) {
               msg("must be 0..1, got ", v.opacity));
         check(v.fillOpacity >= 0.0f && v.fillOpacity <= 1.0f, key + ".fill_opacity",
               "--vector FILE:fill=A", msg("must be 0..1, got ", v.fillOpacity));
+        check(v.dashOn >= 0.0f && v.dashOn <= 1000.0f && v.dashOff >= 0.0f &&
+                  v.dashOff <= 1000.0f && (v.dashOn > 0.0f || v.dashOff == 0.0f),
+              key + ".dash", "--vector FILE:dash=ON/OFF",
+              msg("needs 0..1000 pixels each, ON > 0 when OFF is, got ", v.dashOn, "/", v.dashOff));
         for (float c : v.colour)
             check(c >= 0.0f && c <= 1.0f, key + ".colour", "--vector FILE:colour=#RRGGBB",
                   "channels must be 0..1");

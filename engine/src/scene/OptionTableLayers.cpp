@@ -66,6 +66,7 @@ Json vectorJson(const VectorDesc& v) {
     j["width"] = jsonNumber(v.width);
     j["opacity"] = jsonNumber(v.opacity);
     j["fill_opacity"] = jsonNumber(v.fillOpacity);
+    j["dash"] = Json::array({jsonNumber(v.dashOn), jsonNumber(v.dashOff)});
     return j;
 }
 
@@ -86,6 +87,11 @@ VectorDesc vectorFromJson(const JsonObject& parent, const Json& v, const std::st
     r.field("opacity", [&](const Json& x, const std::string& k) { d.opacity = r.toFloat(x, k); });
     r.field("fill_opacity",
             [&](const Json& x, const std::string& k) { d.fillOpacity = r.toFloat(x, k); });
+    r.field("dash", [&](const Json& x, const std::string& k) {
+        if (!x.is_array() || x.size() != 2) r.wrongType(x, k, "[on, off] pixels");
+        d.dashOn = r.toFloat(x[0], k + "[0]");
+        d.dashOff = r.toFloat(x[1], k + "[1]");
+    });
     r.finish();
     return d;
 }
@@ -175,9 +181,10 @@ void layerEntries(std::vector<OptionEntry>& out) {
         b,
         {"--vector", "FILE[:STYLE]", "layers.vectors", "array of objects",
          "A vector layer (GeoJSON, GeoPackage, Shapefile, GPX, KML through OGR); "
-         "STYLE: colour=#RRGGBB,width=PX,opacity=A,fill=A,field=NAME; repeat for more",
+         "STYLE: colour=#RRGGBB,width=PX,opacity=A,fill=A,field=NAME,dash=ON/OFF; repeat for more",
          "vector layers: `file`, `where` (OGR SQL), `label_field`, `colour` [r, g, b] "
-         "0..1, `width` pixels, `opacity` 0..1, `fill_opacity` 0..1"},
+         "0..1, `width` pixels, `opacity` 0..1, `fill_opacity` 0..1, `dash` [on, off] pixels ([0, "
+         "0] solid)"},
         [](Scene& s) -> std::vector<VectorDesc>& { return s.layers.vectors; }, parseVectorSpec,
         vectorJson, vectorFromJson);
     OptionEntry& where =

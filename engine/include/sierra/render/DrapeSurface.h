@@ -18,6 +18,8 @@ namespace sierra::render {
 
 enum class DrapeBlend { Replace, Multiply };
 
+struct LinePyramid;  // render/VectorOverlay.h
+
 struct DrapeLayer {
     const terrain::DrapeImage* image = nullptr;
     float opacity = 1.0f;  // 0..1, times the image's alpha
@@ -37,22 +39,28 @@ struct DrapeMaps {
 };
 DrapeMaps composeDrapes(std::span<const DrapeLayer> layers);
 
-// `base` with `layers` over it (at least one). Throws sierra::Error for an
-// opacity outside 0..1, a missing image, or maps larger than the driver's
-// texture limit (readDrape's maxTexels should be that limit).
+// `base` with `layers` over it, and over them the far vector lines of
+// `lines` when given (render/VectorOverlay.h; faded out where its finest
+// level is magnified, since LinePass draws the near lines as quads). At
+// least one layer or the lines. Throws sierra::Error for an opacity outside
+// 0..1, a missing image, or maps larger than the driver's texture limit
+// (readDrape's maxTexels should be that limit).
 std::unique_ptr<Surface> makeDrapeSurface(std::unique_ptr<Surface> base,
-                                          std::span<const DrapeLayer> layers);
+                                          std::span<const DrapeLayer> layers,
+                                          const LinePyramid* lines = nullptr);
 
 // One replace layer read from `path` strip by strip (terrain::readDrapeStrips)
 // straight into its texture, premultiplied by its alpha times `opacity`: the
-// image is never held whole, for drapes near the texture limit. maxTexels is
+// image is never held whole, for drapes near the texture limit; `lines` as in
+// makeDrapeSurface. maxTexels is
 // lowered to the driver's limit. `header`, when given, receives the drape's
 // size, flags and coverage.
 std::unique_ptr<Surface> makeStreamedDrapeSurface(std::unique_ptr<Surface> base,
                                                   const std::string& path,
                                                   const terrain::DrapeOptions& options,
                                                   float opacity = 1.0f,
-                                                  terrain::DrapeImage* header = nullptr);
+                                                  terrain::DrapeImage* header = nullptr,
+                                                  const LinePyramid* lines = nullptr);
 
 // The driver's largest texture side (GL_MAX_TEXTURE_SIZE).
 int maxTextureSide();

@@ -19,6 +19,7 @@
 #include <glm/glm.hpp>
 
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace sierra::render {
@@ -29,6 +30,35 @@ struct VectorStyle {
     float fillOpacity = 0.35f;                    // polygon fill, 0..1, in the line colour
     bool outlines = true;                         // polygon outlines as lines
 };
+
+// Lines far from the camera are drawn into a texture over the grid instead of
+// as quads: a million vertices would cost the vertex stage (on llvmpipe, one
+// CPU thread) several times the frame. Each mip level of the texture is
+// rasterised on its own, with the line `width` texels wide, so where GL's mip
+// selection makes a texel about a pixel the line is about `width` pixels
+// wide, at any distance; near the camera, where a texel of the finest level
+// covers more than a pixel, the quads take over (LinePassDesc::nearTexelSize).
+struct LineStyle {
+    glm::vec4 colour{0.10f, 0.35f, 0.85f, 1.0f};  // RGBA 0..1, alpha = opacity
+    float width = 2.0f;                           // pixels = texels of each level
+    float dashOn = 0.0f, dashOff = 0.0f;          // pixels; dashOn 0 = solid
+};
+struct LineLayer {
+    const analysis::LineSet* lines = nullptr;  // sample coordinates
+    LineStyle style;
+};
+struct LinePyramid {
+    int width = 0, height = 0;                 // level 0, texels
+    float texelsPerSample = 1.0f;              // level 0 texels per grid sample
+    std::vector<std::vector<uint8_t>> levels;  // premultiplied RGBA8, level 0 finest, down to 1x1
+    int levelWidth(int level) const { return std::max(1, width >> level); }
+    int levelHeight(int level) const { return std::max(1, height >> level); }
+};
+// The layers (in order, each over the ones before) over a gridWidth x
+// gridHeight grid, level 0 at most maxSide texels a side (default 4096: 85
+// MiB with its mips; 2 texels a sample below that).
+LinePyramid rasteriseLines(std::span<const LineLayer> layers, int gridWidth, int gridHeight,
+                           int maxSide = 4096);
 
 // The layer's lines and polygon outlines as polylines in sample coordinates,
 // each segment cut to at most `step` samples (0 < step).

@@ -34,6 +34,7 @@ struct VectorDesc {
     float width = 2.0f;                                // line width, pixels, > 0
     float opacity = 1.0f;                              // of the lines, 0..1
     float fillOpacity = 0.35f;                         // of polygon fills, 0..1 (0 = outlines only)
+    float dashOn = 0.0f, dashOff = 0.0f;  // dashes: pixels drawn, then left out; 0 = solid
     bool operator==(const VectorDesc&) const = default;
 };
 
@@ -79,7 +80,8 @@ struct MapLayersDesc {
 DrapeDesc parseDrapeSpec(const std::string& text, const std::string& what);
 
 // "FILE" or "FILE:STYLE", STYLE a comma-separated list of colour=#RRGGBB,
-// width=PX, opacity=A, fill=A (polygon fill opacity), field=NAME (labels).
+// width=PX, opacity=A, fill=A (polygon fill opacity), field=NAME (labels),
+// dash=ON/OFF (pixels drawn and left out).
 VectorDesc parseVectorSpec(const std::string& text, const std::string& what);
 
 // "TEXT@X,Z": the label at world x, z (units); "TEXT@LON,LAT" with each

@@ -8,6 +8,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -37,6 +38,18 @@ std::unique_ptr<LinePass> LinePass::create(const analysis::LineSet& lines,
         }
     }
     pass->segments_ = data.size() / 8;
+    if (desc.nearTexelSize > 0.0f)
+        for (size_t first = 0; first < pass->segments_; first += kChunkSegments) {
+            glm::vec4 box(INFINITY, INFINITY, -INFINITY, -INFINITY);
+            const size_t last = std::min(pass->segments_, first + kChunkSegments);
+            for (size_t q = first; q < last; ++q)
+                for (size_t e : {size_t(0), size_t(4)}) {
+                    const float x = data[8 * q + e], z = data[8 * q + e + 1];
+                    box = {std::min(box.x, x), std::min(box.y, z), std::max(box.z, x),
+                           std::max(box.w, z)};
+                }
+            pass->chunkBoxes_.push_back(box);
+        }
     if (!data.empty())
         pass->buffer_ =
             gpu::Buffer::create({.size = data.size() * sizeof(float), .data = data.data()});
@@ -55,7 +68,36 @@ void LinePass::draw(const FrameContext& frame) {
     frame.terrain.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_.id());
     glBindVertexArray(vao_.id());
-    drawQuads(int64_t(segments_));
+    if (desc_.nearTexelSize <= 0.0f) {
+        drawQuads(0, int64_t(segments_));
+        drawn_ = int64_t(segments_);
+    } else {
+        // A run is drawn when a texel at its box's nearest point to the eye
+        // (heights anywhere in the terrain's range) may exceed a pixel.
+        const LodView view = frame.camera.lodView(frame.height);
+        const glm::vec2 spacing = frame.terrain.spacing(), range = frame.terrain.worldRange();
+        const float pixelsAtUnit = desc_.nearTexelSize * view.lambda;
+        drawn_ = 0;
+        int64_t runStart = -1;
+        for (size_t c = 0; c <= chunkBoxes_.size(); ++c) {
+            bool near = false;
+            if (c < chunkBoxes_.size()) {
+                const glm::vec4 b = chunkBoxes_[c];
+                const glm::vec3 lo(b.x * spacing.x, range.x, b.y * spacing.y);
+                const glm::vec3 hi(b.z * spacing.x, range.y, b.w * spacing.y);
+                const float d = glm::length(glm::clamp(view.eye, lo, hi) - view.eye);
+                near = pixelsAtUnit > d;
+            }
+            const int64_t first = int64_t(c) * kChunkSegments;
+            if (near && runStart < 0) runStart = first;
+            if (!near && runStart >= 0) {
+                const int64_t count = std::min<int64_t>(first, int64_t(segments_)) - runStart;
+                drawQuads(runStart, count);
+                drawn_ += count;
+                runStart = -1;
+            }
+        }
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
 }
 

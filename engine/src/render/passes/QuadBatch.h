@@ -37,10 +37,10 @@ inline gpu::Buffer createQuadIndices(const gpu::VertexArray& vao) {
     return buffer;
 }
 
-// Draws quads 0..count-1 with the VAO of createQuadIndices() bound.
-inline void drawQuads(int64_t count) {
-    for (int64_t first = 0; first < count; first += kQuadsPerBatch) {
-        const GLsizei n = GLsizei(std::min<int64_t>(kQuadsPerBatch, count - first));
+// Draws quads begin..begin+count-1 with the VAO of createQuadIndices() bound.
+inline void drawQuads(int64_t begin, int64_t count) {
+    for (int64_t first = begin; first < begin + count; first += kQuadsPerBatch) {
+        const GLsizei n = GLsizei(std::min<int64_t>(kQuadsPerBatch, begin + count - first));
         glDrawElementsBaseVertex(GL_TRIANGLES, 6 * n, GL_UNSIGNED_SHORT, nullptr, GLint(4 * first));
     }
 }

@@ -20,6 +20,7 @@
 #include <glm/glm.hpp>
 
 #include <memory>
+#include <vector>
 
 namespace sierra::render {
 
@@ -29,6 +30,11 @@ struct LinePassDesc {
     // Distance thinning (the curvature lines' density per screen area);
     // false keeps every polyline at any distance (vector layers).
     bool thin = true;
+    // > 0: the lines are also in a texture whose finest texel is this many
+    // world units (vector layers' far field, render/VectorOverlay.h); only
+    // the segments where such a texel may cover more than a pixel are drawn,
+    // chosen per frame on the CPU by runs of kChunkSegments. 0: all of them.
+    float nearTexelSize = 0.0f;
 };
 
 class LinePass final : public Pass {
@@ -44,6 +50,10 @@ class LinePass final : public Pass {
     // Below this screen size of a grid cell (pixels, times the line width
     // when it is over 1) the lines thin out.
     static constexpr float kFullCellPixels = 1.0f;
+    // Segments per run of the near selection (nearTexelSize).
+    static constexpr int kChunkSegments = 64;
+    // Segments drawn in the last frame.
+    int64_t drawnSegments() const { return drawn_; }
 
   private:
     gpu::Program program_;
@@ -52,6 +62,9 @@ class LinePass final : public Pass {
     gpu::Buffer quadIndices_;  // one batch of quads (render/passes/QuadBatch.h)
     size_t segments_ = 0;
     LinePassDesc desc_;
+    // Per run of kChunkSegments segments: its box in grid coordinates (x0, z0, x1, z1).
+    std::vector<glm::vec4> chunkBoxes_;
+    int64_t drawn_ = 0;
 };
 
 }  // namespace sierra::render
