@@ -356,8 +356,15 @@ TEST_F(OptionTable, EveryKeyIsWrittenAndReadOnItsOwn) {
     changed.layers.vectors = {
         {.file = "r.geojson", .where = "a = 1", .labelField = "name", .width = 3.0f}};
     changed.layers.labels = {{.text = "Hut", .x = 1.0, .z = 2.0, .geographic = true}};
-    changed.layers.furniture = {
-        .scaleBar = true, .northArrow = true, .title = "T", .legend = true, .textPixels = 20.0f};
+    changed.layers.furniture = {.scaleBar = true,
+                                .northArrow = true,
+                                .title = "T",
+                                .legend = true,
+                                .textPixels = 20.0f,
+                                .titleCorner = FrameCorner::BottomRight,
+                                .scaleBarCorner = FrameCorner::TopRight,
+                                .northArrowCorner = FrameCorner::BottomLeft,
+                                .legendCorner = FrameCorner::TopLeft};
     const Scene defaults;
     const Json written = sceneToJson(changed);
     for (const OptionEntry& e : optionTable()) {
