@@ -19,7 +19,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-120}
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap obj vector drape camera)
+[[ ${#targets[@]} -gt 0 ]] || targets=(png pgm npy npz r16 r32 hgt cpt palette scene zonemap obj vector drape camera tilefile)
 
 packages=(clang libclang-rt-14-dev python3)
 missing=()
@@ -172,6 +172,25 @@ for name, scene in cameras.items():
 with open(os.path.join(root, "scene", "scene.json"), "rb") as f:
     put("camera", "scene.json", f.read())
 PY
+
+# Tile files: small ones of both height encodings, written by the main
+# build's sierra-tile when there is one (.ci/run builds it first).
+tile_app="${BUILD_DIR:-build}/apps/sierra-tile"
+mkdir -p "$seeds/tilefile"
+if [[ -x "$tile_app" ]]; then
+  python3 - "$seeds/tilefile/grid.npy" <<'PY'
+import struct, sys
+w, h = 40, 33
+header = "{'descr': '<f4', 'fortran_order': False, 'shape': (%d, %d), }" % (h, w)
+header += " " * (63 - (10 + len(header)) % 64) + "\n"
+body = b"".join(struct.pack("<f", ((i * 7 + j * 13) % 29) * 0.5) for j in range(h) for i in range(w))
+with open(sys.argv[1], "wb") as f:
+    f.write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode() + body)
+PY
+  "$tile_app" build "$seeds/tilefile/grid.npy" --tile-levels 3 --out "$seeds/tilefile/int16.sierra" >/dev/null 2>&1 || true
+  "$tile_app" build "$seeds/tilefile/grid.npy" --tile-levels 2 --heights float --out "$seeds/tilefile/float.sierra" >/dev/null 2>&1 || true
+  rm -f "$seeds/tilefile/grid.npy"
+fi
 
 # A finding: a new file in the target's findings folder (left there by this
 # run; older ones are kept but not counted again) or libFuzzer stopping with

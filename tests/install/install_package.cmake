@@ -21,7 +21,7 @@ foreach(f include/sierra/facade/SceneRenderer.h include/sierra/core/Error.h lib/
           lib/libsierra_render.a lib/libsierra_facade.a lib/cmake/Sierra/SierraConfig.cmake
           lib/cmake/Sierra/SierraConfigVersion.cmake lib/cmake/Sierra/SierraTargets.cmake
           lib/pkgconfig/sierra.pc share/sierra/assets/palettes/default.json bin/sierra-render
-          bin/sierra-gen bin/sierra-tin bin/sierra-bench)
+          bin/sierra-gen bin/sierra-tin bin/sierra-tile bin/sierra-bench include/sierra/sbt/TileFile.h)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "the install lacks ${f}")
   endif()

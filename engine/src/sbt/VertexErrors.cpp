@@ -1,6 +1,6 @@
 #include <sierra/sbt/VertexErrors.h>
 
-#include "sbt/Rounding.h"
+#include "sbt/Saturate.h"
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Parallel.h>
@@ -15,19 +15,6 @@ namespace {
 int trailingZeros(int v, int n) {
     return v == 0 ? n : std::countr_zero(unsigned(v));
 }
-
-struct Grid {
-    const float* h;
-    int side;
-    double sx, sz, vs;
-    double x(int i) const { return i * sx; }
-    double y(int i, int j) const { return double(h[size_t(j) * side + i]) * vs; }
-    double z(int j) const { return j * sz; }
-    double dist(int i0, int j0, int i1, int j1) const {
-        double dx = x(i1) - x(i0), dy = y(i1, j1) - y(i0, j0), dz = z(j1) - z(j0);
-        return std::sqrt(dx * dx + dy * dy + dz * dz);
-    }
-};
 
 // Runs body(t) for t in [0, count) on `threads`, serially for small levels.
 template <typename F>
@@ -98,77 +85,22 @@ bool hypotenuseEndpoints(int i, int j, int n, int* ai, int* aj, int* bi, int* bj
 VertexErrors computeVertexErrors(const terrain::Heightfield& field, int threads) {
     const int n = checkedSbtLevels(field);
     if (threads <= 0) threads = defaultThreadCount();
-    const int side = field.width(), S = side - 1;
+    const int side = field.width();
     VertexErrors out;
     out.n = n;
     out.side = side;
     out.error.assign(size_t(side) * side, 0.0f);
     out.radius.assign(size_t(side) * side, 0.0f);
-    const Grid g{field.samples().data(), side, field.spacingX(), field.spacingZ(),
-                 field.verticalScale()};
-    float* err = out.error.data();
-    float* rad = out.radius.data();
-
-    // One vertex: hypotenuse (a, b), children at m + childOff (if any), corners
-    // at m + cornerOff; everything out of the domain skipped.
-    auto process = [&](int i, int j, int ai, int aj, int bi, int bj, const int(*childOff)[2],
-                       int childCount, const int(*cornerOff)[2]) {
-        double e = std::fabs(g.y(i, j) - 0.5 * (g.y(ai, aj) + g.y(bi, bj)));
-        double r = 0.0;
-        float emax = float(e);
-        for (int k = 0; k < childCount; ++k) {
-            int ci = i + childOff[k][0], cj = j + childOff[k][1];
-            if (ci < 0 || ci > S || cj < 0 || cj > S) continue;
-            size_t c = size_t(cj) * side + ci;
-            emax = std::max(emax, err[c]);
-            r = std::max(r, g.dist(i, j, ci, cj) + double(rad[c]));
-        }
-        for (int k = 0; k < 4; ++k) {
-            int vi = i + cornerOff[k][0], vj = j + cornerOff[k][1];
-            if (vi < 0 || vi > S || vj < 0 || vj > S) continue;
-            r = std::max(r, g.dist(i, j, vi, vj));
-        }
-        size_t m = size_t(j) * side + i;
-        err[m] = emax;
-        rad[m] = roundUp(r);
-    };
-
-    for (int l = 2 * n - 1; l >= 0; --l) {
-        const int k = l >> 1, s = S >> k, h = s / 2;
-        const bool hasChildren = l + 1 < 2 * n;
-        const int count = 1 << k;  // squares per side at this level
-        if ((l & 1) == 0) {
-            const int childOff[4][2] = {{h, 0}, {-h, 0}, {0, h}, {0, -h}};
-            const int cornerOff[4][2] = {{h, h}, {-h, h}, {h, -h}, {-h, -h}};
-            forRows(count, int64_t(count) * count, threads, [&](int y) {
-                int j = h + s * y;
-                for (int x = 0; x < count; ++x) {
-                    int i = h + s * x;
-                    bool main = ((x + y) & 1) == 0;
-                    process(i, j, i - h, main ? j - h : j + h, i + h, main ? j + h : j - h,
-                            childOff, hasChildren ? 4 : 0, cornerOff);
-                }
-            });
-        } else {
-            const int q = h / 2;
-            const int childOff[4][2] = {{q, q}, {-q, q}, {q, -q}, {-q, -q}};
-            const int cornerOff[4][2] = {{h, 0}, {-h, 0}, {0, h}, {0, -h}};
-            forRows(2 * count + 1, int64_t(2 * count + 1) * count, threads, [&](int t) {
-                int j = t * h;
-                if ((t & 1) == 0) {  // midpoints of edges along i
-                    for (int x = 0; x < count; ++x) {
-                        int i = h + s * x;
-                        process(i, j, i - h, j, i + h, j, childOff, hasChildren ? 4 : 0, cornerOff);
-                    }
-                } else {  // midpoints of edges along j
-                    for (int x = 0; x <= count; ++x) {
-                        int i = s * x;
-                        process(i, j, i, j - h, i, j + h, childOff, hasChildren ? 4 : 0, cornerOff);
-                    }
-                }
-            });
-        }
-    }
+    const detail::SampleWindow window{.n = n,
+                                      .w = side,
+                                      .h = side,
+                                      .height = field.samples().data(),
+                                      .error = out.error.data(),
+                                      .radius = out.radius.data(),
+                                      .sx = field.spacingX(),
+                                      .sz = field.spacingZ(),
+                                      .vs = field.verticalScale()};
+    detail::saturateLevels(window, 2 * n - 1, 0, threads, [](int, int) { return false; });
     return out;
 }
 

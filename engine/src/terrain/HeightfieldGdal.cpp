@@ -63,6 +63,47 @@ std::optional<Heightfield::GeoPoint> geographicCentre(const OGRSpatialReference&
     return Heightfield::GeoPoint{y, x};
 }
 
+GridInfo gdalGridInfo(const std::string& path, GDALDataset& data) {
+    GridInfo info;
+    info.width = data.GetRasterXSize();
+    info.height = data.GetRasterYSize();
+    const int height = int(std::min<int64_t>(info.height, INT_MAX));
+    const int width = int(std::min<int64_t>(info.width, INT_MAX));
+    // Ground spacing in metres: a projected system gives it directly (in its
+    // linear unit, converted to metres); a geographic one in degrees is
+    // converted at the grid's central latitude. Without a system, 1 (grid units).
+    double geo[6];
+    const OGRSpatialReference* srs = data.GetSpatialRef();
+    if (data.GetGeoTransform(geo) == CE_None && srs) {
+        if (srs->IsProjected()) {
+            const double metres = srs->GetLinearUnits(nullptr);
+            info.spacingX = float(std::abs(geo[1]) * metres);
+            info.spacingZ = float(std::abs(geo[5]) * metres);
+            info.metres = true;
+        } else if (srs->IsGeographic()) {
+            const auto [dx, dz] = geographicSpacing(*srs, geo, height);
+            if (!(dx > 0.0 && dz > 0.0 && std::isfinite(dx) && std::isfinite(dz)))
+                throw Error(msg(path, ": pixel size ", geo[1], " x ", geo[5],
+                                " degrees gives no usable ground spacing"));
+            info.spacingX = float(dx);
+            info.spacingZ = float(dz);
+            info.metres = true;
+        }
+        info.geoCentre = geographicCentre(*srs, geo, width, height);
+    }
+    if (data.GetGeoTransform(geo) == CE_None) {
+        Heightfield::Georeference ref;
+        std::copy(geo, geo + 6, ref.geoTransform.begin());
+        if (srs) {
+            char* wkt = nullptr;
+            if (srs->exportToWkt(&wkt) == OGRERR_NONE && wkt) ref.crsWkt = wkt;
+            CPLFree(wkt);
+        }
+        info.georeference = std::move(ref);
+    }
+    return info;
+}
+
 Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
     regularFileSize(path);      // a FIFO or a device is refused before GDAL opens it
     const GdalSession session;  // one message: GDAL's last error goes into the sierra::Error
@@ -103,36 +144,11 @@ Heightfield loadGdal(const std::string& path, const LoadOptions& options) {
         }
     }
     checkFinite(path, field);
-    // Ground spacing in metres: a projected system gives it directly (in its
-    // linear unit, converted to metres); a geographic one in degrees is
-    // converted at the tile's latitude. Without a system, 1 (grid units).
-    double geo[6];
-    const OGRSpatialReference* srs = data->GetSpatialRef();
-    if (data->GetGeoTransform(geo) == CE_None && srs) {
-        if (srs->IsProjected()) {
-            const double metres = srs->GetLinearUnits(nullptr);
-            field.setSpacing(float(std::abs(geo[1]) * metres), float(std::abs(geo[5]) * metres));
-            field.setMetres(true);
-        } else if (srs->IsGeographic()) {
-            const auto [dx, dz] = geographicSpacing(*srs, geo, height);
-            if (!(dx > 0.0 && dz > 0.0 && std::isfinite(dx) && std::isfinite(dz)))
-                throw Error(msg(path, ": GeoTIFF pixel size ", geo[1], " x ", geo[5],
-                                " degrees gives no usable ground spacing"));
-            field.setSpacing(float(dx), float(dz));
-            field.setMetres(true);
-        }
-        field.setGeoCentre(geographicCentre(*srs, geo, width, height));
-    }
-    if (data->GetGeoTransform(geo) == CE_None) {
-        Heightfield::Georeference ref;
-        std::copy(geo, geo + 6, ref.geoTransform.begin());
-        if (srs) {
-            char* wkt = nullptr;
-            if (srs->exportToWkt(&wkt) == OGRERR_NONE && wkt) ref.crsWkt = wkt;
-            CPLFree(wkt);
-        }
-        field.setGeoreference(std::move(ref));
-    }
+    const GridInfo geo = gdalGridInfo(path, *data);
+    field.setSpacing(geo.spacingX, geo.spacingZ);
+    field.setMetres(geo.metres);
+    field.setGeoCentre(geo.geoCentre);
+    field.setGeoreference(geo.georeference);
     return field;
 }
 #endif

@@ -4,13 +4,20 @@
 // checks and byte readers; HeightfieldNpy.cpp the NumPy formats;
 // HeightfieldGdal.cpp GeoTIFF through GDAL.
 
+#include <sierra/terrain/GridReader.h>
 #include <sierra/terrain/Heightfield.h>
 #include <sierra/terrain/HeightfieldIO.h>
 
 #include <cstdint>
+#include <initializer_list>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
+
+#ifdef SIERRA_WITH_GDAL
+class GDALDataset;
+#endif
 
 namespace sierra::terrain::detail {
 
@@ -31,6 +38,23 @@ std::pair<double, double> ellipsoidSpacing(double east, double north, double lat
 // Metres east and north of a step of `east` x `north` degrees at `latitude` on WGS 84.
 std::pair<double, double> degreesToMetres(double east, double north, double latitude);
 
+// A .npy header, checked: its dtype, its shape and where its data starts.
+struct NpyHeader {
+    std::string descr;            // '<f4' ...
+    int valueBytes = 0;           // bytes per value of descr
+    std::vector<uint64_t> shape;  // each extent at most 2^40
+    std::string dims;             // the shape tuple's text, for messages
+    uint64_t dataStart = 0;
+};
+// Parses and checks a .npy header (magic, version, C order, a shape tuple)
+// at the start of `bytes` (the whole file or a map of it). `supported` lists
+// the dtypes taken, as the message names them. Throws sierra::Error naming
+// `path` for anything else.
+NpyHeader parseNpyHeader(const std::string& path, std::span<const uint8_t> bytes,
+                         std::initializer_list<const char*> supported);
+// Value k of data in a numeric little-endian dtype `descr` ('<f4', '<i2', '|u1' ...).
+double npyNumber(const std::string& descr, const uint8_t* data, size_t k);
+
 // .npy bytes as a grid (any numeric dtype, C or Fortran order).
 Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
                     const LoadOptions& options);
@@ -38,6 +62,9 @@ Heightfield loadNpy(const std::string& path, const std::vector<uint8_t>& bytes,
 void applyNpzGeoreference(const std::string& path, const std::vector<uint8_t>& bytes,
                           Heightfield& field);
 #ifdef SIERRA_WITH_GDAL
+// A GDAL raster's spacing (metres for a projected or geographic system, on
+// the ellipsoid at the central latitude), its centre and georeference.
+GridInfo gdalGridInfo(const std::string& path, GDALDataset& data);
 Heightfield loadGdal(const std::string& path, const LoadOptions& options);
 #endif
 

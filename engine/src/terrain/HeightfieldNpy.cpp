@@ -44,15 +44,6 @@ size_t skipBlanks(std::string_view s, size_t pos) {
     return pos;
 }
 
-// A .npy header, checked: its dtype, its shape and where its data starts.
-struct NpyHeader {
-    std::string descr;            // '<f4' ...
-    int valueBytes = 0;           // bytes per value of descr
-    std::vector<uint64_t> shape;  // each extent at most 2^40
-    std::string dims;             // the shape tuple's text, for messages
-    uint64_t dataStart = 0;
-};
-
 // The value bytes of a little-endian float or integer dtype ('<f4', '<i8',
 // '|u1' ...), 0 for any other.
 int numericBytes(const std::string& descr) {
@@ -78,7 +69,7 @@ double npyNumber(const std::string& descr, const uint8_t* data, size_t k) {
 // Parses and checks a .npy header (magic, version, C order, a shape tuple).
 // `supported` lists the dtypes taken, as the message names them. Throws
 // sierra::Error naming `path` for anything else.
-NpyHeader parseNpyHeader(const std::string& path, const std::vector<uint8_t>& bytes,
+NpyHeader parseNpyHeader(const std::string& path, std::span<const uint8_t> bytes,
                          std::initializer_list<const char*> supported) {
     static const uint8_t kMagic[6] = {0x93, 'N', 'U', 'M', 'P', 'Y'};
     if (bytes.size() < 10 || std::memcmp(bytes.data(), kMagic, 6) != 0)

@@ -1,0 +1,174 @@
+#pragma once
+// The tiled SBT file (.sierra): a grid larger than memory, cut into the
+// tiles TiledRefiner.h refines over, with every vertex's saturated error and
+// radius of the whole grid, so that refining the file is the in-memory
+// refinement (VertexErrors.h) triangle for triangle.
+//
+// Layout (little-endian):
+//   header      fixed, with its CRC-32: grid levels n, tile levels k, the real
+//               extent (the rest of the (2^n+1)^2 grid is padding by edge
+//               clamping, as terrain::padToPowerOfTwoPlusOne does, and is not
+//               stored), height encoding, spacing, vertical scale
+//   metadata    the georeference and geographic centre
+//   tile index  per tile: offset, the end of each chunk, each chunk's CRC-32,
+//               the no-data mask's size and CRC-32; tiles wholly in the
+//               padding have none
+//   coarse      the tile corners (every vertex of levels < 2(n-k) and the
+//               grid's corners): height, error, radius, in level order
+//   tiles       row-major; each a run of chunks in refinement order, so a
+//               distant view reads only a tile's first pages
+// A tile's vertices are its (2^k+1)^2 samples but its 4 corners, levels
+// 2(n-k) .. 2n-1 ("tile levels" 0 .. 2k-1); a vertex on a border with a
+// neighbour is stored in both. Chunk t < 2k-3 holds tile level t: the
+// heights, then error and radius (float32) of each vertex. The last chunk
+// holds the 3 finest levels (half, a quarter and an eighth of the samples)
+// whose interior vertices' errors and radii are recomputed on load from the
+// heights with the builder's formula, bit for bit; their border vertices,
+// whose descendants reach into the neighbour, are stored. Then, when the tile
+// has no-data samples, a bit mask over its samples (1 = real data).
+//
+// Size: int16 heights take about 3.1 bytes a sample, float32 heights 5.1.
+
+#include <sierra/sbt/TiledRefiner.h>
+#include <sierra/terrain/GridReader.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sierra::sbt {
+
+enum class TileHeights : uint8_t {
+    Int16 = 0,    // stored = offset + scale * q, q an int16
+    Float32 = 1,  // stored as given
+};
+
+struct TileFileInfo {
+    int n = 1, k = 1;               // grid side 2^n + 1, tiles of 2^k cells
+    int64_t width = 0, height = 0;  // real samples, from (0, 0)
+    TileHeights heights = TileHeights::Int16;
+    double heightScale = 1.0, heightOffset = 0.0;  // Int16 only
+    float spacingX = 1.0f, spacingZ = 1.0f, verticalScale = 1.0f;
+    bool metres = false;
+    bool hasNoData = false;
+    std::optional<terrain::Heightfield::GeoPoint> geoCentre;
+    std::optional<terrain::Heightfield::Georeference> georeference;
+
+    int tilesPerSide() const { return 1 << (n - k); }
+    int tileSide() const { return (1 << k) + 1; }  // samples
+    int64_t gridSide() const { return (int64_t(1) << n) + 1; }
+    TiledGridDesc desc() const { return {n, k, spacingX, spacingZ, verticalScale}; }
+};
+
+// The stored height of an Int16 sample q: one formula for the builder (which
+// computes every error from these heights) and the reader.
+inline float dequantizeHeight(int16_t q, double scale, double offset) {
+    return float(offset + scale * double(q));
+}
+
+struct TileBuildOptions {
+    int k = 8;  // tiles of 2^k cells; 1..n (larger than n: one tile)
+    TileHeights heights = TileHeights::Int16;
+    float verticalScale = 1.0f;  // world height = stored height * verticalScale
+    int threads = 0;             // 0 = sierra::defaultThreadCount()
+    bool progress = false;       // a progress line on stderr (sierra::Progress)
+};
+
+struct TileBuildReport {
+    TileFileInfo info;
+    int64_t storedTiles = 0;
+    uint64_t fileBytes = 0;
+    double bytesPerSample = 0.0;  // file bytes over the real samples
+};
+
+// Builds the tile file `path` from `input`, streaming through it a band of
+// tiles at a time (a band's windows reach one tile beyond the tiles they
+// write: the descendants of a tile's vertices lie within one tile of it).
+// The file appears complete or not at all (written beside it and renamed).
+// Int16 heights take integer inputs (bytes, int16, uint16) exactly and
+// quantise any other over the input's range (a first pass finds it); no-data
+// samples get the lowest real height and are marked in the mask. Throws
+// sierra::Error naming the input or the output.
+TileBuildReport buildTileFile(const terrain::GridReader& input, const std::string& path,
+                              const TileBuildOptions& options = {});
+
+// One tile's samples, local (x, y) in [0, 2^k]^2, row-major (2^k + 1 a row).
+struct TileData {
+    int levels = 0;             // tile levels decoded (0..2k); the rest are zero
+    std::vector<float> height;  // stored heights
+    std::vector<float> error;   // world height units
+    std::vector<float> radius;  // world units
+    std::vector<uint8_t> mask;  // 1 = real sample; empty = all real
+};
+
+// A tile file open for reading: header, index and coarse section read and
+// checked at open; tiles read on request with pread (safe from several
+// threads), never mapped, so what is resident is what the caller keeps.
+class TileFile {
+  public:
+    // Throws sierra::Error naming `path`: missing, not a tile file, truncated,
+    // a CRC that does not match, an index that points outside the file.
+    explicit TileFile(const std::string& path);
+    ~TileFile();
+    TileFile(const TileFile&) = delete;
+    TileFile& operator=(const TileFile&) = delete;
+
+    const std::string& path() const { return path_; }
+    const TileFileInfo& info() const { return info_; }
+    uint64_t fileBytes() const { return fileBytes_; }
+
+    // False for a tile wholly in the padding (nothing stored, never refined).
+    bool stored(int tx, int ty) const;
+    // Chunks per tile, and the tile levels decoded after the first c chunks.
+    int chunkCount() const { return chunks_; }
+    int levelsAfterChunks(int c) const;
+    // The fewest chunks that give at least `levels` tile levels.
+    int chunksForLevels(int levels) const;
+    // Bytes of tile (tx, ty)'s first c chunks (and its mask with all of them).
+    uint64_t tileBytes(int tx, int ty, int c) const;
+
+    // Reads and decodes the first `chunks` chunks of a stored tile into `out`
+    // (arrays sized and zeroed; corners from the coarse section). Throws
+    // sierra::Error on a read error or a CRC that does not match.
+    void readTile(int tx, int ty, int chunks, TileData& out) const;
+
+    // The record of a tile corner (i, j multiples of 2^k).
+    VertexRecord corner(int64_t i, int64_t j) const;
+
+  private:
+    struct Entry;
+    std::string path_;
+    int fd_ = -1;
+    uint64_t fileBytes_ = 0;
+    TileFileInfo info_;
+    int chunks_ = 0;
+    std::vector<uint64_t> index_;  // per tile: offset, then chunk ends, CRCs, mask bytes, mask CRC
+    std::vector<VertexRecord> corners_;  // (tiles + 1)^2, row-major
+    size_t entryWords() const;
+};
+
+// TiledVertices over a TileFile: tiles read on request, whole or in part,
+// and kept until dropped. The streaming cache builds on it.
+class FileTiles : public TiledVertices {
+  public:
+    explicit FileTiles(const TileFile& file);
+    int residentLevels(int tx, int ty) const override;
+    VertexRecord vertex(uint32_t i, uint32_t j) const override;
+
+    // Reads tile (tx, ty) to at least `levels` tile levels (no-op when it has
+    // them, or when it is not stored).
+    void load(int tx, int ty, int levels);
+    void loadAll(int levels);
+    void drop(int tx, int ty);
+    // Bytes of decoded tiles held.
+    uint64_t residentBytes() const { return residentBytes_; }
+
+  private:
+    const TileFile& file_;
+    std::vector<std::unique_ptr<TileData>> tiles_;
+    uint64_t residentBytes_ = 0;
+};
+
+}  // namespace sierra::sbt

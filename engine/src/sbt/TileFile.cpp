@@ -1,0 +1,360 @@
+// The tile file's reader (TileFile.h) and FileTiles over it.
+#include "sbt/TileLayout.h"
+
+#include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace sierra::sbt {
+
+using namespace detail;
+
+namespace {
+
+// Whole ranges of the open file by pread, refusing one beyond its end.
+struct FileRange {
+    const std::string& path;
+    int fd;
+    uint64_t size;
+    void read(uint64_t at, void* data, uint64_t bytes, const char* what) const {
+        if (at > size || bytes > size - at)
+            throw Error(msg(path, ": truncated tile file: its ", what, " (", bytes, " bytes at ",
+                            at, ") lies beyond its ", size, " bytes"));
+        auto* p = static_cast<uint8_t*>(data);
+        while (bytes > 0) {
+            const ssize_t got = ::pread(fd, p, size_t(bytes), off_t(at));
+            if (got < 0 && errno == EINTR) continue;
+            if (got <= 0)
+                throw Error(msg("cannot read ", path, ": ", what, ": ",
+                                got < 0 ? std::strerror(errno) : "unexpected end of file"));
+            p += got, at += uint64_t(got), bytes -= uint64_t(got);
+        }
+    }
+};
+
+// The header, checked: magic, version, CRC, possible values, the file's size.
+Header readHeader(const FileRange& f) {
+    Header hd;
+    if (f.size >= sizeof(Header)) f.read(0, &hd, sizeof(hd), "header");
+    if (f.size < sizeof(Header) || std::memcmp(kMagic, hd.magic, 8) != 0)
+        throw Error(msg(f.path, ": not a Sierra tile file (no SIERRATF magic)"));
+    if (hd.version != kVersion)
+        throw Error(msg(f.path, ": tile file version ", hd.version, "; this build reads version ",
+                        kVersion, " (rebuild it with sierra-tile build)"));
+    if (hd.headerBytes != sizeof(Header) || crc(&hd, offsetof(Header, headerCrc)) != hd.headerCrc)
+        throw Error(msg(f.path, ": the tile file's header is corrupt (CRC mismatch)"));
+    if (hd.n < 1 || hd.n > kMaxLevels || hd.k < 1 || hd.k > hd.n || hd.width < 2 || hd.height < 2 ||
+        hd.width > (int64_t(1) << hd.n) + 1 || hd.height > (int64_t(1) << hd.n) + 1 ||
+        hd.heights > 1 || !(hd.heightScale > 0.0) || !std::isfinite(hd.heightOffset) ||
+        !(hd.spacingX > 0.0f) || !(hd.spacingZ > 0.0f) || !(hd.verticalScale > 0.0f) ||
+        !std::isfinite(hd.spacingX) || !std::isfinite(hd.spacingZ) ||
+        !std::isfinite(hd.verticalScale))
+        throw Error(msg(f.path, ": the tile file's header holds impossible values"));
+    if (hd.chunks != uint32_t(Layout(hd.n, hd.k, TileHeights(hd.heights)).chunks) ||
+        hd.fileBytes != f.size)
+        throw Error(msg(f.path, ": truncated or corrupt tile file: ", f.size,
+                        " bytes, its header says ", hd.fileBytes));
+    return hd;
+}
+
+TileFileInfo infoOf(const Header& hd) {
+    TileFileInfo info;
+    info.n = hd.n;
+    info.k = hd.k;
+    info.width = hd.width;
+    info.height = hd.height;
+    info.heights = TileHeights(hd.heights);
+    info.heightScale = hd.heightScale;
+    info.heightOffset = hd.heightOffset;
+    info.spacingX = hd.spacingX;
+    info.spacingZ = hd.spacingZ;
+    info.verticalScale = hd.verticalScale;
+    info.metres = hd.metres != 0;
+    info.hasNoData = hd.hasNoData != 0;
+    return info;
+}
+
+void readMetadata(const FileRange& f, const Header& hd, TileFileInfo& info) {
+    if (hd.metaBytes > (uint64_t(1) << 24))
+        throw Error(msg(f.path, ": the tile file's metadata is corrupt"));
+    std::vector<uint8_t> meta(hd.metaBytes);
+    f.read(hd.metaOffset, meta.data(), meta.size(), "metadata");
+    if (crc(meta.data(), meta.size()) != hd.metaCrc || meta.size() < 1 + 16 + 1 + 48 + 4)
+        throw Error(msg(f.path, ": the tile file's metadata is corrupt (CRC mismatch)"));
+    const uint8_t* p = meta.data();
+    const bool hasCentre = get<uint8_t>(p) != 0;
+    const double lat = get<double>(p), lon = get<double>(p);
+    if (hasCentre) info.geoCentre = terrain::Heightfield::GeoPoint{lat, lon};
+    const bool hasRef = get<uint8_t>(p) != 0;
+    terrain::Heightfield::Georeference ref;
+    for (int c = 0; c < 6; ++c) ref.geoTransform[size_t(c)] = get<double>(p);
+    const uint32_t wktBytes = get<uint32_t>(p);
+    if (wktBytes != meta.size() - size_t(p - meta.data()))
+        throw Error(msg(f.path, ": the tile file's metadata is corrupt"));
+    ref.crsWkt.assign(reinterpret_cast<const char*>(p), wktBytes);
+    if (hasRef) info.georeference = std::move(ref);
+}
+
+std::vector<uint64_t> readIndex(const FileRange& f, const Header& hd, const Layout& L) {
+    std::vector<uint64_t> index;
+    const size_t tiles = size_t(L.P) * size_t(L.P);
+    if (hd.indexBytes != tiles * L.entryWords() * 8)
+        throw Error(msg(f.path, ": the tile file's index has ", hd.indexBytes, " bytes, ",
+                        tiles * L.entryWords() * 8, " expected"));
+    index.resize(tiles * L.entryWords());
+    f.read(hd.indexOffset, index.data(), hd.indexBytes, "tile index");
+    if (crc(index.data(), hd.indexBytes) != hd.indexCrc)
+        throw Error(msg(f.path, ": the tile file's index is corrupt (CRC mismatch)"));
+    for (size_t t = 0; t < tiles; ++t) {
+        const uint64_t* e = &index[t * L.entryWords()];
+        if (e[0] == kNotStored) continue;
+        const uint64_t maskBytes = e[1 + 2 * L.chunks];
+        for (int c = 0; c < L.chunks; ++c)
+            if (e[1 + c] != L.chunkEnd[size_t(c)])
+                throw Error(msg(f.path, ": the tile file's index is corrupt (tile ", t, ")"));
+        if ((maskBytes != 0 && maskBytes != L.maskBytes()) || e[0] < hd.tilesOffset ||
+            e[0] > f.size || L.chunkEnd.back() + maskBytes > f.size - e[0])
+            throw Error(msg(f.path, ": truncated tile file: tile ", t % size_t(L.P), ", ",
+                            t / size_t(L.P), " lies beyond its ", f.size, " bytes"));
+    }
+
+    return index;
+}
+
+std::vector<VertexRecord> readCoarse(const FileRange& f, const Header& hd, const Layout& L,
+                                     const TileFileInfo& info) {
+    const size_t count = size_t(L.P + 1) * size_t(L.P + 1);
+    const size_t cornerBytes = size_t(L.heightBytes) + 8;
+    if (hd.coarseBytes != count * cornerBytes)
+        throw Error(msg(f.path, ": the tile file's coarse section is corrupt"));
+    std::vector<uint8_t> coarse(hd.coarseBytes);
+    f.read(hd.coarseOffset, coarse.data(), coarse.size(), "coarse section");
+    if (crc(coarse.data(), coarse.size()) != hd.coarseCrc)
+        throw Error(msg(f.path, ": the tile file's coarse section is corrupt (CRC mismatch)"));
+    std::vector<VertexRecord> corners(count);
+    const int S = 1 << hd.n, T = L.T;
+    const uint8_t* c = coarse.data();
+    auto takeCorner = [&](int i, int j) {
+        VertexRecord& r = corners[size_t(j / T) * size_t(L.P + 1) + size_t(i / T)];
+        r.height = info.heights == TileHeights::Int16
+                       ? dequantizeHeight(get<int16_t>(c), hd.heightScale, hd.heightOffset)
+                       : get<float>(c);
+        r.error = get<float>(c);
+        r.radius = get<float>(c);
+    };
+    for (int l = 0; l < 2 * (hd.n - hd.k); ++l)
+        detail::forLevelVertices(hd.n, l, 0, S, 0, S, detail::SerialRows{},
+                                 [&](int i, int j, int, int, int, int) { takeCorner(i, j); });
+    for (int j : {0, S})
+        for (int i : {0, S}) takeCorner(i, j);
+    for (const VertexRecord& r : corners)
+        if (!std::isfinite(r.height) || !std::isfinite(r.error) || !std::isfinite(r.radius) ||
+            r.error < 0.0f || r.radius < 0.0f)
+            throw Error(msg(f.path, ": the tile file's coarse section holds impossible values"));
+    return corners;
+}
+
+}  // namespace
+
+TileFile::TileFile(const std::string& path) : path_(path) {
+    fileBytes_ = regularFileSize(path);
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) throw Error(msg("cannot open ", path, ": ", std::strerror(errno)));
+    try {
+        const FileRange f{path_, fd_, fileBytes_};
+        const Header hd = readHeader(f);
+        const Layout L(hd.n, hd.k, TileHeights(hd.heights));
+        info_ = infoOf(hd);
+        chunks_ = L.chunks;
+        readMetadata(f, hd, info_);
+        index_ = readIndex(f, hd, L);
+        corners_ = readCoarse(f, hd, L, info_);
+    } catch (...) {
+        ::close(fd_);
+        throw;
+    }
+}
+
+TileFile::~TileFile() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+size_t TileFile::entryWords() const {
+    return size_t(2 * chunks_ + 3);
+}
+
+bool TileFile::stored(int tx, int ty) const {
+    const int P = info_.tilesPerSide();
+    if (tx < 0 || ty < 0 || tx >= P || ty >= P) return false;
+    return index_[(size_t(ty) * size_t(P) + size_t(tx)) * entryWords()] != kNotStored;
+}
+
+int TileFile::levelsAfterChunks(int c) const {
+    return c <= 0 ? 0 : c < chunks_ ? c : 2 * info_.k;
+}
+
+int TileFile::chunksForLevels(int levels) const {
+    for (int c = 0; c <= chunks_; ++c)
+        if (levelsAfterChunks(c) >= levels) return c;
+    return chunks_;
+}
+
+uint64_t TileFile::tileBytes(int tx, int ty, int c) const {
+    if (!stored(tx, ty) || c <= 0) return 0;
+    const uint64_t* e =
+        &index_[(size_t(ty) * size_t(info_.tilesPerSide()) + size_t(tx)) * entryWords()];
+    c = std::min(c, chunks_);
+    return e[c] + (c == chunks_ ? e[1 + 2 * chunks_] : 0);
+}
+
+VertexRecord TileFile::corner(int64_t i, int64_t j) const {
+    const int T = 1 << info_.k;
+    return corners_[size_t(j / T) * size_t(info_.tilesPerSide() + 1) + size_t(i / T)];
+}
+
+void TileFile::readTile(int tx, int ty, int chunks, TileData& out) const {
+    SIERRA_CHECK(stored(tx, ty), path_, ": tile ", tx, ", ", ty, " is not stored");
+    chunks = std::clamp(chunks, 0, chunks_);
+    const Layout L(info_.n, info_.k, info_.heights);
+    const int T = L.T, side = T + 1;
+    const uint64_t* e = &index_[(size_t(ty) * size_t(L.P) + size_t(tx)) * entryWords()];
+    const uint64_t bytes = tileBytes(tx, ty, chunks);
+    std::vector<uint8_t> blob(bytes);
+    FileRange{path_, fd_, fileBytes_}.read(e[0], blob.data(), bytes, "a tile");
+    for (int c = 0; c < chunks; ++c) {
+        const uint64_t begin = c == 0 ? 0 : e[c], end = e[1 + c];
+        if (crc(blob.data() + begin, end - begin) != uint32_t(e[1 + chunks_ + c]))
+            throw Error(
+                msg(path_, ": tile ", tx, ", ", ty, " is corrupt (chunk ", c, " CRC mismatch)"));
+    }
+    const uint64_t maskBytes = chunks == chunks_ ? e[1 + 2 * chunks_] : 0;
+    if (maskBytes && crc(blob.data() + e[chunks_], maskBytes) != uint32_t(e[2 + 2 * chunks_]))
+        throw Error(
+            msg(path_, ": tile ", tx, ", ", ty, "'s no-data mask is corrupt (CRC mismatch)"));
+
+    const size_t count = size_t(side) * size_t(side);
+    out.levels = levelsAfterChunks(chunks);
+    out.height.assign(count, 0.0f);
+    out.error.assign(count, 0.0f);
+    out.radius.assign(count, 0.0f);
+    out.mask.clear();
+    const int x0 = tx * T, y0 = ty * T;
+    auto local = [&](int i, int j) { return size_t(j - y0) * size_t(side) + size_t(i - x0); };
+    for (int cj = 0; cj <= 1; ++cj)
+        for (int ci = 0; ci <= 1; ++ci) {
+            const VertexRecord r = corner(x0 + ci * T, y0 + cj * T);
+            const size_t m = local(x0 + ci * T, y0 + cj * T);
+            out.height[m] = r.height, out.error[m] = r.error, out.radius[m] = r.radius;
+        }
+    const uint8_t* q = blob.data();
+    const bool int16 = info_.heights == TileHeights::Int16;
+    auto takeHeight = [&](int i, int j, bool) {
+        out.height[local(i, j)] =
+            int16 ? dequantizeHeight(get<int16_t>(q), info_.heightScale, info_.heightOffset)
+                  : get<float>(q);
+    };
+    auto takeRecord = [&](int i, int j) {
+        const size_t m = local(i, j);
+        out.error[m] = get<float>(q);
+        out.radius[m] = get<float>(q);
+    };
+    for (int t = 0; t < std::min(chunks, L.firstRecomputed()); ++t) {
+        L.forTileLevel(tx, ty, t, takeHeight);
+        L.forTileLevel(tx, ty, t, [&](int i, int j, bool) { takeRecord(i, j); });
+    }
+    if (chunks == chunks_) {
+        for (int t = L.firstRecomputed(); t < 2 * L.k; ++t) L.forTileLevel(tx, ty, t, takeHeight);
+        for (int t = L.firstRecomputed(); t < 2 * L.k; ++t)
+            L.forTileLevel(tx, ty, t, [&](int i, int j, bool onBorder) {
+                if (onBorder) takeRecord(i, j);
+            });
+        const detail::SampleWindow g{.n = info_.n,
+                                     .i0 = x0,
+                                     .j0 = y0,
+                                     .w = side,
+                                     .h = side,
+                                     .height = out.height.data(),
+                                     .error = out.error.data(),
+                                     .radius = out.radius.data(),
+                                     .sx = info_.spacingX,
+                                     .sz = info_.spacingZ,
+                                     .vs = info_.verticalScale};
+        detail::saturateLevels(
+            g, 2 * info_.n - 1, 2 * info_.n - L.recomputed, 1,
+            [&](int i, int j) { return i == x0 || i == x0 + T || j == y0 || j == y0 + T; });
+        if (maskBytes) {
+            out.mask.assign(count, 0);
+            const uint8_t* bits = blob.data() + e[chunks_];
+            for (size_t b = 0; b < count; ++b) out.mask[b] = (bits[b >> 3] >> (b & 7)) & 1;
+        }
+    }
+    for (size_t m = 0; m < count; ++m)
+        if (!std::isfinite(out.height[m]) || !std::isfinite(out.error[m]) ||
+            !std::isfinite(out.radius[m]) || out.error[m] < 0.0f || out.radius[m] < 0.0f)
+            throw Error(msg(path_, ": tile ", tx, ", ", ty, " holds impossible values"));
+}
+
+// ---------------------------------------------------------------- FileTiles
+
+FileTiles::FileTiles(const TileFile& file)
+    : TiledVertices(file.info().desc()),
+      file_(file),
+      tiles_(size_t(file.info().tilesPerSide()) * size_t(file.info().tilesPerSide())) {}
+
+int FileTiles::residentLevels(int tx, int ty) const {
+    // A tile wholly in the padding is never refined (its vertices' records are
+    // zero), so it never holds its neighbours back.
+    if (!file_.stored(tx, ty)) return 2 * desc().k;
+    const auto& t = tiles_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)];
+    return t ? t->levels : 0;
+}
+
+VertexRecord FileTiles::vertex(uint32_t i, uint32_t j) const {
+    const int k = desc().k, T = 1 << k, P = tilesPerSide();
+    if ((i & uint32_t(T - 1)) == 0 && (j & uint32_t(T - 1)) == 0) return file_.corner(i, j);
+    // A border vertex lies in two tiles; either holds it. Prefer a stored one.
+    const int tx0 = std::min(int(i >> k), P - 1), ty0 = std::min(int(j >> k), P - 1);
+    const int txs[2] = {tx0, (i & uint32_t(T - 1)) == 0 && tx0 > 0 ? tx0 - 1 : tx0};
+    const int tys[2] = {ty0, (j & uint32_t(T - 1)) == 0 && ty0 > 0 ? ty0 - 1 : ty0};
+    for (int tx : txs)
+        for (int ty : tys) {
+            const auto& t = tiles_[size_t(ty) * size_t(P) + size_t(tx)];
+            if (!t) continue;
+            const size_t m =
+                size_t(j - uint32_t(ty * T)) * size_t(T + 1) + size_t(i - uint32_t(tx * T));
+            return {t->height[m], t->error[m], t->radius[m]};
+        }
+    return {};
+}
+
+void FileTiles::load(int tx, int ty, int levels) {
+    if (!file_.stored(tx, ty)) return;
+    auto& t = tiles_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)];
+    if (t && t->levels >= levels) return;
+    auto data = std::make_unique<TileData>();
+    file_.readTile(tx, ty, file_.chunksForLevels(levels), *data);
+    if (t) residentBytes_ -= t->height.size() * 12 + t->mask.size();
+    residentBytes_ += data->height.size() * 12 + data->mask.size();
+    t = std::move(data);
+}
+
+void FileTiles::loadAll(int levels) {
+    for (int ty = 0; ty < tilesPerSide(); ++ty)
+        for (int tx = 0; tx < tilesPerSide(); ++tx) load(tx, ty, levels);
+}
+
+void FileTiles::drop(int tx, int ty) {
+    auto& t = tiles_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)];
+    if (t) residentBytes_ -= t->height.size() * 12 + t->mask.size();
+    t.reset();
+}
+
+}  // namespace sierra::sbt

@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""sierra-tile build on the inputs a GIS user brings, end to end.
+
+- Four SRTM3 .hgt tiles (1201 x 1201 samples each, big-endian int16, -32768
+  voids) mosaicked through GDAL into one 2401 x 2401 grid: the extent, the
+  metre spacing at their latitude, the no-data mask flag and exact int16
+  heights (scale 1) are in the header sierra-tile info reports.
+- A non-square float32 .npy (memory-mapped): its extent and the bytes a sample.
+- Bad input: a missing file, a truncated tile file, an unknown option, each one
+  message and a non-zero exit, and no output file left behind.
+Exit 77 (CTest: skipped) with a note when NumPy is
+missing: apt-get install python3-numpy.
+
+Usage: tile_inputs.py SIERRA_TILE WORK_DIR
+"""
+
+import json
+import os
+import subprocess
+import sys
+
+SKIP = 77
+
+
+def reexec_or_skip(reason):
+    # The first python3 on PATH may lack the system's packages; Debian's has them.
+    system = "/usr/bin/python3"
+    if os.path.exists(system) and os.path.realpath(sys.executable) != os.path.realpath(system) \
+            and not os.environ.get("SIERRA_TILE_REEXEC"):
+        os.environ["SIERRA_TILE_REEXEC"] = "1"
+        os.execv(system, [system] + sys.argv)
+    print(f"SKIPPED: {reason}; apt-get install python3-numpy")
+    sys.exit(SKIP)
+
+
+try:
+    import numpy as np
+except ImportError:
+    reexec_or_skip("NumPy is missing")
+
+
+def run(*args, ok=True):
+    p = subprocess.run(args, capture_output=True, text=True, timeout=600)
+    if ok and p.returncode != 0:
+        sys.exit(f"{' '.join(args)}: exit {p.returncode}\n{p.stdout}\n{p.stderr}")
+    if not ok:
+        lines = [l for l in p.stderr.splitlines() if "error" in l]
+        if p.returncode == 0 or p.returncode < 0 or len(lines) != 1:
+            sys.exit(f"{' '.join(args)}: expected one error and a clean non-zero exit, "
+                     f"got {p.returncode}\n{p.stderr}")
+    return p
+
+
+def info(tile, path):
+    report = path + ".json"
+    run(tile, "info", path, "--json", report)
+    with open(report) as f:
+        return json.load(f)
+
+
+def main():
+    tile, work = sys.argv[1], sys.argv[2]
+    os.makedirs(work, exist_ok=True)
+
+    # Four SRTM3 tiles at 46-48 N, 7-9 E; each tile's value encodes its position.
+    names = []
+    for lat in (46, 47):
+        for lon in (7, 8):
+            j, i = np.mgrid[0:1201, 0:1201]
+            h = (1000 + (lat - 46) * 500 + (lon - 7) * 200 + (i + j) % 97).astype(">i2")
+            if (lat, lon) == (47, 8):
+                h[100:110, 200:230] = -32768  # a void
+            name = os.path.join(work, f"N{lat:02d}E{lon:03d}.hgt")
+            h.tofile(name)
+            names.append(name)
+    out = os.path.join(work, "alps.sierra")
+    run(tile, "build", *names, "--out", out, "--tile-levels", "7")
+    head = info(tile, out)
+    assert head["width"] == 2401 and head["height"] == 2401, head
+    assert head["grid_side"] == 4097 and head["tile_levels"] == 7, head
+    assert head["no_data"] is True, "the void is masked"
+    assert head["metres"] is True, head
+    assert head["heights"] == "int16" and head["height_scale"] == 1.0, "int16 input kept exactly"
+    # 3 arc seconds: 92.6 m north-south, about 63 m east-west at 47 N.
+    sx, sz = head["spacing"]
+    assert abs(sz - 92.6) < 0.5 and abs(sx - 63.2) < 1.0, head["spacing"]
+    lat, lon = head["geo_centre"]
+    assert abs(lat - 47.0) < 0.01 and abs(lon - 8.0) < 0.01, head["geo_centre"]
+    print("hgt mosaic: ok", head["spacing"])
+
+    # A non-square float32 .npy, memory-mapped.
+    grid = (np.random.default_rng(1).random((300, 700)) * 500).astype("<f4")
+    npy = os.path.join(work, "wide.npy")
+    np.save(npy, grid)
+    wide = os.path.join(work, "wide.sierra")
+    run(tile, "build", npy, "--out", wide, "--heights", "float", "--tile-levels", "6")
+    head = info(tile, wide)
+    assert head["width"] == 700 and head["height"] == 300 and head["grid_side"] == 1025, head
+    per_sample = os.path.getsize(wide) / (700 * 300)
+    assert per_sample < 7.0, per_sample  # the partly padded edge tiles are stored whole
+    print(f"npy: ok, {per_sample:.2f} bytes a sample")
+
+    # Bad input: one message, a non-zero exit, no output.
+    missing = os.path.join(work, "missing.sierra")
+    run(tile, "build", os.path.join(work, "nothing.tif"), "--out", missing, ok=False)
+    run(tile, "build", npy, "--out", missing, "--tile-levels", "0", ok=False)
+    run(tile, "build", npy, "--out", missing, "--no-such-option", ok=False)
+    assert not os.path.exists(missing), "a failed build left a file"
+    cut = os.path.join(work, "cut.sierra")
+    with open(wide, "rb") as f, open(cut, "wb") as g:
+        g.write(f.read(os.path.getsize(wide) // 2))
+    run(tile, "info", cut, ok=False)
+    leftovers = [f for f in os.listdir(work) if ".tmp-" in f]
+    assert not leftovers, leftovers
+    print("bad input: ok")
+
+
+if __name__ == "__main__":
+    main()
