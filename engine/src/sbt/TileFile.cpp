@@ -3,6 +3,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
+#include <sierra/sbt/VertexErrors.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -304,9 +305,59 @@ void TileFile::readTile(int tx, int ty, int chunks, TileData& out) const {
 
 // ---------------------------------------------------------------- FileTiles
 
+TileAddressing::TileAddressing(int k) : k_(k) {
+    const Layout L(k, k, TileHeights::Float32);  // the counts depend on k alone
+    start_.assign(size_t(2 * k + 1), 0);
+    for (int t = 0; t < 2 * k; ++t)
+        start_[size_t(t + 1)] = start_[size_t(t)] + size_t(L.count[size_t(t)]);
+}
+
+int TileAddressing::level(int x, int y) const {
+    return vertexLevel(x, y, k_);
+}
+
+size_t TileAddressing::index(int x, int y) const {
+    const int t = level(x, y), m = t >> 1, T = 1 << k_, h = T >> (m + 1), s = 2 * h;
+    const size_t side = size_t(1) << m;
+    size_t at;
+    if ((t & 1) == 0) {
+        at = size_t((y - h) / s) * side + size_t((x - h) / s);
+    } else {
+        const int r = y / h;  // row of the level's lattice
+        const size_t before = size_t((r + 1) / 2) * side + size_t(r / 2) * (side + 1);
+        at = before + size_t((r & 1) == 0 ? (x - h) / s : x / s);
+    }
+    return start_[size_t(t)] + at;
+}
+
+uint64_t TileFile::packedBytes(int c) const {
+    const TileAddressing address(info_.k);
+    const int levels = levelsAfterChunks(c);
+    const uint64_t side = uint64_t(info_.tileSide());
+    return address.countBelow(levels) * sizeof(VertexRecord) +
+           (levels == 2 * info_.k && info_.hasNoData ? side * side : 0);
+}
+
+void TileFile::readPacked(int tx, int ty, int chunks, PackedTile& out) const {
+    TileData grid;
+    readTile(tx, ty, chunks, grid);
+    const Layout L(info_.n, info_.k, info_.heights);
+    const int T = L.T, side = T + 1;
+    out.levels = grid.levels;
+    out.records.clear();
+    out.records.reserve(TileAddressing(info_.k).countBelow(grid.levels));
+    for (int t = 0; t < grid.levels; ++t)
+        L.forTileLevel(tx, ty, t, [&](int i, int j, bool) {
+            const size_t m = size_t(j - ty * T) * size_t(side) + size_t(i - tx * T);
+            out.records.push_back({grid.height[m], grid.error[m], grid.radius[m]});
+        });
+    out.mask = std::move(grid.mask);
+}
+
 FileTiles::FileTiles(const TileFile& file)
     : TiledVertices(file.info().desc()),
       file_(file),
+      address_(file.info().k),
       tiles_(size_t(file.info().tilesPerSide()) * size_t(file.info().tilesPerSide())) {}
 
 int FileTiles::residentLevels(int tx, int ty) const {
@@ -318,31 +369,19 @@ int FileTiles::residentLevels(int tx, int ty) const {
 }
 
 VertexRecord FileTiles::vertex(uint32_t i, uint32_t j) const {
-    const int k = desc().k, T = 1 << k, P = tilesPerSide();
-    if ((i & uint32_t(T - 1)) == 0 && (j & uint32_t(T - 1)) == 0) return file_.corner(i, j);
-    // A border vertex lies in two tiles; either holds it. Prefer a stored one.
-    const int tx0 = std::min(int(i >> k), P - 1), ty0 = std::min(int(j >> k), P - 1);
-    const int txs[2] = {tx0, (i & uint32_t(T - 1)) == 0 && tx0 > 0 ? tx0 - 1 : tx0};
-    const int tys[2] = {ty0, (j & uint32_t(T - 1)) == 0 && ty0 > 0 ? ty0 - 1 : ty0};
-    for (int tx : txs)
-        for (int ty : tys) {
-            const auto& t = tiles_[size_t(ty) * size_t(P) + size_t(tx)];
-            if (!t) continue;
-            const size_t m =
-                size_t(j - uint32_t(ty * T)) * size_t(T + 1) + size_t(i - uint32_t(tx * T));
-            return {t->height[m], t->error[m], t->radius[m]};
-        }
-    return {};
+    return packedVertex(file_, address_, i, j, [&](int tx, int ty) {
+        return tiles_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)].get();
+    });
 }
 
 void FileTiles::load(int tx, int ty, int levels) {
     if (!file_.stored(tx, ty)) return;
     auto& t = tiles_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)];
     if (t && t->levels >= levels) return;
-    auto data = std::make_unique<TileData>();
-    file_.readTile(tx, ty, file_.chunksForLevels(levels), *data);
-    if (t) residentBytes_ -= t->height.size() * 12 + t->mask.size();
-    residentBytes_ += data->height.size() * 12 + data->mask.size();
+    auto data = std::make_unique<PackedTile>();
+    file_.readPacked(tx, ty, file_.chunksForLevels(levels), *data);
+    if (t) residentBytes_ -= t->bytes();
+    residentBytes_ += data->bytes();
     t = std::move(data);
 }
 
@@ -353,7 +392,7 @@ void FileTiles::loadAll(int levels) {
 
 void FileTiles::drop(int tx, int ty) {
     auto& t = tiles_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)];
-    if (t) residentBytes_ -= t->height.size() * 12 + t->mask.size();
+    if (t) residentBytes_ -= t->bytes();
     t.reset();
 }
 

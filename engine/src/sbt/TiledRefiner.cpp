@@ -16,7 +16,7 @@ TiledVertices::TiledVertices(const TiledGridDesc& desc) : desc_(desc) {
 struct TiledRefiner::Walk {
     const TiledVertices& tiles;
     const std::vector<int>& usable;  // per tile, levels
-    std::vector<uint8_t>& coarse;    // per tile: reached a vertex it cannot use
+    std::vector<uint8_t>& reached;   // per tile: the tile levels the walk reached
     TiledMesh& out;
     int n, k, tileLevel, finest, tilesPerSide;
     uint32_t side;
@@ -39,7 +39,7 @@ struct TiledRefiner::Walk {
     }
 
     // The usable levels at vertex (i, j) of tile level `local`: the least over
-    // the tiles holding it; marks them coarse when the vertex is beyond it.
+    // the tiles holding it; each of them records that the walk reached it.
     bool usableAt(uint32_t i, uint32_t j, int local) {
         int ti[2], tj[2];
         const int ni = tilesAlong(i, ti), nj = tilesAlong(j, tj);
@@ -48,11 +48,12 @@ struct TiledRefiner::Walk {
             for (int b = 0; b < nj; ++b)
                 least =
                     std::min(least, usable[size_t(tj[b]) * size_t(tilesPerSide) + size_t(ti[a])]);
-        if (local < least) return true;
         for (int a = 0; a < ni; ++a)
-            for (int b = 0; b < nj; ++b)
-                coarse[size_t(tj[b]) * size_t(tilesPerSide) + size_t(ti[a])] = 1;
-        return false;
+            for (int b = 0; b < nj; ++b) {
+                uint8_t& w = reached[size_t(tj[b]) * size_t(tilesPerSide) + size_t(ti[a])];
+                w = std::max(w, uint8_t(local + 1));
+            }
+        return local < least;
     }
 
     unsigned cull(double x, double y, double z, float r, unsigned mask) const {
@@ -175,12 +176,12 @@ void TiledRefiner::refineView(const ViewParams& view, TiledMesh& out) {
             if (tx + 1 < t) at(tx, ty) = std::min(at(tx, ty), at(tx + 1, ty) + 1);
             if (ty + 1 < t) at(tx, ty) = std::min(at(tx, ty), at(tx, ty + 1) + 1);
         }
-    coarse_.assign(usable_.size(), 0);
+    reached_.assign(usable_.size(), 0);
 
     out.strip.clear();
     Walk w{tiles_,
            usable_,
-           coarse_,
+           reached_,
            out,
            g.n,
            g.k,
@@ -208,7 +209,8 @@ void TiledRefiner::refineView(const ViewParams& view, TiledMesh& out) {
     if (!out.strip.empty()) w.finishStrip();
     out.triangleCount = w.leaves;
     out.culledSubtrees = w.culled;
-    out.coarseTiles = int(std::count(coarse_.begin(), coarse_.end(), uint8_t(1)));
+    out.coarseTiles = 0;
+    for (size_t t = 0; t < reached_.size(); ++t) out.coarseTiles += reached_[t] > usable_[t];
 }
 
 std::vector<std::array<uint32_t, 3>> decodeTiledStrip(const std::vector<uint64_t>& strip,

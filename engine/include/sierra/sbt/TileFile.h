@@ -32,6 +32,7 @@
 #include <sierra/sbt/TiledRefiner.h>
 #include <sierra/terrain/GridReader.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -103,6 +104,33 @@ struct TileData {
     std::vector<uint8_t> mask;  // 1 = real sample; empty = all real
 };
 
+// Where a tile's vertices lie in level order (the order the file stores
+// them in): tile level of local sample (x, y), x, y in [0, 2^k], not a
+// corner, and its index among the tile's non-corner vertices.
+class TileAddressing {
+  public:
+    explicit TileAddressing(int k);
+    int k() const { return k_; }
+    int level(int x, int y) const;  // 0 .. 2k-1
+    size_t index(int x, int y) const;
+    // Vertices of tile levels 0 .. levels-1.
+    size_t countBelow(int levels) const { return start_[size_t(levels)]; }
+
+  private:
+    int k_;
+    std::vector<size_t> start_;  // per tile level, 2k + 1 entries
+};
+
+// A tile's records in level order, only the levels read: what the caches
+// keep, so a far tile's few levels take a few hundred bytes, not the whole
+// (2^k+1)^2 grid.
+struct PackedTile {
+    int levels = 0;
+    std::vector<VertexRecord> records;  // TileAddressing::index order, levels 0 .. levels-1
+    std::vector<uint8_t> mask;          // (2^k+1)^2, 1 = real; empty = all real or not read
+    uint64_t bytes() const { return records.size() * sizeof(VertexRecord) + mask.size(); }
+};
+
 // A tile file open for reading: header, index and coarse section read and
 // checked at open; tiles read on request with pread (safe from several
 // threads), never mapped, so what is resident is what the caller keeps.
@@ -133,6 +161,11 @@ class TileFile {
     // (arrays sized and zeroed; corners from the coarse section). Throws
     // sierra::Error on a read error or a CRC that does not match.
     void readTile(int tx, int ty, int chunks, TileData& out) const;
+
+    // The same, in level order and only the levels read.
+    void readPacked(int tx, int ty, int chunks, PackedTile& out) const;
+    // Bytes a PackedTile of the first c chunks takes.
+    uint64_t packedBytes(int c) const;
 
     // The record of a tile corner (i, j multiples of 2^k).
     VertexRecord corner(int64_t i, int64_t j) const;
@@ -167,8 +200,33 @@ class FileTiles : public TiledVertices {
 
   private:
     const TileFile& file_;
-    std::vector<std::unique_ptr<TileData>> tiles_;
+    TileAddressing address_;
+    std::vector<std::unique_ptr<PackedTile>> tiles_;
     uint64_t residentBytes_ = 0;
 };
+
+// The record of vertex (i, j) from packed tiles: a corner from the file's
+// coarse section, else from a containing tile that has its level (`tile`
+// gives a tile's packed data or null). Zero when none has it: a vertex of a
+// tile wholly in the padding, never refined.
+template <typename TileAt>
+VertexRecord packedVertex(const TileFile& file, const TileAddressing& address, uint32_t i,
+                          uint32_t j, TileAt&& tile) {
+    const int k = address.k(), T = 1 << k, P = file.info().tilesPerSide();
+    const uint32_t mask = uint32_t(T - 1);
+    if ((i & mask) == 0 && (j & mask) == 0) return file.corner(i, j);
+    const int tx0 = std::min(int(i >> k), P - 1), ty0 = std::min(int(j >> k), P - 1);
+    const int txs[2] = {tx0, (i & mask) == 0 && tx0 > 0 ? tx0 - 1 : tx0};
+    const int tys[2] = {ty0, (j & mask) == 0 && ty0 > 0 ? ty0 - 1 : ty0};
+    for (int tx : txs)
+        for (int ty : tys) {
+            const PackedTile* t = tile(tx, ty);
+            if (!t) continue;
+            const int x = int(i) - tx * T, y = int(j) - ty * T;
+            if (address.level(x, y) >= t->levels) continue;
+            return t->records[address.index(x, y)];
+        }
+    return {};
+}
 
 }  // namespace sierra::sbt

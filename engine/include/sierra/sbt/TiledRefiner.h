@@ -96,12 +96,17 @@ class TiledRefiner {
     // Per tile (row-major ty * tiles + tx), the levels usable in the last
     // refinement: the resident depths, balanced as above.
     const std::vector<int>& usableLevels() const { return usable_; }
+    // Per tile, the tile levels the last refinement reached: those it read,
+    // and one beyond where it stopped at a vertex it could not use (then
+    // above usableLevels: the tile was drawn coarse). What a streaming cache
+    // keeps and reads next (TileCache::wantForView).
+    const std::vector<uint8_t>& reachedLevels() const { return reached_; }
 
   private:
     struct Walk;
     const TiledVertices& tiles_;
     std::vector<int> usable_;
-    std::vector<uint8_t> coarse_;
+    std::vector<uint8_t> reached_;
 };
 
 // Triangles of a TiledMesh strip as linear indices j * side + i (GL's winding
