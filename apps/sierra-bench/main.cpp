@@ -1,5 +1,6 @@
 // sierra-bench: measurements of Sierra's pipeline as programs, not tests.
 //   sierra-bench static ...   fixed-error SBT mesh: size, strip efficiency, extraction speed
+//   sierra-bench tiled ...    a fly-through of a tiled terrain: refinement and streaming
 //   sierra-bench frames ...   frames along a camera path: per-stage times, PSNR against the full
 //   grid
 //   sierra-bench facade ...   whole renders of a scene through the SceneRenderer facade
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
         }
     }
     sierra::apps::addStaticCommand(app);
+    sierra::apps::addTiledCommand(app);
     // Listed for --help; its options are the frames program's own.
     app.add_subcommand("frames",
                        "Time view-dependent frames along a camera path (EGL; `frames --help`)")

@@ -6,12 +6,14 @@
   metre spacing at their latitude, the no-data mask flag and exact int16
   heights (scale 1) are in the header sierra-tile info reports.
 - A non-square float32 .npy (memory-mapped): its extent and the bytes a sample.
+- sierra-bench tiled flies over the mosaic under a small cache: the first
+  frame comes at once, the cache stays within its budget, tiles are read.
 - Bad input: a missing file, a truncated tile file, an unknown option, each one
   message and a non-zero exit, and no output file left behind.
 Exit 77 (CTest: skipped) with a note when NumPy is
 missing: apt-get install python3-numpy.
 
-Usage: tile_inputs.py SIERRA_TILE WORK_DIR
+Usage: tile_inputs.py SIERRA_TILE SIERRA_BENCH WORK_DIR
 """
 
 import json
@@ -59,7 +61,7 @@ def info(tile, path):
 
 
 def main():
-    tile, work = sys.argv[1], sys.argv[2]
+    tile, bench, work = sys.argv[1], sys.argv[2], sys.argv[3]
     os.makedirs(work, exist_ok=True)
 
     # Four SRTM3 tiles at 46-48 N, 7-9 E; each tile's value encodes its position.
@@ -87,6 +89,18 @@ def main():
     lat, lon = head["geo_centre"]
     assert abs(lat - 47.0) < 0.01 and abs(lon - 8.0) < 0.01, head["geo_centre"]
     print("hgt mosaic: ok", head["spacing"])
+
+    # A short flight over the mosaic under a 16 MiB cache.
+    report = os.path.join(work, "fly.json")
+    run(bench, "tiled", out, "--seconds", "2", "--fps", "15", "--size", "640x360",
+        "--memory-budget", "16", "--json", report)
+    with open(report) as f:
+        fly = json.load(f)
+    assert fly["frames"] == 30, fly
+    assert fly["first_frame_ms"] < 1000.0, fly["first_frame_ms"]
+    assert fly["cache_peak_bytes"] <= fly["budget_bytes"], fly
+    assert fly["tiles_read"] > 0 and fly["triangles_median"] > 0, fly
+    print("tiled flight: ok", fly["tiles_read"], "tiles read")
 
     # A non-square float32 .npy, memory-mapped.
     grid = (np.random.default_rng(1).random((300, 700)) * 500).astype("<f4")
