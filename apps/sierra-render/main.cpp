@@ -12,6 +12,8 @@
 #include <sierra/facade/Dataset.h>
 #include <sierra/facade/DebugSnapshot.h>
 #include <sierra/facade/SceneRenderer.h>
+
+#include "Tiled.h"
 #include <sierra/facade/SceneView.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
@@ -310,6 +312,10 @@ int run(const scene::Scene& s) {
 
 }  // namespace
 
+std::string apps::sequenceFrame(const scene::Scene& s, int k) {
+    return sequenceFile(s, s.output.frame, k);
+}
+
 int main(int argc, char** argv) {
     scene::Scene scene;
     CLI::App app{
@@ -321,6 +327,21 @@ int main(int argc, char** argv) {
     scene::SceneOptions options(app, scene, scene::kAllOptions);
     bool devices = false;
     app.add_flag("--list-devices", devices, "List the EGL devices and exit");
+    apps::TiledRenderOptions tiled;
+    double budgetMiB = double(tiled.memoryBudget >> 20);
+    app.add_option("--memory-budget", budgetMiB,
+                   "A tiled terrain (.sierra): MiB for its tile caches, 3/4 CPU, 1/4 GPU textures")
+        ->type_name("MIB")
+        ->check(CLI::Range(16.0, 1048576.0))
+        ->capture_default_str()
+        ->group("Tiled terrain");
+    app.add_option("--tile-wait", tiled.tileWaitSeconds,
+                   "A tiled terrain's single frame: seconds to wait at most for its tiles (a "
+                   "sequence never waits)")
+        ->type_name("S")
+        ->check(CLI::Range(0.0, 3600.0))
+        ->capture_default_str()
+        ->group("Tiled terrain");
     return apps::runMain(
         app, argc, argv,
         [&] {
@@ -334,6 +355,10 @@ int main(int argc, char** argv) {
             if (devices) {
                 listDevices();
                 return 0;
+            }
+            if (apps::isTiledTerrain(scene)) {
+                tiled.memoryBudget = uint64_t(budgetMiB * 1048576.0);
+                return apps::runTiled(scene, tiled);
             }
             return run(scene);
         });

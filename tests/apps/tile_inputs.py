@@ -8,12 +8,15 @@
 - A non-square float32 .npy (memory-mapped): its extent and the bytes a sample.
 - sierra-bench tiled flies over the mosaic under a small cache: the first
   frame comes at once, the cache stays within its budget, tiles are read.
+- sierra-render draws the mosaic from its tile file: a PNG of the frame once
+  every tile it wanted has arrived; options that need the grid in memory are
+  refused with one message.
 - Bad input: a missing file, a truncated tile file, an unknown option, each one
   message and a non-zero exit, and no output file left behind.
 Exit 77 (CTest: skipped) with a note when NumPy is
 missing: apt-get install python3-numpy.
 
-Usage: tile_inputs.py SIERRA_TILE SIERRA_BENCH WORK_DIR
+Usage: tile_inputs.py SIERRA_TILE SIERRA_BENCH SIERRA_RENDER WORK_DIR
 """
 
 import json
@@ -61,7 +64,7 @@ def info(tile, path):
 
 
 def main():
-    tile, bench, work = sys.argv[1], sys.argv[2], sys.argv[3]
+    tile, bench, render, work = sys.argv[1:5]
     os.makedirs(work, exist_ok=True)
 
     # Four SRTM3 tiles at 46-48 N, 7-9 E; each tile's value encodes its position.
@@ -101,6 +104,18 @@ def main():
     assert fly["cache_peak_bytes"] <= fly["budget_bytes"], fly
     assert fly["tiles_read"] > 0 and fly["triangles_median"] > 0, fly
     print("tiled flight: ok", fly["tiles_read"], "tiles read")
+
+    # A frame of the mosaic from its tile file, and an option it cannot take.
+    frame = os.path.join(work, "alps.png")
+    p = run(render, "--heightmap", out, "--size", "480x270", "--out", frame, "--no-debug",
+            "--memory-budget", "64")
+    assert os.path.getsize(frame) > 1000, "a frame was written"
+    assert "0 tiles drawn coarse" in p.stderr, p.stderr
+    with open(frame, "rb") as f:
+        assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+    run(render, "--heightmap", out, "--zones", "auto", "--out", os.path.join(work, "z.png"),
+        "--no-debug", ok=False)
+    print("tiled render: ok")
 
     # A non-square float32 .npy, memory-mapped.
     grid = (np.random.default_rng(1).random((300, 700)) * 500).astype("<f4")

@@ -66,6 +66,11 @@ class TileCache : public TiledVertices {
     int residentLevels(int tx, int ty) const override;
     VertexRecord vertex(uint32_t i, uint32_t j) const override;
 
+    // The resident data of tile (tx, ty), or null (valid until the next beginFrame).
+    const PackedTile* packed(int tx, int ty) const {
+        return slots_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)].data.get();
+    }
+
     // Makes the tiles the loaders finished resident and evicts over the
     // budget. Never waits for a read. Rethrows a loader's read error (a
     // corrupt tile) as sierra::Error.

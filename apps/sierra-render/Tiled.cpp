@@ -1,0 +1,110 @@
+// sierra-render on a tiled terrain (--heightmap T.sierra, from sierra-tile
+// build): render::TiledTerrain draws each frame from the tiles that have
+// arrived, never waiting for a read; a single frame waits for the tiles it
+// asked for (up to --tile-wait seconds) so the picture is the finished one.
+// The options that need the whole grid in memory are refused by name.
+#include "Tiled.h"
+
+#include <sierra/core/Error.h>
+#include <sierra/core/Files.h>
+#include <sierra/core/Log.h>
+#include <sierra/core/Progress.h>
+#include <sierra/core/Timer.h>
+#include <sierra/facade/SceneView.h>
+#include <sierra/gpu/EglContext.h>
+#include <sierra/render/Capture.h>
+#include <sierra/render/FrameTarget.h>
+#include <sierra/render/TiledTerrain.h>
+#include <sierra/render/Video.h>
+
+#include <cstdio>
+
+namespace sierra::apps {
+namespace {
+
+// The first option of `s` that needs the grid in memory, or "".
+std::string needsGrid(const scene::Scene& s) {
+    const scene::Scene d;
+    if (!s.zones.map.empty()) return "--zones";
+    if (!(s.layers == d.layers)) return "drapes, vector layers, labels and map furniture";
+    if (s.lod.mode != scene::LodMode::Sbt) return "--lod full";
+    if (!s.lod.mesh.empty()) return "--mesh";
+    if (!s.output.depth.empty()) return "--depth";
+    if (s.output.alpha) return "--alpha";
+    if (scene::isVideoOutput(s.output.frame)) return "video output";
+    if (s.camera.projection != scene::Projection::Perspective) return "--projection orthographic";
+    if (s.lighting.sunTime) return "--sun-time";
+    if (!(s.style == d.style)) return "styles and overlays";
+    return "";
+}
+
+}  // namespace
+
+bool isTiledTerrain(const scene::Scene& s) {
+    return lowerExtension(s.terrain.heightmap) == ".sierra";
+}
+
+int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
+    if (const std::string option = needsGrid(s); !option.empty())
+        throw Error(
+            msg(s.terrain.heightmap, " is a tiled terrain: ", option,
+                " needs a heightmap in memory (give the grid itself, not its .sierra file)"));
+    if (s.lighting.shadows || s.lighting.skyLight)
+        log::info("tiled terrain: no cast shadows or sky light (they need the grid in memory)");
+    const int width = s.output.width, height = s.output.height;
+    const int frames = s.path.frames;
+    const int first = s.path.range ? s.path.range->first : 0;
+    const int last = s.path.range ? s.path.range->last : frames - 1;
+    ensureWritableLocation(s.output.frame);
+    Stopwatch total;
+    auto context = gpu::EglContext::create({.width = width, .height = height});
+    log::info("OpenGL ", context.version(), " on ", context.renderer(), " (", context.platform(),
+              ")");
+    auto terrain = render::TiledTerrain::open(
+        {.path = s.terrain.heightmap, .memoryBudget = o.memoryBudget, .loaderThreads = o.loaders});
+    const render::SceneBounds bounds = terrain->bounds();
+    render::FrameTarget target = render::FrameTarget::create(
+        {.width = width, .height = height, .samples = s.output.msaa >= 2 ? s.output.msaa : 0});
+    render::TiledFrameOptions options;
+    options.tau = s.lod.tau;
+    options.cull = s.lod.cull;
+    const scene::Vec3 sun =
+        scene::directionFromAngles(s.lighting.sunAzimuth, s.lighting.sunAltitude);
+    options.sunDirection = {sun.x, sun.y, sun.z};
+    options.sky = {s.lighting.sky.r, s.lighting.sky.g, s.lighting.sky.b};
+    options.fogDensity = s.lighting.fog ? *s.lighting.fog : -1.0f;
+    options.frameSeconds = 1.0f / float(s.output.fps);
+    const bool still = first == last;
+    for (int k = first; k <= last; ++k) {
+        const render::Camera camera = facade::sceneCamera(s, bounds, k);
+        render::TiledFrameStats stats;
+        Stopwatch waited;
+        bool firstPass = true;
+        int64_t lastRead = -1;
+        for (;;) {
+            target.begin({options.sky, 1.0f});
+            stats = terrain->draw(camera, width, height, options);
+            // A still waits for what it asked for, while anything can still
+            // arrive; a sequence streams.
+            const bool stalled =
+                !firstPass && stats.uploadedTiles == 0 && stats.cache.tilesRead == lastRead;
+            lastRead = stats.cache.tilesRead;
+            if (!still || stats.coarseTiles == 0 || stalled ||
+                waited.ms() > o.tileWaitSeconds * 1000.0)
+                break;
+            firstPass = false;
+            terrain->waitForTiles();
+        }
+        const std::string path = sequenceFrame(s, k);
+        render::writePng(path, target.read());
+        log::info("frame ", k, ": ", stats.triangles, " triangles, refine + strip ",
+                  fixed(stats.refineMs), " ms, ", stats.coarseTiles, " tiles drawn coarse, ",
+                  stats.uploadedTiles, " uploaded; tiles ", stats.cache.residentTiles,
+                  " in memory (", fixed(double(stats.cache.residentBytes) / 1048576.0, 1),
+                  " MiB), ", stats.gpuTiles, " on the GPU; wrote ", path);
+    }
+    log::info("done in ", fixed(total.ms(), 1), " ms");
+    return 0;
+}
+
+}  // namespace sierra::apps

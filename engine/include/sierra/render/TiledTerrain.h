@@ -1,0 +1,90 @@
+#pragma once
+// A tiled terrain (.sierra, sbt/TileFile.h) drawn without the whole grid on
+// the GPU: tiles stream from disk into sbt::TileCache, are refined across
+// tile borders by sbt::TiledRefiner, and live on the GPU in a tile cache of
+// array textures, one per tile resolution.
+//
+// GPU data. A tile whose first d tile levels are read is a regular grid of
+// (2^c + 1)^2 heights, c = ceil(d / 2) (the vertices of an odd last level
+// that are missing are the means of their hypotenuse's ends, as the coarser
+// mesh draws them); class c's array texture holds such tiles, one a layer. A
+// page table (one texel a tile) gives each tile's class and layer. The mesh
+// streams as the refinement's (i, j) vertex pairs in a storage buffer: the
+// vertex shader reads its height from the tile holding it, the fragment
+// shader shades with the finest heights resident at the fragment. What the
+// refinement may use is what is on the GPU: a tile's usable levels are the
+// fewer of those read and those uploaded.
+//
+// Shading: a hypsometric ramp over the terrain's height range, a sun and an
+// ambient term, haze towards the sky colour; fragments over the padding are
+// dropped. Everything else of the in-memory renderer (surfaces, overlays,
+// relief lighting, drapes) needs the grid in memory.
+
+#include <sierra/gpu/Objects.h>
+#include <sierra/render/Camera.h>
+#include <sierra/sbt/TileCache.h>
+#include <sierra/sbt/TileFile.h>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace sierra::render {
+
+struct TiledTerrainDesc {
+    std::string path;                           // the .sierra file
+    uint64_t memoryBudget = uint64_t(1) << 30;  // bytes: the CPU and GPU tile caches together
+    int loaderThreads = 2;
+};
+
+struct TiledFrameOptions {
+    float tau = 1.0f;  // pixels
+    bool cull = true;
+    // Seconds of the camera's motion to prefetch ahead along (from the last frame's eye).
+    float prefetchSeconds = 1.0f;
+    float frameSeconds = 1.0f / 30.0f;  // the frame period the motion is measured over
+    glm::vec3 sunDirection = glm::normalize(glm::vec3(-0.45f, 0.75f, 0.35f));  // towards the sun
+    glm::vec3 sky{0.62f, 0.74f, 0.86f};                                        // linear 0..1
+    float fogDensity = -1.0f;  // per world unit; < 0 = from the terrain's size
+};
+
+struct TiledFrameStats {
+    double refineMs = 0.0;  // refinement + strip
+    double uploadMs = 0.0;  // tiles and the mesh to the GPU
+    int64_t triangles = 0;
+    int coarseTiles = 0;    // drawn from coarser levels this frame (not arrived yet)
+    int uploadedTiles = 0;  // to the GPU this frame
+    int gpuTiles = 0;       // held on the GPU
+    uint64_t gpuBytes = 0;  // the GPU tile cache's textures
+    sbt::TileCacheStats cache;
+};
+
+class TiledTerrain {
+  public:
+    // Opens the file and creates the GPU caches (needs a current GL context).
+    // The budget goes 3/4 to the CPU cache, 1/4 to the GPU textures. Throws
+    // sierra::Error for a file that cannot be read or a budget too small.
+    static std::unique_ptr<TiledTerrain> open(const TiledTerrainDesc& desc);
+    ~TiledTerrain();
+
+    const sbt::TileFileInfo& info() const;
+    SceneBounds bounds() const;    // the real samples' box, world units
+    glm::vec2 worldRange() const;  // lowest and highest world height of the tile corners
+
+    // Draws one frame into the bound framebuffer (the caller clears it to the
+    // sky): makes what arrived resident, refines, asks for what is missing
+    // and what lies ahead, uploads, draws. Never waits for a read.
+    TiledFrameStats draw(const Camera& camera, int width, int height,
+                         const TiledFrameOptions& options);
+    // Blocks until the loaders have read what the last frame asked for.
+    void waitForTiles();
+
+  private:
+    struct State;
+    explicit TiledTerrain(std::unique_ptr<State> state);
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace sierra::render

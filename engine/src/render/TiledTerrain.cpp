@@ -1,0 +1,386 @@
+#include <sierra/render/TiledTerrain.h>
+
+#include <sierra/core/Error.h>
+#include <sierra/core/Log.h>
+#include <sierra/core/Timer.h>
+#include <sierra/gpu/GlStateScope.h>
+#include <sierra/gpu/Program.h>
+#include <sierra/sbt/TiledRefiner.h>
+#include <sierra/sbt/VertexErrors.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+
+namespace sierra::render {
+namespace {
+
+// Tile resolutions the shaders take (tiled_common.glsl's uClass).
+constexpr int kMaxClasses = 9;
+// Tiles uploaded a frame at most, so one frame's uploads stay short.
+constexpr int kUploadsPerFrame = 96;
+
+// The refinement's view of a cache: a tile's usable levels are those read
+// and uploaded both.
+class GpuResident : public sbt::TiledVertices {
+  public:
+    GpuResident(const sbt::TileCache& cache, const std::vector<int>& gpuLevels)
+        : TiledVertices(cache.desc()), cache_(cache), gpu_(gpuLevels) {}
+    int residentLevels(int tx, int ty) const override {
+        const int cpu = cache_.residentLevels(tx, ty);
+        if (!cache_.file().stored(tx, ty)) return cpu;  // the padding: never refined
+        return std::min(cpu, gpu_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)]);
+    }
+    sbt::VertexRecord vertex(uint32_t i, uint32_t j) const override { return cache_.vertex(i, j); }
+
+  private:
+    const sbt::TileCache& cache_;
+    const std::vector<int>& gpu_;
+};
+
+struct GpuClass {
+    gpu::Texture texture;
+    int side = 0;  // 2^c + 1
+    int layers = 0;
+    std::vector<int> freeLayers;
+    std::vector<int> owner;  // tile per layer, -1 = free
+};
+
+}  // namespace
+
+struct TiledTerrain::State {
+    std::unique_ptr<sbt::TileFile> file;
+    std::unique_ptr<sbt::TileCache> cache;
+    sbt::TileAddressing address{1};
+    std::vector<int> gpuLevels;  // per tile: tile levels uploaded
+    std::vector<int> gpuClass, gpuLayer;
+    std::vector<int64_t> gpuUsed;  // frame a tile was last drawn from
+    std::unique_ptr<GpuResident> resident;
+    std::unique_ptr<sbt::TiledRefiner> refiner;
+    sbt::TiledMesh mesh;
+    std::vector<GpuClass> classes;
+    gpu::Texture pages;
+    std::vector<int32_t> pageData;
+    bool pagesDirty = true;
+    gpu::Program program;
+    gpu::Buffer uniforms;
+    gpu::VertexArray vao;
+    gpu::Buffer vertices, indices;
+    std::vector<uint32_t> indexData;
+    uint64_t gpuBytes = 0;
+    int64_t frame = 0;
+    glm::vec3 lastEye{0.0f};
+    bool haveLastEye = false;
+    glm::vec2 range{0.0f, 1.0f};
+    std::vector<float> grid;  // scratch of an upload
+
+    int tiles() const { return file->info().tilesPerSide(); }
+    void upload(int tile, const sbt::PackedTile& data, int& uploaded);
+    void uploadArrivals(int& uploaded);
+};
+
+std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
+    auto s = std::make_unique<State>();
+    s->file = std::make_unique<sbt::TileFile>(desc.path);
+    const sbt::TileFileInfo& info = s->file->info();
+    SIERRA_CHECK(info.k <= kMaxClasses - 1, desc.path, ": tiles of 2^", info.k,
+                 " cells; the GPU tile cache draws tiles of at most 2^", kMaxClasses - 1,
+                 " (rebuild with sierra-tile build --tile-levels ", kMaxClasses - 1, ")");
+    const uint64_t cpuBudget = desc.memoryBudget / 4 * 3, gpuBudget = desc.memoryBudget / 4;
+    s->cache = std::make_unique<sbt::TileCache>(
+        *s->file,
+        sbt::TileCacheOptions{.budgetBytes = cpuBudget, .loaderThreads = desc.loaderThreads});
+    s->address = sbt::TileAddressing(info.k);
+    const int P = info.tilesPerSide(), tiles = P * P;
+    s->gpuLevels.assign(size_t(tiles), 0);
+    s->gpuClass.assign(size_t(tiles), -1);
+    s->gpuLayer.assign(size_t(tiles), -1);
+    s->gpuUsed.assign(size_t(tiles), 0);
+    s->resident = std::make_unique<GpuResident>(*s->cache, s->gpuLevels);
+    s->refiner = std::make_unique<sbt::TiledRefiner>(*s->resident);
+
+    // The GPU budget over the resolutions, coarsest first: each takes a layer
+    // for every stored tile (at most the driver's limit) or an equal share of
+    // what is left for it and the finer ones, so the cheap coarse classes are
+    // whole and the finest gets what remains.
+    GLint maxLayers = 256;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    s->classes.resize(size_t(kMaxClasses));
+    uint64_t left = gpuBudget;
+    for (int c = 0; c <= info.k; ++c) {
+        GpuClass& g = s->classes[size_t(c)];
+        g.side = (1 << c) + 1;
+        const uint64_t layerBytes = uint64_t(g.side) * uint64_t(g.side) * 4;
+        g.layers = int(std::min<uint64_t>(
+            {left / uint64_t(info.k + 1 - c) / layerBytes, uint64_t(tiles), uint64_t(maxLayers)}));
+        SIERRA_CHECK(g.layers >= 1, "a memory budget of ", desc.memoryBudget >> 20,
+                     " MiB leaves no GPU layer for tiles of ", g.side, "^2 heights");
+        left -= layerBytes * uint64_t(g.layers);
+        g.texture = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY,
+                                          .format = GL_R32F,
+                                          .width = g.side,
+                                          .height = g.side,
+                                          .layers = g.layers,
+                                          .filter = GL_LINEAR});
+        g.freeLayers.resize(size_t(g.layers));
+        std::iota(g.freeLayers.rbegin(), g.freeLayers.rend(), 0);
+        g.owner.assign(size_t(g.layers), -1);
+        s->gpuBytes += layerBytes * uint64_t(g.layers);
+    }
+    for (int c = info.k + 1; c < kMaxClasses; ++c)  // unused units still need a texture
+        s->classes[size_t(c)].texture = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY,
+                                                              .format = GL_R32F,
+                                                              .width = 1,
+                                                              .height = 1,
+                                                              .layers = 1});
+    s->pages =
+        gpu::Texture::create({.format = GL_RG32I, .width = P, .height = P, .filter = GL_NEAREST});
+    s->pageData.assign(size_t(tiles) * 2, -1);
+    s->program =
+        gpu::Program::create({.vertex = "tiled_terrain.vert", .fragment = "tiled_terrain.frag"});
+    s->vao = gpu::VertexArray::create();
+
+    float lo = INFINITY, hi = -INFINITY;
+    const int T = 1 << info.k;
+    for (int cj = 0; cj <= P; ++cj)
+        for (int ci = 0; ci <= P; ++ci) {
+            if (int64_t(ci) * T > info.width - 1 + T || int64_t(cj) * T > info.height - 1 + T)
+                continue;
+            const float h =
+                s->file->corner(int64_t(ci) * T, int64_t(cj) * T).height * info.verticalScale;
+            lo = std::min(lo, h);
+            hi = std::max(hi, h);
+        }
+    s->range = {lo, std::max(hi, lo + 1e-3f)};
+    const float block[12] = {0,
+                             0,
+                             0,
+                             0,
+                             info.spacingX,
+                             info.spacingZ,
+                             float(double(info.width - 1) * info.spacingX),
+                             float(double(info.height - 1) * info.spacingZ),
+                             s->range.x,
+                             s->range.y,
+                             0,
+                             0};
+    int32_t ints[4] = {info.k, P, T, 0};
+    std::vector<uint8_t> bytes(sizeof(block));
+    std::memcpy(bytes.data(), block, sizeof(block));
+    std::memcpy(bytes.data(), ints, sizeof(ints));
+    s->uniforms = gpu::Buffer::create({.size = bytes.size(), .data = bytes.data()});
+    log::info("tiled terrain ", desc.path, ": ", info.width, "x", info.height, " samples, ", P,
+              "^2 tiles of ", info.tileSide(), "^2; tile caches ", cpuBudget >> 20, " MiB CPU, ",
+              s->gpuBytes >> 20, " MiB GPU");
+    return std::unique_ptr<TiledTerrain>(new TiledTerrain(std::move(s)));
+}
+
+TiledTerrain::TiledTerrain(std::unique_ptr<State> state) : state_(std::move(state)) {}
+TiledTerrain::~TiledTerrain() = default;
+
+const sbt::TileFileInfo& TiledTerrain::info() const {
+    return state_->file->info();
+}
+
+SceneBounds TiledTerrain::bounds() const {
+    const sbt::TileFileInfo& info = state_->file->info();
+    SceneBounds b;
+    b.min = {0.0f, state_->range.x, 0.0f};
+    b.max = {float(double(info.width - 1) * info.spacingX), state_->range.y,
+             float(double(info.height - 1) * info.spacingZ)};
+    return b;
+}
+
+glm::vec2 TiledTerrain::worldRange() const {
+    return state_->range;
+}
+
+// Tile `tile`'s first data.levels levels as its resolution class's grid: the
+// resident vertices' world heights, an odd last level's missing vertices the
+// means of their hypotenuse ends.
+void TiledTerrain::State::upload(int tile, const sbt::PackedTile& data, int& uploaded) {
+    const sbt::TileFileInfo& info = file->info();
+    const int k = info.k, T = 1 << k, P = tiles();
+    const int c = std::min(k, (data.levels + 1) / 2);
+    GpuClass& g = classes[size_t(c)];
+    if (g.freeLayers.empty()) {
+        // The class is full: the layer drawn from least recently goes, unless
+        // every layer was drawn from this frame (then the tile waits).
+        int victim = 0;
+        for (int l = 1; l < g.layers; ++l)
+            if (gpuUsed[size_t(g.owner[size_t(l)])] < gpuUsed[size_t(g.owner[size_t(victim)])])
+                victim = l;
+        const int gone = g.owner[size_t(victim)];
+        if (gpuUsed[size_t(gone)] >= frame) return;
+        gpuClass[size_t(gone)] = gpuLayer[size_t(gone)] = -1;
+        gpuLevels[size_t(gone)] = 0;
+        pageData[size_t(gone) * 2] = pageData[size_t(gone) * 2 + 1] = -1;
+        g.owner[size_t(victim)] = -1;
+        g.freeLayers.push_back(victim);
+    }
+    if (gpuClass[size_t(tile)] >= 0) {  // its coarser layer goes back
+        GpuClass& old = classes[size_t(gpuClass[size_t(tile)])];
+        old.freeLayers.push_back(gpuLayer[size_t(tile)]);
+        old.owner[size_t(gpuLayer[size_t(tile)])] = -1;
+    }
+    const int layer = g.freeLayers.back();
+    g.freeLayers.pop_back();
+    const int side = g.side, step = T >> c, tx = tile % P, ty = tile / P;
+    grid.assign(size_t(side) * size_t(side), 0.0f);
+    std::vector<uint8_t> have(grid.size(), 0);
+    const float vs = info.verticalScale;
+    for (int b = 0; b < side; ++b)
+        for (int a = 0; a < side; ++a) {
+            const int x = a * step, y = b * step;
+            float h;
+            if ((x == 0 || x == T) && (y == 0 || y == T)) {
+                h = file->corner(int64_t(tx) * T + x, int64_t(ty) * T + y).height;
+            } else if (address.level(x, y) < data.levels) {
+                h = data.records[address.index(x, y)].height;
+            } else {
+                continue;
+            }
+            grid[size_t(b) * size_t(side) + size_t(a)] = h * vs;
+            have[size_t(b) * size_t(side) + size_t(a)] = 1;
+        }
+    // The missing ones (an odd last level's): the mean of their hypotenuse's ends.
+    for (int b = 0; b < side; ++b)
+        for (int a = 0; a < side; ++a) {
+            const size_t m = size_t(b) * size_t(side) + size_t(a);
+            if (have[m]) continue;
+            int ai, aj, bi, bj;
+            sbt::hypotenuseEndpoints(a, b, c, &ai, &aj, &bi, &bj);
+            grid[m] = 0.5f * (grid[size_t(aj) * size_t(side) + size_t(ai)] +
+                              grid[size_t(bj) * size_t(side) + size_t(bi)]);
+        }
+    g.texture.uploadLayer(layer, GL_RED, GL_FLOAT, grid.data());
+    g.owner[size_t(layer)] = tile;
+    gpuClass[size_t(tile)] = c;
+    gpuLayer[size_t(tile)] = layer;
+    gpuLevels[size_t(tile)] = std::min(data.levels, 2 * c);
+    gpuUsed[size_t(tile)] = frame;
+    pageData[size_t(tile) * 2] = c;
+    pageData[size_t(tile) * 2 + 1] = layer;
+    pagesDirty = true;
+    ++uploaded;
+}
+
+void TiledTerrain::State::uploadArrivals(int& uploaded) {
+    const int P = tiles();
+    // Nearest first would need the distances; the refinement's order is
+    // good enough: tiles it reached, deepest want first.
+    std::vector<std::pair<int, int>> todo;  // (-levels, tile)
+    for (int t = 0; t < P * P; ++t) {
+        const int cpu = cache->residentLevels(t % P, t / P);
+        if (!file->stored(t % P, t / P) || cpu <= gpuLevels[size_t(t)]) continue;
+        todo.push_back({-cpu, t});
+    }
+    std::sort(todo.begin(), todo.end());
+    for (const auto& [negLevels, t] : todo) {
+        if (uploaded >= kUploadsPerFrame) break;
+        (void)negLevels;
+        if (const sbt::PackedTile* data = cache->packed(t % P, t / P)) upload(t, *data, uploaded);
+    }
+}
+
+TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
+                                   const TiledFrameOptions& options) {
+    State& s = *state_;
+    TiledFrameStats stats;
+    ++s.frame;
+    Stopwatch upload;
+    s.cache->beginFrame();
+    int uploaded = 0;
+    s.uploadArrivals(uploaded);
+    stats.uploadMs = upload.ms();
+
+    const float aspect = float(width) / float(height);
+    sbt::ViewParams view;
+    view.eye = {camera.position.x, camera.position.y, camera.position.z};
+    view.lambda = camera.lambda(height);
+    view.tau = options.tau;
+    view.cull = options.cull;
+    const auto planes = camera.frustumPlanes(aspect);
+    for (size_t p = 0; p < 6; ++p)
+        view.planes[p] = {planes[p].x, planes[p].y, planes[p].z, planes[p].w};
+    Stopwatch refine;
+    s.refiner->refineView(view, s.mesh);
+    stats.refineMs = refine.ms();
+    stats.triangles = s.mesh.triangleCount;
+    stats.coarseTiles = s.mesh.coarseTiles;
+    const std::vector<uint8_t>& reached = s.refiner->reachedLevels();
+    for (size_t t = 0; t < reached.size(); ++t)
+        if (reached[t] > 0) s.gpuUsed[t] = s.frame;
+    // Prefetch along the motion since the last frame.
+    glm::vec3 ahead = camera.position;
+    if (s.haveLastEye && options.frameSeconds > 0.0f)
+        ahead += (camera.position - s.lastEye) * (options.prefetchSeconds / options.frameSeconds);
+    s.lastEye = camera.position;
+    s.haveLastEye = true;
+    s.cache->wantForView(*s.refiner, view.eye, {ahead.x, ahead.y, ahead.z});
+
+    // The mesh: (i, j) pairs and their indices with restarts.
+    Stopwatch meshUpload;
+    const std::vector<uint64_t>& strip = s.mesh.strip;
+    s.indexData.resize(strip.size());
+    for (size_t v = 0; v < strip.size(); ++v)
+        s.indexData[v] = strip[v] == sbt::kTiledRestart ? 0xFFFFFFFFu : uint32_t(v);
+    if (s.pagesDirty) {
+        glTextureSubImage2D(s.pages.id(), 0, 0, 0, s.tiles(), s.tiles(), GL_RG_INTEGER, GL_INT,
+                            s.pageData.data());
+        s.pagesDirty = false;
+    }
+    if (!strip.empty()) {
+        s.vertices = gpu::Buffer::create({.size = strip.size() * 8, .data = strip.data()});
+        s.indices =
+            gpu::Buffer::create({.size = s.indexData.size() * 4, .data = s.indexData.data()});
+    }
+    stats.uploadMs += meshUpload.ms();
+    stats.uploadedTiles = uploaded;
+
+    if (!strip.empty()) {
+        gpu::GlStateScope scope;
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+        glUseProgram(s.program.id());
+        const glm::mat4 vp = camera.viewProjection(aspect);
+        glUniformMatrix4fv(s.program.uniform("uViewProj"), 1, GL_FALSE, glm::value_ptr(vp));
+        glUniform3fv(s.program.uniform("uEye"), 1, glm::value_ptr(camera.position));
+        glUniform3fv(s.program.uniform("uSun"), 1,
+                     glm::value_ptr(glm::normalize(options.sunDirection)));
+        glUniform3fv(s.program.uniform("uSky"), 1, glm::value_ptr(options.sky));
+        const SceneBounds b = bounds();
+        // Automatic haze: a third of the light gone at the terrain's centre.
+        const float fog = options.fogDensity >= 0.0f
+                              ? options.fogDensity
+                              : 0.4f / std::max(glm::distance(camera.position, b.centre()), 1.0f);
+        glUniform1f(s.program.uniform("uFog"), fog);
+        glUniform1f(s.program.uniform("uAmbient"), 0.32f);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 2, s.uniforms.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s.vertices.id());
+        glBindTextureUnit(3, s.pages.id());
+        for (int c = 0; c < kMaxClasses; ++c)
+            glBindTextureUnit(GLuint(4 + c), s.classes[size_t(c)].texture.id());
+        glBindVertexArray(s.vao.id());
+        glVertexArrayElementBuffer(s.vao.id(), s.indices.id());
+        glDrawElements(GL_TRIANGLE_STRIP, GLsizei(s.indexData.size()), GL_UNSIGNED_INT, nullptr);
+        glBindVertexArray(0);
+        glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+    }
+    stats.cache = s.cache->stats();
+    stats.gpuBytes = s.gpuBytes;
+    stats.gpuTiles =
+        int(std::count_if(s.gpuClass.begin(), s.gpuClass.end(), [](int c) { return c >= 0; }));
+    return stats;
+}
+
+void TiledTerrain::waitForTiles() {
+    state_->cache->waitIdle();
+}
+
+}  // namespace sierra::render

@@ -1,0 +1,91 @@
+// Shared by the tiled terrain's stages (engine: render/TiledTerrain.h): the
+// GPU tile cache, one array texture a tile resolution, and the page table.
+//
+// Tile (tx, ty) covers samples [tx T, tx T + T]^2, T = 2^k. Page texel
+// (tx, ty): x = resolution class c (its layer holds (2^c + 1)^2 world
+// heights, sample (a, b) at tile-local (a, b) * T / 2^c), y = layer; x < 0:
+// not on the GPU. At most 9 classes (c = 0..8, k <= 8).
+layout(binding = 3) uniform isampler2D uPages;
+layout(binding = 4) uniform sampler2DArray uClass[9];
+
+layout(std140, binding = 2) uniform Tiled {
+    ivec4 uTileInfo;     // x: k, y: tiles per side, z: T = 2^k
+    vec4 uTileSpacing;   // xy: world distance between samples along x and z; zw: world x, z of the last real sample
+    vec4 uTileRange;     // x, y: lowest and highest world height
+};
+
+// The height in class c's layer at grid position g (texels, may be fractional),
+// bilinear.
+float classHeight(int c, float layer, vec2 g) {
+    float size = float((1 << c) + 1);
+    vec3 uvw = vec3((g + 0.5) / size, layer);
+    switch (c) {
+    case 0: return textureLod(uClass[0], uvw, 0.0).r;
+    case 1: return textureLod(uClass[1], uvw, 0.0).r;
+    case 2: return textureLod(uClass[2], uvw, 0.0).r;
+    case 3: return textureLod(uClass[3], uvw, 0.0).r;
+    case 4: return textureLod(uClass[4], uvw, 0.0).r;
+    case 5: return textureLod(uClass[5], uvw, 0.0).r;
+    case 6: return textureLod(uClass[6], uvw, 0.0).r;
+    case 7: return textureLod(uClass[7], uvw, 0.0).r;
+    default: return textureLod(uClass[8], uvw, 0.0).r;
+    }
+}
+
+// The tile holding sample (i, j) whose page is on the GPU (a border sample
+// lies in up to four), or ivec2(-1).
+ivec2 residentTile(ivec2 ij) {
+    int k = uTileInfo.x, P = uTileInfo.y, T = uTileInfo.z;
+    ivec2 t = min(ij >> k, ivec2(P - 1));
+    for (int dy = 0; dy <= 1; ++dy)
+        for (int dx = 0; dx <= 1; ++dx) {
+            ivec2 u = t - ivec2(dx, dy);
+            if (u.x < 0 || u.y < 0) continue;
+            if ((dx == 1 && ij.x != t.x * T) || (dy == 1 && ij.y != t.y * T)) continue;
+            if (texelFetch(uPages, u, 0).x >= 0) return u;
+        }
+    return ivec2(-1);
+}
+
+// World height of sample (i, j) from the tile holding it.
+float tiledSampleHeight(ivec2 ij) {
+    ivec2 t = residentTile(ij);
+    if (t.x < 0) return uTileRange.x;
+    ivec2 page = texelFetch(uPages, t, 0).xy;
+    int step = uTileInfo.z >> page.x;
+    return classHeight(page.x, float(page.y), vec2(ij - t * uTileInfo.z) / float(step));
+}
+
+// World height and normal at a ground position from the finest heights on
+// the GPU there.
+struct TiledGround {
+    float height;
+    vec3 normal;
+};
+
+TiledGround tiledGroundAt(vec2 xz) {
+    int k = uTileInfo.x, P = uTileInfo.y, T = uTileInfo.z;
+    vec2 s = xz / uTileSpacing.xy;  // samples
+    ivec2 t = clamp(ivec2(floor(s)) >> k, ivec2(0), ivec2(P - 1));
+    ivec2 page = texelFetch(uPages, t, 0).xy;
+    TiledGround g;
+    if (page.x < 0) {
+        g.height = uTileRange.x;
+        g.normal = vec3(0.0, 1.0, 0.0);
+        return g;
+    }
+    float step = float(T >> page.x);
+    float last = float(1 << page.x);
+    vec2 p = clamp((s - vec2(t * T)) / step, vec2(0.0), vec2(last));
+    float layer = float(page.y);
+    g.height = classHeight(page.x, layer, p);
+    // Central differences one texel apart, inside the tile.
+    vec2 a = clamp(p - vec2(1.0, 0.0), vec2(0.0), vec2(last)), b = clamp(p + vec2(1.0, 0.0), vec2(0.0), vec2(last));
+    vec2 c = clamp(p - vec2(0.0, 1.0), vec2(0.0), vec2(last)), d = clamp(p + vec2(0.0, 1.0), vec2(0.0), vec2(last));
+    float dhdx = (classHeight(page.x, layer, b) - classHeight(page.x, layer, a)) /
+                 max((b.x - a.x) * step * uTileSpacing.x, 1e-6);
+    float dhdz = (classHeight(page.x, layer, d) - classHeight(page.x, layer, c)) /
+                 max((d.y - c.y) * step * uTileSpacing.y, 1e-6);
+    g.normal = normalize(vec3(-dhdx, 1.0, -dhdz));
+    return g;
+}

@@ -1,0 +1,19 @@
+#version 450 core
+// The tiled terrain's mesh (render/TiledTerrain.h): each index is a position
+// in the frame's vertex buffer of (i, j) sample pairs, strips restarted at
+// 0xFFFFFFFF; the height comes from the tile holding the sample.
+#include "tiled_common.glsl"
+
+layout(std430, binding = 0) readonly buffer Vertices {
+    uvec2 vertices[];
+};
+
+uniform mat4 uViewProj;
+
+out vec3 vWorld;
+
+void main() {
+    ivec2 ij = ivec2(vertices[gl_VertexID]);
+    vWorld = vec3(float(ij.x) * uTileSpacing.x, tiledSampleHeight(ij), float(ij.y) * uTileSpacing.y);
+    gl_Position = uViewProj * vec4(vWorld, 1.0);
+}

@@ -1,0 +1,127 @@
+// The tiled terrain drawn from a tile file: the first frame comes from the
+// coarse section alone, later frames from what has arrived, and once every
+// tile is on the GPU the mesh is the in-memory refinement's; a GPU cache too
+// small for the view still draws every frame.
+#include "GlTest.h"
+
+#include <sierra/render/FrameTarget.h>
+#include <sierra/render/TiledTerrain.h>
+#include <sierra/sbt/Refiner.h>
+#include <sierra/sbt/TileFile.h>
+#include <sierra/sbt/VertexErrors.h>
+#include <sierra/terrain/DiamondSquare.h>
+#include <sierra/terrain/GridReader.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+namespace sierra::test {
+namespace {
+
+class TiledTerrainTest : public GlTest {};
+
+terrain::Heightfield rough(int side) {
+    terrain::Heightfield f =
+        terrain::generateDiamondSquare({.size = side, .seed = 4, .roughness = 0.8f});
+    f.setVerticalScale(0.25f * float(side));
+    return f;
+}
+
+std::string build(const terrain::Heightfield& f, int k, const std::string& name) {
+    const std::string path = testing::TempDir() + "/" + name + ".sierra";
+    sbt::buildTileFile(
+        *terrain::memoryGridReader(f), path,
+        {.k = k, .heights = sbt::TileHeights::Float32, .verticalScale = f.verticalScale()});
+    return path;
+}
+
+// Pixels that are not the sky colour (RGBA8 read-back).
+std::vector<uint8_t> terrainMask(const gpu::Image& image) {
+    std::vector<uint8_t> mask(size_t(image.width) * size_t(image.height));
+    const uint8_t* p = image.rgba.data();
+    for (size_t i = 0; i < mask.size(); ++i) {
+        const uint8_t* q = p + i * 4;
+        mask[i] = std::abs(q[0] - 158) + std::abs(q[1] - 189) + std::abs(q[2] - 219) > 6;
+    }
+    return mask;
+}
+
+TEST_F(TiledTerrainTest, ConvergesToTheInMemoryRefinement) {
+    const int side = 257;
+    const terrain::Heightfield field = rough(side);
+    const std::string path = build(field, 4, "gl_tiled");
+    auto terrain = render::TiledTerrain::open({.path = path, .memoryBudget = 64u << 20});
+    render::Camera camera;
+    camera.position = {-60.0f, 140.0f, -40.0f};
+    camera.target = {140.0f, 20.0f, 150.0f};
+    camera.fovYDegrees = 50.0f;
+    camera.nearPlane = 1.0f;
+    camera.farPlane = 3000.0f;
+    const int w = 640, h = 360;
+    render::FrameTarget target = render::FrameTarget::create({.width = w, .height = h});
+    const render::TiledFrameOptions options;
+    target.begin({options.sky, 1.0f});
+    const render::TiledFrameStats first = terrain->draw(camera, w, h, options);
+    const std::vector<uint8_t> coarse = terrainMask(target.read());
+    EXPECT_GT(first.coarseTiles, 0) << "nothing has arrived for the first frame";
+    EXPECT_GT(first.triangles, 0) << "the coarse section is drawn at once";
+    render::TiledFrameStats stats = first;
+    for (int pass = 0; pass < 60 && (pass == 0 || stats.coarseTiles > 0); ++pass) {
+        terrain->waitForTiles();
+        target.begin({options.sky, 1.0f});
+        stats = terrain->draw(camera, w, h, options);
+    }
+    const std::vector<uint8_t> fine = terrainMask(target.read());
+    EXPECT_EQ(stats.coarseTiles, 0);
+    // Every tile on the GPU: the refinement of the grid in memory.
+    const sbt::VertexErrors errors = sbt::computeVertexErrors(field, 1);
+    sbt::Refiner refiner(field, errors, {.threads = 1});
+    sbt::ViewParams view;
+    view.eye = {camera.position.x, camera.position.y, camera.position.z};
+    view.lambda = camera.lambda(h);
+    view.tau = options.tau;
+    const auto planes = camera.frustumPlanes(float(w) / float(h));
+    for (size_t p = 0; p < 6; ++p)
+        view.planes[p] = {planes[p].x, planes[p].y, planes[p].z, planes[p].w};
+    sbt::StripMesh reference;
+    refiner.refineViewReference(view, reference);
+    EXPECT_EQ(stats.triangles, reference.triangleCount);
+    // The same terrain in both frames: its silhouette moves little.
+    size_t terrainPixels = 0, differ = 0;
+    for (size_t i = 0; i < fine.size(); ++i) {
+        terrainPixels += fine[i];
+        differ += fine[i] != coarse[i];
+    }
+    EXPECT_GT(terrainPixels, fine.size() / 5) << "the terrain fills the frame";
+    EXPECT_LT(differ, fine.size() / 10);
+    std::remove(path.c_str());
+}
+
+TEST_F(TiledTerrainTest, ASmallGpuCacheStillDrawsEveryFrame) {
+    const terrain::Heightfield field = rough(1025);
+    const std::string path = build(field, 5, "gl_small");
+    // 24 MiB: 6 MiB of GPU layers for a view that wants more.
+    auto terrain = render::TiledTerrain::open({.path = path, .memoryBudget = 24u << 20});
+    const int w = 320, h = 180;
+    render::FrameTarget target = render::FrameTarget::create({.width = w, .height = h});
+    const render::TiledFrameOptions options;
+    for (int f = 0; f < 16; ++f) {
+        render::Camera camera;
+        const float x = 40.0f * float(f);
+        camera.position = {x, 300.0f, x};
+        camera.target = {x + 300.0f, 100.0f, x + 320.0f};
+        camera.farPlane = 5000.0f;
+        target.begin({options.sky, 1.0f});
+        const render::TiledFrameStats stats = terrain->draw(camera, w, h, options);
+        EXPECT_GT(stats.triangles, 0) << "frame " << f;
+        EXPECT_LE(stats.gpuBytes, uint64_t(6) << 20);
+        EXPECT_LE(stats.cache.peakBytes, uint64_t(18) << 20);
+        terrain->waitForTiles();
+    }
+    std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace sierra::test
