@@ -11,12 +11,14 @@
 - sierra-render draws the mosaic from its tile file: a PNG of the frame once
   every tile it wanted has arrived; options that need the grid in memory are
   refused with one message.
+- sierra-gen map of a float tile file is the map of the grid it was built from,
+  byte for byte (the overview at full resolution).
 - Bad input: a missing file, a truncated tile file, an unknown option, each one
   message and a non-zero exit, and no output file left behind.
 Exit 77 (CTest: skipped) with a note when NumPy is
 missing: apt-get install python3-numpy.
 
-Usage: tile_inputs.py SIERRA_TILE SIERRA_BENCH SIERRA_RENDER WORK_DIR
+Usage: tile_inputs.py SIERRA_TILE SIERRA_BENCH SIERRA_RENDER SIERRA_GEN WORK_DIR
 """
 
 import json
@@ -64,7 +66,7 @@ def info(tile, path):
 
 
 def main():
-    tile, bench, render, work = sys.argv[1:5]
+    tile, bench, render, gen, work = sys.argv[1:6]
     os.makedirs(work, exist_ok=True)
 
     # Four SRTM3 tiles at 46-48 N, 7-9 E; each tile's value encodes its position.
@@ -128,6 +130,14 @@ def main():
     per_sample = os.path.getsize(wide) / (700 * 300)
     assert per_sample < 7.0, per_sample  # the partly padded edge tiles are stored whole
     print(f"npy: ok, {per_sample:.2f} bytes a sample")
+
+    # The same map from the grid and from its tile file.
+    maps = [os.path.join(work, name) for name in ("wide_npy.png", "wide_tiled.png")]
+    run(gen, "map", "--heightmap", npy, "--out", maps[0])
+    run(gen, "map", "--heightmap", wide, "--out", maps[1])
+    with open(maps[0], "rb") as f, open(maps[1], "rb") as g:
+        assert f.read() == g.read(), "the tiled terrain's map differs from the grid's"
+    print("map: ok")
 
     # Bad input: one message, a non-zero exit, no output.
     missing = os.path.join(work, "missing.sierra")

@@ -335,3 +335,30 @@ TEST(TileFile, ADamagedFileIsRefusedOrReadUnchanged) {
 
 }  // namespace
 }  // namespace sierra::test
+
+namespace sierra::test {
+namespace {
+
+TEST(TileFile, TheOverviewIsEveryStrideThSampleOfTheWorldHeights) {
+    const terrain::Heightfield field = roughField(200, 150, 12);  // a 257^2 grid, padded
+    const std::string path = buildFile(field, 4, sbt::TileHeights::Float32, "overview");
+    const sbt::TileFile file(path);
+    for (int maxSide : {300, 120, 60, 13}) {
+        int stride = 0;
+        const terrain::Heightfield o = sbt::readOverview(file, maxSide, 2, &stride);
+        SCOPED_TRACE(testing::Message() << "max side " << maxSide << ", stride " << stride);
+        EXPECT_LE(std::max(o.width(), o.height()), maxSide);
+        EXPECT_EQ(o.width(), 199 / stride + 1);
+        EXPECT_EQ(o.height(), 149 / stride + 1);
+        EXPECT_FLOAT_EQ(o.spacingX(), field.spacingX() * float(stride));
+        for (int j = 0; j < o.height(); ++j)
+            for (int i = 0; i < o.width(); ++i)
+                ASSERT_EQ(o.at(i, j), field.at(i * stride, j * stride) * field.verticalScale())
+                    << i << ", " << j;
+    }
+    EXPECT_THROW(sbt::readOverview(file, 8), Error) << "the 17^2 tile corners do not fit in 8";
+    std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace sierra::test

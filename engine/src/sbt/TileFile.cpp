@@ -3,6 +3,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
+#include <sierra/core/Parallel.h>
 #include <sierra/sbt/VertexErrors.h>
 
 #include <algorithm>
@@ -352,6 +353,65 @@ void TileFile::readPacked(int tx, int ty, int chunks, PackedTile& out) const {
             out.records.push_back({grid.height[m], grid.error[m], grid.radius[m]});
         });
     out.mask = std::move(grid.mask);
+}
+
+terrain::Heightfield readOverview(const TileFile& file, int maxSide, int threads, int* strideOut) {
+    const TileFileInfo& info = file.info();
+    const int k = info.k, T = 1 << k, P = info.tilesPerSide();
+    int c = k;
+    auto sideAt = [&](int cls) {
+        const int stride = T >> cls;
+        return std::max((info.width - 1) / stride + 1, (info.height - 1) / stride + 1);
+    };
+    while (c > 0 && sideAt(c) > maxSide) --c;
+    SIERRA_CHECK(sideAt(c) <= maxSide, file.path(), ": even its tile corners (", sideAt(0), "x",
+                 sideAt(0), ") exceed the ", maxSide, "-sample side asked for");
+    const int stride = T >> c;
+    const int64_t w = (info.width - 1) / stride + 1, h = (info.height - 1) / stride + 1;
+    terrain::Heightfield out{static_cast<int>(w), static_cast<int>(h)};
+    out.setSpacing(info.spacingX * float(stride), info.spacingZ * float(stride));
+    out.setMetres(info.metres);
+    out.setGeoCentre(info.geoCentre);
+    if (info.georeference) {
+        // Sample centres stay where they were: X = g0 + (i + 0.5) g1 + (j + 0.5) g2.
+        terrain::Heightfield::Georeference ref = *info.georeference;
+        auto& g = ref.geoTransform;
+        const double half = 0.5 * (1.0 - double(stride));
+        g[0] += half * (g[1] + g[2]);
+        g[3] += half * (g[4] + g[5]);
+        for (int e : {1, 2, 4, 5}) g[size_t(e)] *= double(stride);
+        out.setGeoreference(ref);
+    }
+    const int chunks = file.chunksForLevels(2 * c);
+    const TileAddressing address(k);
+    const float vs = info.verticalScale;
+    const int per = T / stride;  // overview samples a tile, per side
+    parallelFor(
+        0, int64_t(P) * P,
+        [&](int64_t t) {
+            const int tx = int(t % P), ty = int(t / P);
+            if (!file.stored(tx, ty)) return;
+            PackedTile tile;
+            if (chunks > 0) file.readPacked(tx, ty, chunks, tile);
+            // A border sample is written by one tile: the last row and column
+            // belong to the next tile when that one is stored.
+            const int aEnd = tx + 1 < P && file.stored(tx + 1, ty) ? per - 1 : per;
+            const int bEnd = ty + 1 < P && file.stored(tx, ty + 1) ? per - 1 : per;
+            for (int b = 0; b <= bEnd; ++b)
+                for (int a = 0; a <= aEnd; ++a) {
+                    const int64_t oi = int64_t(tx) * per + a, oj = int64_t(ty) * per + b;
+                    if (oi >= w || oj >= h) continue;
+                    const int x = a * stride, y = b * stride;
+                    const bool corner = (x == 0 || x == T) && (y == 0 || y == T);
+                    const float height =
+                        corner ? file.corner(int64_t(tx) * T + x, int64_t(ty) * T + y).height
+                               : tile.records[address.index(x, y)].height;
+                    out.at(int(oi), int(oj)) = height * vs;
+                }
+        },
+        threads);
+    if (strideOut) *strideOut = stride;
+    return out;
 }
 
 FileTiles::FileTiles(const TileFile& file)

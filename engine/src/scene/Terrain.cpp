@@ -2,6 +2,7 @@
 
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
+#include <sierra/sbt/TileFile.h>
 #include <sierra/terrain/DiamondSquare.h>
 #include <sierra/terrain/HeightfieldIO.h>
 #include <sierra/terrain/Padding.h>
@@ -151,6 +152,20 @@ terrain::Heightfield loadTerrain(const TerrainSource& source, std::string* descr
         what = msg("diamond-square ", source.generateSize, "x", source.generateSize, ", seed ",
                    source.seed, ", roughness ", source.roughness,
                    source.hurst ? msg(", Hurst ", *source.hurst) : std::string());
+    } else if (lowerExtension(source.heightmap) == ".sierra") {
+        // A tiled terrain: its overview, every stride-th sample, within the
+        // caller's grid (sbt::readOverview). World heights: vertical scale 1.
+        const sbt::TileFile file(source.heightmap);
+        int stride = 1;
+        const int side = std::min(maxPaddedSide, terrain::kDefaultMaxPaddedSide);
+        field = sbt::readOverview(file, side - 1, 0, &stride);
+        what = msg(source.heightmap, " (a tiled terrain of ", file.info().width, "x",
+                   file.info().height, " samples, read at every ", stride, ": ", field.width(), "x",
+                   field.height(), ")");
+        // Its world heights as built: the automatic vertical scale is 1.
+        TerrainSource tiled = source;
+        if (tiled.verticalScale <= 0.0f) tiled.verticalScale = 1.0f;
+        return finishTerrain(std::move(field), tiled, std::move(what), description, padding);
     } else {
         // The loaders take the channel's name ("" = grey images only).
         field = terrain::loadHeightfield(

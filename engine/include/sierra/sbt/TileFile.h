@@ -182,6 +182,18 @@ class TileFile {
     size_t entryWords() const;
 };
 
+// The terrain at every stride-th sample (stride = 2^k / 2^c, the smallest
+// that keeps both sides within maxSide), read from the tiles' first levels
+// only: an overview for what needs a grid in memory (2D maps, the in-memory
+// renderer, a scripting front end). World heights (the file's vertical
+// scale applied, the overview's 1), spacing times the stride, the
+// georeference's pixel scaled likewise; the real extent only. No-data
+// samples keep the builder's fill (the lowest real height). Reads the tiles
+// on `threads` (0 = every core). Throws sierra::Error when even the tile
+// corners exceed maxSide.
+terrain::Heightfield readOverview(const TileFile& file, int maxSide, int threads = 0,
+                                  int* stride = nullptr);
+
 // TiledVertices over a TileFile: tiles read on request, whole or in part,
 // and kept until dropped. The streaming cache builds on it.
 class FileTiles : public TiledVertices {
