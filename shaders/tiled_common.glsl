@@ -47,17 +47,19 @@ ivec2 residentTile(ivec2 ij) {
     return ivec2(-1);
 }
 
-// World height of sample (i, j) from the tile holding it.
+// World height of sample (i, j) from the tile holding it; a no-data sample
+// (NaN in the tile cache) at the lowest height.
 float tiledSampleHeight(ivec2 ij) {
     ivec2 t = residentTile(ij);
     if (t.x < 0) return uTileRange.x;
     ivec2 page = texelFetch(uPages, t, 0).xy;
     int step = uTileInfo.z >> page.x;
-    return classHeight(page.x, float(page.y), vec2(ij - t * uTileInfo.z) / float(step));
+    float h = classHeight(page.x, float(page.y), vec2(ij - t * uTileInfo.z) / float(step));
+    return isnan(h) ? uTileRange.x : h;
 }
 
 // World height and normal at a ground position from the finest heights on
-// the GPU there.
+// the GPU there; the height is NaN next to a no-data sample.
 struct TiledGround {
     float height;
     vec3 normal;

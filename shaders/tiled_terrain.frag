@@ -26,6 +26,7 @@ vec3 ramp(float t) {
 void main() {
     if (any(greaterThan(vWorld.xz, uTileSpacing.zw + 1e-3 * uTileSpacing.xy))) discard;
     TiledGround g = tiledGroundAt(vWorld.xz);
+    if (isnan(g.height)) discard;  // no data here
     float t = (g.height - uTileRange.x) / max(uTileRange.y - uTileRange.x, 1e-6);
     float light = uAmbient + (1.0 - uAmbient) * max(dot(g.normal, uSun), 0.0);
     // Display colour, then the haze towards the sky as the frame is cleared to it.

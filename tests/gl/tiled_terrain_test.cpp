@@ -125,3 +125,37 @@ TEST_F(TiledTerrainTest, ASmallGpuCacheStillDrawsEveryFrame) {
 
 }  // namespace
 }  // namespace sierra::test
+
+namespace sierra::test {
+namespace {
+
+TEST_F(TiledTerrainTest, NoDataIsNotDrawn) {
+    terrain::Heightfield field = rough(129);
+    std::vector<uint8_t> mask(size_t(129) * 129, 1);
+    for (int j = 50; j < 80; ++j)
+        for (int i = 50; i < 80; ++i) mask[size_t(j) * 129 + size_t(i)] = 0;
+    field.setMask(mask);
+    const std::string path = build(field, 4, "gl_nodata");
+    auto terrain = render::TiledTerrain::open({.path = path, .memoryBudget = 32u << 20});
+    render::Camera camera;  // straight down over the hole, the whole grid in view
+    camera.position = {64.0f, 400.0f, 64.0f};
+    camera.target = {64.0f, 0.0f, 64.0f};
+    camera.fovYDegrees = 30.0f;
+    camera.farPlane = 2000.0f;
+    const int w = 320, h = 320;
+    render::FrameTarget target = render::FrameTarget::create({.width = w, .height = h});
+    const render::TiledFrameOptions options;
+    render::TiledFrameStats stats;
+    for (int pass = 0; pass < 40 && (pass == 0 || stats.coarseTiles > 0); ++pass) {
+        terrain->waitForTiles();
+        target.begin({options.sky, 1.0f});
+        stats = terrain->draw(camera, w, h, options);
+    }
+    const std::vector<uint8_t> mask2 = terrainMask(target.read());
+    EXPECT_EQ(mask2[size_t(h / 2) * size_t(w) + size_t(w / 2)], 0) << "the hole shows the sky";
+    EXPECT_EQ(mask2[size_t(h / 2) * size_t(w) + size_t(w / 2 + 60)], 1) << "the ground around it";
+    std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace sierra::test

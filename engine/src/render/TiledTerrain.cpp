@@ -246,6 +246,13 @@ void TiledTerrain::State::upload(int tile, const sbt::PackedTile& data, int& upl
             grid[size_t(b) * size_t(side) + size_t(a)] = h * vs;
             have[size_t(b) * size_t(side) + size_t(a)] = 1;
         }
+    // No-data samples (a tile read whole keeps its mask): NaN, which the
+    // fragment shader drops and the vertex shader draws at the lowest height.
+    if (!data.mask.empty())
+        for (int b = 0; b < side; ++b)
+            for (int a = 0; a < side; ++a)
+                if (!data.mask[size_t(b * step) * size_t(T + 1) + size_t(a * step)])
+                    grid[size_t(b) * size_t(side) + size_t(a)] = std::nanf("");
     // The missing ones (an odd last level's): the mean of their hypotenuse's ends.
     for (int b = 0; b < side; ++b)
         for (int a = 0; a < side; ++a) {

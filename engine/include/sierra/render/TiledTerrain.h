@@ -16,8 +16,8 @@
 // fewer of those read and those uploaded.
 //
 // Shading: a hypsometric ramp over the terrain's height range, a sun and an
-// ambient term, haze towards the sky colour; fragments over the padding are
-// dropped. Everything else of the in-memory renderer (surfaces, overlays,
+// ambient term, haze towards the sky colour; fragments over the padding and
+// over no-data samples (of tiles read whole) are dropped. Everything else of the in-memory renderer (surfaces, overlays,
 // relief lighting, drapes) needs the grid in memory.
 
 #include <sierra/gpu/Objects.h>
