@@ -4,9 +4,11 @@
 #include <sierra/core/Parallel.h>
 #include <sierra/core/Timer.h>
 #include <sierra/sbt/Refiner.h>
+#include <sierra/sbt/TileFile.h>
 #include <sierra/sbt/TiledRefiner.h>
 #include <sierra/sbt/VertexErrors.h>
 #include <sierra/terrain/DiamondSquare.h>
+#include <sierra/terrain/GridReader.h>
 
 #include <benchmark/benchmark.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -15,6 +17,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
@@ -373,7 +377,8 @@ BENCHMARK(BM_RefineOrbitReference)
 // moving orbit (half a degree apart) over the rough 2049^2 fractal, every tile
 // resident, one thread: Arg 0 the in-memory refineView, 1 the in-memory
 // reference walk (double, the tiled walk's decisions), 2 the tiled walk over
-// 257^2 tiles (k = 8). The counters give the 99th percentile of the
+// 257^2 tiles (k = 8), 3 the same over a tile file of the terrain read
+// whole (sbt::FileTiles, packed tiles). The counters give the 99th percentile of the
 // refinements' times; the target is tiled p99 at most 1.5x the in-memory p99.
 void BM_TiledRefine(benchmark::State& state) {
     const Terrain& t = roughTerrain(2049, 8);
@@ -383,6 +388,24 @@ void BM_TiledRefine(benchmark::State& state) {
         views.push_back(orbitView(t, 1.0f, true, 135.0f + 0.5f * float(k)));
     static sbt::InMemoryTiles tiles(t.field, t.errors, 8);
     static sbt::TiledRefiner tiled(tiles);
+    // The tile file: built once per run into the temporary directory.
+    static std::unique_ptr<sbt::TileFile> file;
+    static std::unique_ptr<sbt::FileTiles> fileTiles;
+    static std::unique_ptr<sbt::TiledRefiner> fileTiled;
+    if (way == 3 && !file) {
+        const char* tmp = std::getenv("TMPDIR");
+        const std::string path =
+            std::string(tmp && *tmp ? tmp : "/tmp") + "/sierra_bench_tiled.sierra";
+        sbt::buildTileFile(*sierra::terrain::memoryGridReader(t.field), path,
+                           {.k = 8,
+                            .heights = sbt::TileHeights::Float32,
+                            .verticalScale = t.field.verticalScale()});
+        file = std::make_unique<sbt::TileFile>(path);
+        std::remove(path.c_str());  // the open descriptor keeps it readable
+        fileTiles = std::make_unique<sbt::FileTiles>(*file);
+        fileTiles->loadAll(16);
+        fileTiled = std::make_unique<sbt::TiledRefiner>(*fileTiles);
+    }
     sbt::Refiner refiner(t.field, t.errors, {.threads = 1});
     sbt::StripMesh mesh;
     sbt::TiledMesh tiledMesh;
@@ -396,9 +419,10 @@ void BM_TiledRefine(benchmark::State& state) {
         if (way == 0) refiner.refineView(views[next], mesh);
         if (way == 1) refiner.refineViewReference(views[next], mesh);
         if (way == 2) tiled.refineView(views[next], tiledMesh);
+        if (way == 3) fileTiled->refineView(views[next], tiledMesh);
         seconds.push_back(
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        triangles += way == 2 ? tiledMesh.triangleCount : mesh.triangleCount;
+        triangles += way >= 2 ? tiledMesh.triangleCount : mesh.triangleCount;
         next = (next + 1) % views.size();
     }
     std::sort(seconds.begin(), seconds.end());
@@ -406,10 +430,10 @@ void BM_TiledRefine(benchmark::State& state) {
         1e3 * seconds[std::min(seconds.size() - 1, seconds.size() * 99 / 100)];
     state.counters["triangles"] = double(triangles) / double(seconds.size());
     static const char* kWays[] = {"in-memory refineView", "in-memory reference walk",
-                                  "tiled walk, 257^2 tiles"};
+                                  "tiled walk, 257^2 tiles", "tiled walk over a tile file"};
     state.SetLabel(kWays[way]);
 }
-BENCHMARK(BM_TiledRefine)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TiledRefine)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -318,15 +318,17 @@ int TileAddressing::level(int x, int y) const {
 }
 
 size_t TileAddressing::index(int x, int y) const {
-    const int t = level(x, y), m = t >> 1, T = 1 << k_, h = T >> (m + 1), s = 2 * h;
+    // Level t = 2m or 2m + 1 has half-step h = T >> (m + 1) and step 2h: all
+    // powers of two, so the lattice coordinates are shifts.
+    const int t = level(x, y), m = t >> 1, hs = k_ - m - 1, ss = hs + 1, h = 1 << hs;
     const size_t side = size_t(1) << m;
     size_t at;
     if ((t & 1) == 0) {
-        at = size_t((y - h) / s) * side + size_t((x - h) / s);
+        at = size_t((y - h) >> ss) * side + size_t((x - h) >> ss);
     } else {
-        const int r = y / h;  // row of the level's lattice
-        const size_t before = size_t((r + 1) / 2) * side + size_t(r / 2) * (side + 1);
-        at = before + size_t((r & 1) == 0 ? (x - h) / s : x / s);
+        const int r = y >> hs;  // row of the level's lattice
+        const size_t before = size_t((r + 1) >> 1) * side + size_t(r >> 1) * (side + 1);
+        at = before + size_t((r & 1) == 0 ? (x - h) >> ss : x >> ss);
     }
     return start_[size_t(t)] + at;
 }

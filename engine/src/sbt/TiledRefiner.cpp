@@ -41,6 +41,12 @@ struct TiledRefiner::Walk {
     // The usable levels at vertex (i, j) of tile level `local`: the least over
     // the tiles holding it; each of them records that the walk reached it.
     bool usableAt(uint32_t i, uint32_t j, int local) {
+        const uint32_t mask = (uint32_t(1) << k) - 1;
+        if ((i & mask) != 0 && (j & mask) != 0) {  // inside one tile: most vertices
+            const size_t t = size_t(j >> k) * size_t(tilesPerSide) + size_t(i >> k);
+            reached[t] = std::max(reached[t], uint8_t(local + 1));
+            return local < usable[t];
+        }
         int ti[2], tj[2];
         const int ni = tilesAlong(i, ti), nj = tilesAlong(j, tj);
         int least = 2 * k;
