@@ -185,8 +185,10 @@ void warpStrip(const std::string& path, GDALDriver& mem, GDALDataset& source, co
     if (!warped) throw Error(msg(path, ": GDAL cannot make a ", tw, "x", rows, " raster"));
     for (int b = 0; b <= colourBands; ++b) {
         const int offset = b == colourBands ? 3 : b;  // alpha last
-        char pointer[64];
-        CPLPrintPointer(pointer, rgba + offset, sizeof pointer);
+        // CPLPrintPointer writes no terminating NUL: the buffer starts zeroed
+        // and it writes at most one byte short of it.
+        char pointer[64] = {};
+        CPLPrintPointer(pointer, rgba + offset, sizeof pointer - 1);
         const std::string data = std::string("DATAPOINTER=") + pointer;
         const std::string line = "LINEOFFSET=" + std::to_string(int64_t(tw) * 4);
         const char* bandOptions[] = {data.c_str(), "PIXELOFFSET=4", line.c_str(), nullptr};
