@@ -33,11 +33,15 @@ struct Encoding {
 };
 
 // The band of tiles one builder window covers, read and saturated.
+// Kept per thread from window to window: a window is tens of megabytes,
+// whose first touch of fresh pages cost more than the work.
 struct Window {
     detail::SampleWindow g;
     std::vector<float> height, error, radius;
     std::vector<int16_t> q;      // Int16 only
     std::vector<uint8_t> valid;  // 1 = real sample
+    std::vector<float> real;     // the input's samples of the window
+    std::vector<uint8_t> realValid;
 };
 
 void readWindow(const terrain::GridReader& input, const Encoding& enc, int n, int wx0, int wy0,
@@ -46,8 +50,10 @@ void readWindow(const terrain::GridReader& input, const Encoding& enc, int n, in
     const int ww = wx1 - wx0 + 1, wh = wy1 - wy0 + 1;
     const int rw = int(std::min<int64_t>(wx1, W - 1) - wx0 + 1);
     const int rh = int(std::min<int64_t>(wy1, H - 1) - wy0 + 1);
-    std::vector<float> real(size_t(rw) * size_t(rh));
-    std::vector<uint8_t> realValid(real.size());
+    std::vector<float>& real = w.real;
+    std::vector<uint8_t>& realValid = w.realValid;
+    real.resize(size_t(rw) * size_t(rh));
+    realValid.resize(real.size());
     input.read(wx0, wy0, rw, rh, real.data(), realValid.data());
     const size_t count = size_t(ww) * size_t(wh);
     w.height.assign(count, 0.0f);
@@ -279,7 +285,7 @@ class Builder {
 
     // The window of tiles tx0..tx1 of row ty, saturated, cut into `out`.
     void band(int ty, int tx0, int tx1, Out* out) {
-        Window w;
+        thread_local Window w;
         readWindow(input_, enc_, info_.n, std::max(0, (tx0 - 1) * T_), std::max(0, (ty - 1) * T_),
                    std::min(S_, (tx1 + 2) * T_), std::min(S_, (ty + 2) * T_), info_.spacingX,
                    info_.spacingZ, info_.verticalScale, w);

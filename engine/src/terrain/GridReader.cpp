@@ -79,6 +79,13 @@ class MappedGridReader : public GridReader {
         for (int y = 0; y < h; ++y) {
             const size_t row = size_t(y0 + y) * size_t(info_.width) + size_t(x0);
             float* out = heights + size_t(y) * w;
+            if (descr_ == "<u2") {  // the common raw DEM: one conversion a sample
+                const uint8_t* p = base + 2 * row;
+                for (int x = 0; x < w; ++x)
+                    out[x] = float(uint16_t(p[2 * x] | (p[2 * x + 1] << 8)));
+                if (valid) std::memset(valid + size_t(y) * w, 1, size_t(w));
+                continue;
+            }
             for (int x = 0; x < w; ++x) {
                 const float v = float(detail::npyNumber(descr_, base, row + size_t(x)));
                 if (isFloat && !std::isfinite(v))
