@@ -7,6 +7,9 @@
 // not on the GPU. At most 9 classes (c = 0..8, k <= 8).
 layout(binding = 3) uniform isampler2D uPages;
 layout(binding = 4) uniform sampler2DArray uClass[9];
+// The tile corners' world heights ((tiles + 1)^2, the file's coarse
+// section): always there, for the coarse mesh and where no tile is resident.
+layout(binding = 13) uniform sampler2D uCorners;
 
 layout(std140, binding = 2) uniform Tiled {
     ivec4 uTileInfo;     // x: k, y: tiles per side, z: T = 2^k
@@ -50,6 +53,8 @@ ivec2 residentTile(ivec2 ij) {
 // World height of sample (i, j) from the tile holding it; a no-data sample
 // (NaN in the tile cache) at the lowest height.
 float tiledSampleHeight(ivec2 ij) {
+    int T = uTileInfo.z;
+    if ((ij.x & (T - 1)) == 0 && (ij.y & (T - 1)) == 0) return texelFetch(uCorners, ij >> uTileInfo.x, 0).r;
     ivec2 t = residentTile(ij);
     if (t.x < 0) return uTileRange.x;
     ivec2 page = texelFetch(uPages, t, 0).xy;
@@ -72,8 +77,16 @@ TiledGround tiledGroundAt(vec2 xz) {
     ivec2 page = texelFetch(uPages, t, 0).xy;
     TiledGround g;
     if (page.x < 0) {
-        g.height = uTileRange.x;
-        g.normal = vec3(0.0, 1.0, 0.0);
+        // No tile here on the GPU: the surface of the tile corners.
+        vec2 c = s / float(T);
+        vec2 size = vec2(P + 1);
+        g.height = textureLod(uCorners, (c + 0.5) / size, 0.0).r;
+        float hx0 = textureLod(uCorners, (c + vec2(-0.5, 0.0) + 0.5) / size, 0.0).r;
+        float hx1 = textureLod(uCorners, (c + vec2(0.5, 0.0) + 0.5) / size, 0.0).r;
+        float hz0 = textureLod(uCorners, (c + vec2(0.0, -0.5) + 0.5) / size, 0.0).r;
+        float hz1 = textureLod(uCorners, (c + vec2(0.0, 0.5) + 0.5) / size, 0.0).r;
+        g.normal = normalize(vec3(-(hx1 - hx0) / (float(T) * uTileSpacing.x), 1.0,
+                                  -(hz1 - hz0) / (float(T) * uTileSpacing.y)));
         return g;
     }
     float step = float(T >> page.x);

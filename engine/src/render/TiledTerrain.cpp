@@ -63,6 +63,7 @@ struct TiledTerrain::State {
     sbt::TiledMesh mesh;
     std::vector<GpuClass> classes;
     gpu::Texture pages;
+    gpu::Texture corners;  // the tile corners' world heights
     std::vector<int32_t> pageData;
     bool pagesDirty = true;
     gpu::Program program;
@@ -145,15 +146,20 @@ std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
 
     float lo = INFINITY, hi = -INFINITY;
     const int T = 1 << info.k;
+    std::vector<float> corners(size_t(P + 1) * size_t(P + 1));
     for (int cj = 0; cj <= P; ++cj)
         for (int ci = 0; ci <= P; ++ci) {
-            if (int64_t(ci) * T > info.width - 1 + T || int64_t(cj) * T > info.height - 1 + T)
-                continue;
             const float h =
                 s->file->corner(int64_t(ci) * T, int64_t(cj) * T).height * info.verticalScale;
+            corners[size_t(cj) * size_t(P + 1) + size_t(ci)] = h;
+            if (int64_t(ci) * T > info.width - 1 + T || int64_t(cj) * T > info.height - 1 + T)
+                continue;
             lo = std::min(lo, h);
             hi = std::max(hi, h);
         }
+    s->corners = gpu::Texture::create(
+        {.format = GL_R32F, .width = P + 1, .height = P + 1, .filter = GL_LINEAR});
+    s->corners.upload(GL_RED, GL_FLOAT, corners.data());
     s->range = {lo, std::max(hi, lo + 1e-3f)};
     const float block[12] = {0,
                              0,
@@ -371,6 +377,7 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
         glBindBufferBase(GL_UNIFORM_BUFFER, 2, s.uniforms.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s.vertices.id());
         glBindTextureUnit(3, s.pages.id());
+        glBindTextureUnit(13, s.corners.id());
         for (int c = 0; c < kMaxClasses; ++c)
             glBindTextureUnit(GLuint(4 + c), s.classes[size_t(c)].texture.id());
         glBindVertexArray(s.vao.id());
