@@ -342,6 +342,8 @@ class Builder {
             for (int r = 0; r < rowCount; ++r)
                 for (int tx = 0; tx < storedX_; ++tx)
                     append(tx, ty0 + r, rows[size_t(r) * size_t(storedX_) + size_t(tx)]);
+            // The next batch's windows start a tile above it: nothing before is read again.
+            input_.releaseRowsBefore(int64_t(ty0 + rowCount - 1) * T_);
             if (options_.progress)
                 progress.update(written_, msg(ty0 + rowCount, "/", storedY_, " rows"));
         }

@@ -7,6 +7,7 @@
 #include <sierra/core/Error.h>
 #include <sierra/core/Files.h>
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <cmath>
@@ -48,6 +49,13 @@ class MappedFile {
 
     const uint8_t* data() const { return data_; }
     uint64_t size() const { return size_; }
+    // Drops the pages of bytes [0, end) from this process (they stay in the
+    // page cache, readable again at a fault's cost).
+    void release(uint64_t end) const {
+        const uint64_t page = uint64_t(::sysconf(_SC_PAGESIZE));
+        end = std::min(end, size_) / page * page;
+        if (end > 0) ::madvise(const_cast<uint8_t*>(data_), end, MADV_DONTNEED);
+    }
     const std::string& path() const { return path_; }
 
   private:
@@ -95,6 +103,10 @@ class MappedGridReader : public GridReader {
             }
             if (valid) std::memset(valid + size_t(y) * w, 1, size_t(w));
         }
+    }
+
+    void releaseRowsBefore(int64_t row) const override {
+        if (row > 0) file_->release(start_ + uint64_t(row) * uint64_t(info_.width) * valueBytes());
     }
 
   private:

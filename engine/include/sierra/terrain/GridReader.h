@@ -39,6 +39,10 @@ class GridReader {
     // or a height that is not finite.
     virtual void read(int64_t x0, int64_t y0, int w, int h, float* heights,
                       uint8_t* valid) const = 0;
+    // The caller reads no row before `row` again: a mapped file drops those
+    // pages from the process (a build streaming through a file many times its
+    // memory stays bounded). A hint; the default does nothing.
+    virtual void releaseRowsBefore(int64_t row) const { (void)row; }
 
   protected:
     GridInfo info_;
