@@ -45,7 +45,7 @@ sbt::ViewParams view(float x, float y, float z, float tx, float tz, float tau, f
                            true);
 }
 
-std::vector<Tri> canonical(std::vector<Tri> tris) {
+std::vector<Tri> sortedTriangles(std::vector<Tri> tris) {
     for (Tri& t : tris) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
     std::sort(tris.begin(), tris.end());
     return tris;
@@ -91,8 +91,8 @@ TEST(TileCache, StreamsToTheInMemoryTrianglesAndConformsMeanwhile) {
     sbt::Refiner refiner(field, errors, {.threads = 1});
     sbt::StripMesh reference;
     refiner.refineViewReference(v, reference);
-    EXPECT_EQ(canonical(sbt::decodeTiledStrip(mesh.strip, side)),
-              canonical(sbt::decodeStrip(reference.indices)));
+    EXPECT_EQ(sortedTriangles(sbt::decodeTiledStrip(mesh.strip, side)),
+              sortedTriangles(sbt::decodeStrip(reference.indices)));
     EXPECT_GT(cache.stats().tilesRead, 0);
     std::remove(path.c_str());
 }

@@ -61,20 +61,6 @@ terrain::Heightfield storedField(const sbt::FileTiles& tiles, const sbt::TileFil
     return out;
 }
 
-sbt::ViewParams randomView(std::mt19937& random, int side, float tau, bool cull) {
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    const float s = float(side - 1);
-    const std::array<float, 3> eye{(u(random) * 1.6f - 0.3f) * s, (0.05f + u(random)) * 0.6f * s,
-                                   (u(random) * 1.6f - 0.3f) * s};
-    const std::array<float, 3> target{u(random) * s, 0.0f, u(random) * s};
-    return sbt::lookAtView(eye, target, 0.9f, 16.0f / 9.0f, 720.0f, 0.5f, 10.0f * s, tau, cull);
-}
-
-std::vector<Tri> canonical(std::vector<Tri> tris) {
-    for (Tri& t : tris) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    return tris;
-}
-
 TEST(TileFile, RecordsAreTheWholeGridsErrorsBitForBit) {
     for (int side : {33, 129, 257}) {
         const terrain::Heightfield field = roughField(side, side, uint32_t(side));

@@ -17,8 +17,8 @@
 //
 // Shading: a hypsometric ramp over the terrain's height range, a sun and an
 // ambient term, haze towards the sky colour; fragments over the padding and
-// over no-data samples (of tiles read whole) are dropped. Everything else of the in-memory renderer (surfaces, overlays,
-// relief lighting, drapes) needs the grid in memory.
+// over no-data samples (of tiles read whole) are dropped. Everything else of the in-memory renderer
+// (surfaces, overlays, relief lighting, drapes) needs the grid in memory.
 
 #include <sierra/gpu/Objects.h>
 #include <sierra/render/Camera.h>
