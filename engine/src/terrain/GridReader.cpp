@@ -1,6 +1,7 @@
 // Window readers of GridReader.h: memory-mapped raw and .npy files, a
 // heightfield in memory, and (GridReaderGdal.cpp) anything GDAL reads.
 #include <sierra/terrain/GridReader.h>
+#include <sierra/terrain/HeightfieldIO.h>
 
 #include "HeightfieldLoaders.h"
 
@@ -118,7 +119,9 @@ class MappedGridReader : public GridReader {
 
 class MemoryGridReader : public GridReader {
   public:
-    explicit MemoryGridReader(const Heightfield& field) : field_(field) {
+    // Reads `field`, kept by reference, or `owned` when given (then field is it).
+    explicit MemoryGridReader(const Heightfield& field, std::unique_ptr<Heightfield> owned = {})
+        : owned_(std::move(owned)), field_(owned_ ? *owned_ : field) {
         info_.width = field.width();
         info_.height = field.height();
         info_.spacingX = field.spacingX();
@@ -137,6 +140,7 @@ class MemoryGridReader : public GridReader {
     }
 
   private:
+    std::unique_ptr<Heightfield> owned_;
     const Heightfield& field_;
 };
 
@@ -189,6 +193,17 @@ std::unique_ptr<GridReader> openGridReader(std::span<const std::string> paths,
     if (paths.empty()) throw Error("no input: give a heightmap file (or several to mosaic)");
     const std::string ext = lowerExtension(paths[0]);
     const bool mapped = ext == ".r16" || ext == ".r32" || ext == ".npy";
+    // Formats that are small by nature (images, .npz archives) are loaded
+    // whole by the heightfield loaders, georeference and mask included.
+    if (ext == ".npz" || ext == ".png" || ext == ".pgm") {
+        if (paths.size() != 1)
+            throw Error(
+                msg("only GDAL inputs mosaic; ", paths[0], " is a ", ext, " file: give it alone"));
+        auto field =
+            std::make_unique<Heightfield>(loadHeightfield(paths[0], {.maxPaddedSide = kMaxSide}));
+        const Heightfield& ref = *field;
+        return std::make_unique<MemoryGridReader>(ref, std::move(field));
+    }
     if (mapped) {
         if (paths.size() != 1)
             throw Error(

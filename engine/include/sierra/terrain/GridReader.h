@@ -4,6 +4,8 @@
 // .npy arrays are memory-mapped and read where asked, never loaded whole;
 // anything GDAL opens (a GeoTIFF, a COG, a VRT, .hgt tiles) is read through
 // RasterIO, several files at once as one mosaic (a VRT built in memory).
+// Formats small by nature (.npz, .png, .pgm) are loaded whole by
+// loadHeightfield and read from memory.
 
 #include <sierra/terrain/Heightfield.h>
 
@@ -53,8 +55,8 @@ struct GridReaderOptions {
     int64_t rawWidth = 0, rawHeight = 0;
 };
 
-// A reader for `paths`: one .r16, .r32 or .npy file, or one or more files
-// GDAL opens (mosaicked when more than one). Throws sierra::Error naming the
+// A reader for `paths`: one .r16, .r32, .npy, .npz, .png or .pgm file, or one
+// or more files GDAL opens (mosaicked when more than one). Throws sierra::Error naming the
 // file for a missing, unreadable or malformed input.
 std::unique_ptr<GridReader> openGridReader(std::span<const std::string> paths,
                                            const GridReaderOptions& options = {});
