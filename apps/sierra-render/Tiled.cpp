@@ -49,6 +49,11 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
         throw Error(
             msg(s.terrain.heightmap, " is a tiled terrain: ", option,
                 " needs a heightmap in memory (give the grid itself, not its .sierra file)"));
+    if (s.terrain.verticalScale > 0.0f || s.terrain.spacing > 0.0f)
+        throw Error(msg(s.terrain.heightmap,
+                        " is a tiled terrain: its spacing and vertical scale were fixed when it "
+                        "was built (sierra-tile build --vertical-scale); --vertical-scale and "
+                        "--spacing do not apply"));
     if (s.lighting.shadows || s.lighting.skyLight)
         log::info("tiled terrain: no cast shadows or sky light (they need the grid in memory)");
     const int width = s.output.width, height = s.output.height;

@@ -12,7 +12,8 @@
   every tile it wanted has arrived; options that need the grid in memory are
   refused with one message.
 - sierra-gen map of a float tile file is the map of the grid it was built from,
-  byte for byte (the overview at full resolution).
+  byte for byte (the overview at full resolution): a generated .npy and a real
+  DEM (Jacksboro, 403 x 344, an .npz with its georeference), which also draws.
 - Bad input: a missing file, a truncated tile file, an unknown option, each one
   message and a non-zero exit, and no output file left behind.
 Exit 77 (CTest: skipped) with a note when NumPy is
@@ -138,6 +139,26 @@ def main():
     with open(maps[0], "rb") as f, open(maps[1], "rb") as g:
         assert f.read() == g.read(), "the tiled terrain's map differs from the grid's"
     print("map: ok")
+
+    # A real DEM (non-square, georeferenced, metres; Debian's python-matplotlib-data):
+    # its tile file gives the map of the .npz, byte for byte, and draws.
+    dem = "/usr/share/matplotlib/mpl-data/sample_data/jacksboro_fault_dem.npz"
+    if os.path.exists(dem):
+        jack = os.path.join(work, "jacksboro.sierra")
+        run(tile, "build", dem, "--out", jack, "--heights", "float", "--tile-levels", "5")
+        head = info(tile, jack)
+        assert head["width"] == 403 and head["height"] == 344 and head["metres"], head
+        maps = [os.path.join(work, name) for name in ("jack_npz.png", "jack_tiled.png")]
+        run(gen, "map", "--heightmap", dem, "--out", maps[0])
+        run(gen, "map", "--heightmap", jack, "--out", maps[1])
+        with open(maps[0], "rb") as f, open(maps[1], "rb") as g:
+            assert f.read() == g.read(), "the DEM's tile file maps differently"
+        p = run(render, "--heightmap", jack, "--size", "320x180", "--no-debug",
+                "--out", os.path.join(work, "jack.png"))
+        assert "0 tiles drawn coarse" in p.stderr, p.stderr
+        run(render, "--heightmap", jack, "--vertical-scale", "2", "--no-debug",
+            "--out", os.path.join(work, "jack2.png"), ok=False)
+        print("real DEM: ok")
 
     # Bad input: one message, a non-zero exit, no output.
     missing = os.path.join(work, "missing.sierra")
