@@ -2,8 +2,9 @@
 // GPU tile cache, one array texture a tile resolution, and the page table.
 //
 // Tile (tx, ty) covers samples [tx T, tx T + T]^2, T = 2^k. Page texel
-// (tx, ty): x = resolution class c (its layer holds (2^c + 1)^2 world
-// heights, sample (a, b) at tile-local (a, b) * T / 2^c), y = layer; x < 0:
+// (tx, ty): x = resolution class c (its slot holds (2^c + 1)^2 world
+// heights, sample (a, b) at tile-local (a, b) * T / 2^c), y = layer, zw =
+// the slot's first texel in the layer (a layer is an atlas of slots); x < 0:
 // not on the GPU. At most 9 classes (c = 0..8, k <= 8).
 layout(binding = 3) uniform isampler2D uPages;
 layout(binding = 4) uniform sampler2DArray uClass[9];
@@ -17,22 +18,37 @@ layout(std140, binding = 2) uniform Tiled {
     vec4 uTileRange;     // x, y: lowest and highest world height
 };
 
-// The height in class c's layer at grid position g (texels, may be fractional),
-// bilinear.
-float classHeight(int c, float layer, vec2 g) {
-    float size = float((1 << c) + 1);
-    vec3 uvw = vec3((g + 0.5) / size, layer);
+// Texel p of class c's texture.
+float classTexel(int c, ivec3 p) {
     switch (c) {
-    case 0: return textureLod(uClass[0], uvw, 0.0).r;
-    case 1: return textureLod(uClass[1], uvw, 0.0).r;
-    case 2: return textureLod(uClass[2], uvw, 0.0).r;
-    case 3: return textureLod(uClass[3], uvw, 0.0).r;
-    case 4: return textureLod(uClass[4], uvw, 0.0).r;
-    case 5: return textureLod(uClass[5], uvw, 0.0).r;
-    case 6: return textureLod(uClass[6], uvw, 0.0).r;
-    case 7: return textureLod(uClass[7], uvw, 0.0).r;
-    default: return textureLod(uClass[8], uvw, 0.0).r;
+    case 0: return texelFetch(uClass[0], p, 0).r;
+    case 1: return texelFetch(uClass[1], p, 0).r;
+    case 2: return texelFetch(uClass[2], p, 0).r;
+    case 3: return texelFetch(uClass[3], p, 0).r;
+    case 4: return texelFetch(uClass[4], p, 0).r;
+    case 5: return texelFetch(uClass[5], p, 0).r;
+    case 6: return texelFetch(uClass[6], p, 0).r;
+    case 7: return texelFetch(uClass[7], p, 0).r;
+    default: return texelFetch(uClass[8], p, 0).r;
     }
+}
+
+// The height in the slot of `page` at grid position g (texels of the slot,
+// 0..2^c, may be fractional), bilinear over the slot's own texels only: the
+// slot's neighbours in the atlas never bleed in, and at a whole g the texel
+// itself comes back (a no-data neighbour does not turn it NaN).
+float classHeight(ivec4 page, vec2 g) {
+    int last = 1 << page.x;
+    vec2 p = clamp(g, vec2(0.0), vec2(float(last)));
+    ivec2 i0 = min(ivec2(floor(p)), ivec2(last));
+    vec2 f = p - vec2(i0);
+    ivec2 i1 = min(i0 + ivec2(greaterThan(f, vec2(0.0))), ivec2(last));
+    ivec3 o = ivec3(page.zw, page.y);
+    float h00 = classTexel(page.x, o + ivec3(i0.x, i0.y, 0));
+    float h10 = i1.x == i0.x ? h00 : classTexel(page.x, o + ivec3(i1.x, i0.y, 0));
+    float h01 = i1.y == i0.y ? h00 : classTexel(page.x, o + ivec3(i0.x, i1.y, 0));
+    float h11 = i1.y == i0.y ? h10 : i1.x == i0.x ? h01 : classTexel(page.x, o + ivec3(i1, 0));
+    return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
 }
 
 // The tile holding sample (i, j) whose page is on the GPU (a border sample
@@ -57,9 +73,9 @@ float tiledSampleHeight(ivec2 ij) {
     if ((ij.x & (T - 1)) == 0 && (ij.y & (T - 1)) == 0) return texelFetch(uCorners, ij >> uTileInfo.x, 0).r;
     ivec2 t = residentTile(ij);
     if (t.x < 0) return uTileRange.x;
-    ivec2 page = texelFetch(uPages, t, 0).xy;
+    ivec4 page = texelFetch(uPages, t, 0);
     int step = uTileInfo.z >> page.x;
-    float h = classHeight(page.x, float(page.y), vec2(ij - t * uTileInfo.z) / float(step));
+    float h = classHeight(page, vec2(ij - t * uTileInfo.z) / float(step));
     return isnan(h) ? uTileRange.x : h;
 }
 
@@ -74,7 +90,7 @@ TiledGround tiledGroundAt(vec2 xz) {
     int k = uTileInfo.x, P = uTileInfo.y, T = uTileInfo.z;
     vec2 s = xz / uTileSpacing.xy;  // samples
     ivec2 t = clamp(ivec2(floor(s)) >> k, ivec2(0), ivec2(P - 1));
-    ivec2 page = texelFetch(uPages, t, 0).xy;
+    ivec4 page = texelFetch(uPages, t, 0);
     TiledGround g;
     if (page.x < 0) {
         // No tile here on the GPU: the surface of the tile corners.
@@ -92,14 +108,13 @@ TiledGround tiledGroundAt(vec2 xz) {
     float step = float(T >> page.x);
     float last = float(1 << page.x);
     vec2 p = clamp((s - vec2(t * T)) / step, vec2(0.0), vec2(last));
-    float layer = float(page.y);
-    g.height = classHeight(page.x, layer, p);
+    g.height = classHeight(page, p);
     // Central differences one texel apart, inside the tile.
     vec2 a = clamp(p - vec2(1.0, 0.0), vec2(0.0), vec2(last)), b = clamp(p + vec2(1.0, 0.0), vec2(0.0), vec2(last));
     vec2 c = clamp(p - vec2(0.0, 1.0), vec2(0.0), vec2(last)), d = clamp(p + vec2(0.0, 1.0), vec2(0.0), vec2(last));
-    float dhdx = (classHeight(page.x, layer, b) - classHeight(page.x, layer, a)) /
+    float dhdx = (classHeight(page, b) - classHeight(page, a)) /
                  max((b.x - a.x) * step * uTileSpacing.x, 1e-6);
-    float dhdz = (classHeight(page.x, layer, d) - classHeight(page.x, layer, c)) /
+    float dhdz = (classHeight(page, d) - classHeight(page, c)) /
                  max((d.y - c.y) * step * uTileSpacing.y, 1e-6);
     g.normal = normalize(vec3(-dhdx, 1.0, -dhdz));
     return g;

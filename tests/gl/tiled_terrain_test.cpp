@@ -169,3 +169,62 @@ TEST_F(TiledTerrainTest, NoDataIsNotDrawn) {
 
 }  // namespace
 }  // namespace sierra::test
+
+namespace sierra::test {
+namespace {
+
+struct Finished {
+    gpu::Image image;
+    render::TiledFrameStats stats;
+};
+
+// The frame of `camera` once every tile it wants is on the GPU.
+Finished finishedFrame(render::TiledTerrain& terrain, const render::Camera& camera, int w, int h,
+                       const render::TiledFrameOptions& options) {
+    render::FrameTarget target = render::FrameTarget::create({.width = w, .height = h});
+    Finished out;
+    for (int pass = 0; pass < 60 && (pass == 0 || out.stats.coarseTiles > 0); ++pass) {
+        terrain.waitForTiles();
+        target.begin({options.sky, 1.0f});
+        out.stats = terrain.draw(camera, w, h, options);
+    }
+    out.image = target.read();
+    return out;
+}
+
+TEST_F(TiledTerrainTest, TilesBeyondTheLayerLimitShareLayers) {
+    const terrain::Heightfield field = rough(257);
+    const std::string path = build(field, 4, "gl_layers");  // 16^2 tiles
+    render::Camera camera;  // low over the ground, the far tiles in view too
+    camera.position = {20.0f, 60.0f, 10.0f};
+    camera.target = {200.0f, 10.0f, 230.0f};
+    camera.fovYDegrees = 60.0f;
+    camera.farPlane = 3000.0f;
+    const int w = 480, h = 270;
+    const render::TiledFrameOptions options;
+    auto whole = render::TiledTerrain::open({.path = path, .memoryBudget = 64u << 20});
+    const Finished reference = finishedFrame(*whole, camera, w, h, options);
+    ASSERT_EQ(reference.stats.coarseTiles, 0);
+    ASSERT_GT(reference.stats.gpuTiles, 100);
+    for (const int layers : {1, 3}) {
+        SCOPED_TRACE(layers);
+        auto packed = render::TiledTerrain::open(
+            {.path = path, .memoryBudget = 64u << 20, .maxLayers = layers});
+        const Finished frame = finishedFrame(*packed, camera, w, h, options);
+        // Every class holds all 256 tiles in its `layers` layers.
+        EXPECT_EQ(frame.stats.gpuSlots, reference.stats.gpuSlots);
+        EXPECT_EQ(frame.stats.coarseTiles, 0);
+        EXPECT_EQ(frame.stats.gpuTiles, reference.stats.gpuTiles);
+        EXPECT_EQ(frame.stats.triangles, reference.stats.triangles);
+        // The same heights and the same filtering: the same picture, so no
+        // slot reads its neighbours' texels.
+        size_t differ = 0;
+        for (size_t b = 0; b < frame.image.rgba.size(); ++b)
+            differ += frame.image.rgba[b] != reference.image.rgba[b];
+        EXPECT_EQ(differ, 0u);
+    }
+    std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace sierra::test

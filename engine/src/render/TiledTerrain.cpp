@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -34,20 +35,52 @@ class GpuResident : public sbt::TiledVertices {
         if (!cache_.file().stored(tx, ty)) return cpu;  // the padding: never refined
         return std::min(cpu, gpu_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)]);
     }
-    sbt::VertexRecord vertex(uint32_t i, uint32_t j) const override { return cache_.vertex(i, j); }
+    const sbt::VertexRecord* tileRecords(int tx, int ty) const override {
+        return cache_.tileRecords(tx, ty);
+    }
+    sbt::VertexRecord corner(uint32_t i, uint32_t j) const override { return cache_.corner(i, j); }
 
   private:
     const sbt::TileCache& cache_;
     const std::vector<int>& gpu_;
 };
 
+// Class c's tiles: an array texture of layers, each an atlas of
+// slotsPerRow^2 slots of side^2 texels side by side. The shaders fetch texels
+// clamped to a tile's own slot and filter them themselves, so neighbouring
+// slots never bleed into each other.
 struct GpuClass {
     gpu::Texture texture;
     int side = 0;  // 2^c + 1
+    int slotsPerRow = 1;
     int layers = 0;
-    std::vector<int> freeLayers;
-    std::vector<int> owner;  // tile per layer, -1 = free
+    int slots = 0;  // usable: the last layer may have unused slots
+    std::vector<int> freeSlots;
+    std::vector<int> owner;  // tile per slot, -1 = free
+    int perLayer() const { return slotsPerRow * slotsPerRow; }
+    // Layer, then texel x and y of the slot's first texel.
+    std::array<int, 3> place(int slot) const {
+        const int r = slot % perLayer();
+        return {slot / perLayer(), r % slotsPerRow * side, r / slotsPerRow * side};
+    }
 };
+
+// Class `g`'s layout for `wanted` tiles of `bytes` each within `left` bytes:
+// as few slots per layer as keep the layers within `maxLayers` and the layer
+// within `maxSide` texels.
+void layoutClass(GpuClass& g, uint64_t wanted, uint64_t left, uint64_t bytes, int maxLayers,
+                 int maxSide) {
+    const uint64_t perLayerMin = (wanted + uint64_t(maxLayers) - 1) / uint64_t(maxLayers);
+    int n = std::max(1, int(std::ceil(std::sqrt(double(perLayerMin)))));
+    while (uint64_t(n) * uint64_t(n) < perLayerMin) ++n;
+    n = std::max(1, std::min(n, maxSide / g.side));
+    const uint64_t q = uint64_t(n) * uint64_t(n);
+    uint64_t layers = std::min<uint64_t>((wanted + q - 1) / q, uint64_t(maxLayers));
+    while (layers > 1 && layers * q * bytes > left) --layers;
+    g.slotsPerRow = n;
+    g.layers = int(layers);
+    g.slots = int(std::min<uint64_t>(wanted, layers * q));
+}
 
 }  // namespace
 
@@ -56,7 +89,7 @@ struct TiledTerrain::State {
     std::unique_ptr<sbt::TileCache> cache;
     sbt::TileAddressing address{1};
     std::vector<int> gpuLevels;  // per tile: tile levels uploaded
-    std::vector<int> gpuClass, gpuLayer;
+    std::vector<int> gpuClass, gpuSlot;
     std::vector<int64_t> gpuUsed;  // frame a tile was last drawn from
     std::unique_ptr<GpuResident> resident;
     std::unique_ptr<sbt::TiledRefiner> refiner;
@@ -72,6 +105,7 @@ struct TiledTerrain::State {
     gpu::Buffer vertices, indices;
     std::vector<uint32_t> indexData;
     uint64_t gpuBytes = 0;
+    int gpuSlots = 0;  // all classes'
     int64_t frame = 0;
     glm::vec3 lastEye{0.0f};
     bool haveLastEye = false;
@@ -98,38 +132,43 @@ std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
     const int P = info.tilesPerSide(), tiles = P * P;
     s->gpuLevels.assign(size_t(tiles), 0);
     s->gpuClass.assign(size_t(tiles), -1);
-    s->gpuLayer.assign(size_t(tiles), -1);
+    s->gpuSlot.assign(size_t(tiles), -1);
     s->gpuUsed.assign(size_t(tiles), 0);
     s->resident = std::make_unique<GpuResident>(*s->cache, s->gpuLevels);
     s->refiner = std::make_unique<sbt::TiledRefiner>(*s->resident);
 
-    // The GPU budget over the resolutions, coarsest first: each takes a layer
-    // for every stored tile (at most the driver's limit) or an equal share of
-    // what is left for it and the finer ones, so the cheap coarse classes are
-    // whole and the finest gets what remains.
-    GLint maxLayers = 256;
+    // The GPU budget over the resolutions, coarsest first: each takes a slot
+    // for every stored tile or an equal share of what is left for it and the
+    // finer ones, so the cheap coarse classes are whole and the finest gets
+    // what remains. Beyond the layer limit a layer holds several slots.
+    GLint maxLayers = 256, maxSide = 2048;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSide);
+    if (desc.maxLayers > 0) maxLayers = std::min(maxLayers, GLint(desc.maxLayers));
     s->classes.resize(size_t(kMaxClasses));
     uint64_t left = gpuBudget;
     for (int c = 0; c <= info.k; ++c) {
         GpuClass& g = s->classes[size_t(c)];
         g.side = (1 << c) + 1;
-        const uint64_t layerBytes = uint64_t(g.side) * uint64_t(g.side) * 4;
-        g.layers = int(std::min<uint64_t>(
-            {left / uint64_t(info.k + 1 - c) / layerBytes, uint64_t(tiles), uint64_t(maxLayers)}));
-        SIERRA_CHECK(g.layers >= 1, "a memory budget of ", desc.memoryBudget >> 20,
-                     " MiB leaves no GPU layer for tiles of ", g.side, "^2 heights");
-        left -= layerBytes * uint64_t(g.layers);
+        const uint64_t tileBytes = uint64_t(g.side) * uint64_t(g.side) * 4;
+        const uint64_t wanted =
+            std::min<uint64_t>(left / uint64_t(info.k + 1 - c) / tileBytes, uint64_t(tiles));
+        SIERRA_CHECK(wanted >= 1, "a memory budget of ", desc.memoryBudget >> 20,
+                     " MiB leaves no GPU slot for tiles of ", g.side, "^2 heights");
+        layoutClass(g, wanted, left, tileBytes, maxLayers, maxSide);
+        const uint64_t bytes = uint64_t(g.layers) * uint64_t(g.perLayer()) * tileBytes;
+        left -= std::min(left, bytes);
         g.texture = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY,
                                           .format = GL_R32F,
-                                          .width = g.side,
-                                          .height = g.side,
+                                          .width = g.side * g.slotsPerRow,
+                                          .height = g.side * g.slotsPerRow,
                                           .layers = g.layers,
-                                          .filter = GL_LINEAR});
-        g.freeLayers.resize(size_t(g.layers));
-        std::iota(g.freeLayers.rbegin(), g.freeLayers.rend(), 0);
-        g.owner.assign(size_t(g.layers), -1);
-        s->gpuBytes += layerBytes * uint64_t(g.layers);
+                                          .filter = GL_NEAREST});
+        g.freeSlots.resize(size_t(g.slots));
+        std::iota(g.freeSlots.rbegin(), g.freeSlots.rend(), 0);
+        g.owner.assign(size_t(g.slots), -1);
+        s->gpuBytes += bytes;
+        s->gpuSlots += g.slots;
     }
     for (int c = info.k + 1; c < kMaxClasses; ++c)  // unused units still need a texture
         s->classes[size_t(c)].texture = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY,
@@ -138,8 +177,8 @@ std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
                                                               .height = 1,
                                                               .layers = 1});
     s->pages =
-        gpu::Texture::create({.format = GL_RG32I, .width = P, .height = P, .filter = GL_NEAREST});
-    s->pageData.assign(size_t(tiles) * 2, -1);
+        gpu::Texture::create({.format = GL_RGBA32I, .width = P, .height = P, .filter = GL_NEAREST});
+    s->pageData.assign(size_t(tiles) * 4, -1);
     s->program =
         gpu::Program::create({.vertex = "tiled_terrain.vert", .fragment = "tiled_terrain.frag"});
     s->vao = gpu::VertexArray::create();
@@ -212,28 +251,28 @@ void TiledTerrain::State::upload(int tile, const sbt::PackedTile& data, int& upl
     const int k = info.k, T = 1 << k, P = tiles();
     const int c = std::min(k, (data.levels + 1) / 2);
     GpuClass& g = classes[size_t(c)];
-    if (g.freeLayers.empty()) {
-        // The class is full: the layer drawn from least recently goes, unless
-        // every layer was drawn from this frame (then the tile waits).
+    if (g.freeSlots.empty()) {
+        // The class is full: the slot drawn from least recently goes, unless
+        // every slot was drawn from this frame (then the tile waits).
         int victim = 0;
-        for (int l = 1; l < g.layers; ++l)
+        for (int l = 1; l < g.slots; ++l)
             if (gpuUsed[size_t(g.owner[size_t(l)])] < gpuUsed[size_t(g.owner[size_t(victim)])])
                 victim = l;
         const int gone = g.owner[size_t(victim)];
         if (gpuUsed[size_t(gone)] >= frame) return;
-        gpuClass[size_t(gone)] = gpuLayer[size_t(gone)] = -1;
+        gpuClass[size_t(gone)] = gpuSlot[size_t(gone)] = -1;
         gpuLevels[size_t(gone)] = 0;
-        pageData[size_t(gone) * 2] = pageData[size_t(gone) * 2 + 1] = -1;
+        std::fill_n(pageData.begin() + ptrdiff_t(gone) * 4, 4, -1);
         g.owner[size_t(victim)] = -1;
-        g.freeLayers.push_back(victim);
+        g.freeSlots.push_back(victim);
     }
-    if (gpuClass[size_t(tile)] >= 0) {  // its coarser layer goes back
+    if (gpuClass[size_t(tile)] >= 0) {  // its coarser slot goes back
         GpuClass& old = classes[size_t(gpuClass[size_t(tile)])];
-        old.freeLayers.push_back(gpuLayer[size_t(tile)]);
-        old.owner[size_t(gpuLayer[size_t(tile)])] = -1;
+        old.freeSlots.push_back(gpuSlot[size_t(tile)]);
+        old.owner[size_t(gpuSlot[size_t(tile)])] = -1;
     }
-    const int layer = g.freeLayers.back();
-    g.freeLayers.pop_back();
+    const int slot = g.freeSlots.back();
+    g.freeSlots.pop_back();
     const int side = g.side, step = T >> c, tx = tile % P, ty = tile / P;
     grid.assign(size_t(side) * size_t(side), 0.0f);
     std::vector<uint8_t> have(grid.size(), 0);
@@ -269,14 +308,16 @@ void TiledTerrain::State::upload(int tile, const sbt::PackedTile& data, int& upl
             grid[m] = 0.5f * (grid[size_t(aj) * size_t(side) + size_t(ai)] +
                               grid[size_t(bj) * size_t(side) + size_t(bi)]);
         }
-    g.texture.uploadLayer(layer, GL_RED, GL_FLOAT, grid.data());
-    g.owner[size_t(layer)] = tile;
+    const auto [layer, x0, y0] = g.place(slot);
+    glTextureSubImage3D(g.texture.id(), 0, x0, y0, layer, side, side, 1, GL_RED, GL_FLOAT,
+                        grid.data());
+    g.owner[size_t(slot)] = tile;
     gpuClass[size_t(tile)] = c;
-    gpuLayer[size_t(tile)] = layer;
+    gpuSlot[size_t(tile)] = slot;
     gpuLevels[size_t(tile)] = std::min(data.levels, 2 * c);
     gpuUsed[size_t(tile)] = frame;
-    pageData[size_t(tile) * 2] = c;
-    pageData[size_t(tile) * 2 + 1] = layer;
+    const int page[4] = {c, layer, x0, y0};
+    std::copy_n(page, 4, pageData.begin() + ptrdiff_t(tile) * 4);
     pagesDirty = true;
     ++uploaded;
 }
@@ -342,7 +383,7 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
     for (size_t v = 0; v < strip.size(); ++v)
         s.indexData[v] = strip[v] == sbt::kTiledRestart ? 0xFFFFFFFFu : uint32_t(v);
     if (s.pagesDirty) {
-        glTextureSubImage2D(s.pages.id(), 0, 0, 0, s.tiles(), s.tiles(), GL_RG_INTEGER, GL_INT,
+        glTextureSubImage2D(s.pages.id(), 0, 0, 0, s.tiles(), s.tiles(), GL_RGBA_INTEGER, GL_INT,
                             s.pageData.data());
         s.pagesDirty = false;
     }
@@ -388,6 +429,7 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
     }
     stats.cache = s.cache->stats();
     stats.gpuBytes = s.gpuBytes;
+    stats.gpuSlots = s.gpuSlots;
     stats.gpuTiles =
         int(std::count_if(s.gpuClass.begin(), s.gpuClass.end(), [](int c) { return c >= 0; }));
     return stats;

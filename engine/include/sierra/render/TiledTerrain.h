@@ -7,8 +7,11 @@
 // GPU data. A tile whose first d tile levels are read is a regular grid of
 // (2^c + 1)^2 heights, c = ceil(d / 2) (the vertices of an odd last level
 // that are missing are the means of their hypotenuse's ends, as the coarser
-// mesh draws them); class c's array texture holds such tiles, one a layer. A
-// page table (one texel a tile) gives each tile's class and layer. The mesh
+// mesh draws them); class c's array texture holds such tiles in slots, one a
+// layer or, where the class wants more tiles than the driver has layers,
+// several side by side in a layer (the shaders filter inside a slot, so
+// neighbours never bleed). A page table (one texel a tile) gives each tile's
+// class, layer and slot. The GPU byte budget bounds the slots. The mesh
 // streams as the refinement's (i, j) vertex pairs in a storage buffer: the
 // vertex shader reads its height from the tile holding it, the fragment
 // shader shades with the finest heights resident at the fragment. What the
@@ -37,6 +40,10 @@ struct TiledTerrainDesc {
     std::string path;                           // the .sierra file
     uint64_t memoryBudget = uint64_t(1) << 30;  // bytes: the CPU and GPU tile caches together
     int loaderThreads = 2;
+    // Array layers a resolution class's texture may have, 0 = the driver's
+    // GL_MAX_ARRAY_TEXTURE_LAYERS (2048 on Mesa); beyond it a layer packs
+    // several tiles. Lower only to test the packing.
+    int maxLayers = 0;
 };
 
 struct TiledFrameOptions {
@@ -57,6 +64,7 @@ struct TiledFrameStats {
     int coarseTiles = 0;    // drawn from coarser levels this frame (not arrived yet)
     int uploadedTiles = 0;  // to the GPU this frame
     int gpuTiles = 0;       // held on the GPU
+    int gpuSlots = 0;       // tiles the GPU tile cache can hold, all resolutions
     uint64_t gpuBytes = 0;  // the GPU tile cache's textures
     sbt::TileCacheStats cache;
 };
