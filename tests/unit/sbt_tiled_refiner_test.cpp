@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <random>
 #include <vector>
@@ -96,6 +97,66 @@ TEST(TiledRefiner, MissingTilesLeaveAConformingMesh) {
                 }
         }
     }
+}
+
+// The walk takes its tests in float and falls back to double inside a guard
+// band: eyes placed a few float steps from where a vertex's reach equals its
+// distance, where the float test and the double one disagree, must still
+// give the reference's triangles.
+TEST(TiledRefiner, TiesOnTheFloatGuardBandAreDecidedAsTheReference) {
+    const int side = 257;
+    const Grid g = makeGrid(side, 21);
+    sbt::Refiner refiner(g.field, g.errors, {.threads = 1});
+    sbt::InMemoryTiles tiles(g.field, g.errors, 4);
+    sbt::TiledRefiner tiled(tiles);
+    std::mt19937 random(9);
+    std::uniform_int_distribution<int> pick(1, side - 2);
+    auto viewFrom = [&](const std::array<float, 3>& eye, const std::array<float, 3>& target,
+                        bool cull) {
+        return sbt::lookAtView(eye, target, 0.9f, 16.0f / 9.0f, 720.0f, 0.1f, 10.0f * side, 0.5f,
+                               cull);
+    };
+    const sbt::ViewParams probe = viewFrom({0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, false);
+    const double kE = double(probe.lambda) / double(probe.tau);
+    const float vs = g.field.verticalScale();
+    int ties = 0;
+    for (int trial = 0; trial < 400 && ties < 24; ++trial) {
+        const int i = pick(random), j = pick(random);
+        const size_t at = size_t(j) * side + size_t(i);
+        const float e = g.errors.error[at], r = g.errors.radius[at], h = g.field.samples()[at];
+        const double reach = kE * double(e) + double(r);
+        if (reach <= 0.0 || reach > 4.0 * side) continue;
+        // The eye off the vertex along (1, 1, 1) at about its reach, x stepped
+        // float by float, until the float test and the double one disagree
+        // (the roundings of three squared differences add up).
+        const float y = h * vs, off = float(reach / std::sqrt(3.0));
+        const float ey = y + off, ez = float(j) + off;
+        float ex = float(i) + off;
+        for (int step = 0; step < 64; ++step) ex = std::nextafter(ex, 0.0f);
+        bool found = false;
+        for (int step = 0; step < 128; ++step) {
+            const float dxf = float(i) - ex, dyf = y - ey, dzf = float(j) - ez;
+            const float reachf = float(kE) * e + r;
+            const float r2 = reachf * reachf, d2 = dxf * dxf + dyf * dyf + dzf * dzf;
+            const double dx = double(i) - double(ex), dy = double(h) * double(vs) - double(ey),
+                         dz = double(j) - double(ez);
+            found = r2 != d2 && (r2 > d2) != (reach * reach > dx * dx + dy * dy + dz * dz);
+            if (found) break;
+            ex = std::nextafter(ex, 1e9f);
+        }
+        if (!found) continue;
+        const std::array<float, 3> eye{ex, ey, ez}, target{float(i), y, float(j)};
+        const sbt::ViewParams view = viewFrom(eye, target, ties % 2 == 0);
+        sbt::StripMesh reference;
+        refiner.refineViewReference(view, reference);
+        sbt::TiledMesh mesh;
+        tiled.refineView(view, mesh);
+        SCOPED_TRACE(testing::Message() << "vertex " << i << ", " << j);
+        EXPECT_EQ(canonical(sbt::decodeTiledStrip(mesh.strip, side)),
+                  canonical(sbt::decodeStrip(reference.indices)));
+        ++ties;
+    }
+    EXPECT_GE(ties, 24) << "eyes where float and double disagree";
 }
 
 TEST(TiledRefiner, NoTileLoadedDrawsEachTileAsItsTwoTriangles) {

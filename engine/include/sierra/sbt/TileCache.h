@@ -64,7 +64,13 @@ class TileCache : public TiledVertices {
     TileCache& operator=(const TileCache&) = delete;
 
     int residentLevels(int tx, int ty) const override;
-    VertexRecord vertex(uint32_t i, uint32_t j) const override;
+    const VertexRecord* tileRecords(int tx, int ty) const override {
+        const PackedTile* t = packed(tx, ty);
+        return t ? t->records.data() : nullptr;
+    }
+    VertexRecord corner(uint32_t i, uint32_t j) const override { return file_.corner(i, j); }
+    // Vertex (i, j) of a resident level (tests and tools).
+    VertexRecord vertex(uint32_t i, uint32_t j) const;
 
     // The resident data of tile (tx, ty), or null (valid until the next beginFrame).
     const PackedTile* packed(int tx, int ty) const {

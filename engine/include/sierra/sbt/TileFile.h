@@ -200,7 +200,13 @@ class FileTiles : public TiledVertices {
   public:
     explicit FileTiles(const TileFile& file);
     int residentLevels(int tx, int ty) const override;
-    VertexRecord vertex(uint32_t i, uint32_t j) const override;
+    const VertexRecord* tileRecords(int tx, int ty) const override {
+        const auto& t = tiles_[size_t(ty) * size_t(tilesPerSide()) + size_t(tx)];
+        return t ? t->records.data() : nullptr;
+    }
+    VertexRecord corner(uint32_t i, uint32_t j) const override { return file_.corner(i, j); }
+    // Vertex (i, j) of a resident level (tests and tools).
+    VertexRecord vertex(uint32_t i, uint32_t j) const;
 
     // Reads tile (tx, ty) to at least `levels` tile levels (no-op when it has
     // them, or when it is not stored).

@@ -26,7 +26,10 @@
 // With every tile wholly resident the decisions are those of
 // Refiner::refineViewReference (the same tests in double, on the same
 // numbers) and the triangles are the same, in the same Sierpinski order.
-// The walk here is serial and reads each vertex through TiledVertices.
+// The walk is serial. Above the tiles it reads the corners in double; inside
+// a tile it reads the tile's records straight from its level-ordered array
+// and takes each test in float with the guard bands of Refiner::refineView's
+// fast walk, recomputing in double only inside the band.
 
 #include <sierra/sbt/Refiner.h>
 #include <sierra/sbt/VertexErrors.h>
@@ -63,8 +66,12 @@ class TiledVertices {
     int tilesPerSide() const { return 1 << (desc_.n - desc_.k); }
     // Levels of tile (tx, ty) resident, 0..2k (2k: all).
     virtual int residentLevels(int tx, int ty) const = 0;
-    // Vertex (i, j): called only for vertices of resident levels (and corners).
-    virtual VertexRecord vertex(uint32_t i, uint32_t j) const = 0;
+    // Tile (tx, ty)'s records of its resident levels in level order (the
+    // file's order, TileAddressing::index), or null when the tile holds none
+    // (a tile wholly in the padding: its records read as zero).
+    virtual const VertexRecord* tileRecords(int tx, int ty) const = 0;
+    // The record of a tile corner (i, j multiples of 2^k): always there.
+    virtual VertexRecord corner(uint32_t i, uint32_t j) const = 0;
 
   private:
     TiledGridDesc desc_;
@@ -105,6 +112,9 @@ class TiledRefiner {
   private:
     struct Walk;
     const TiledVertices& tiles_;
+    double magnitude_ = 1.0;  // the largest world coordinate or radius (the float slack's scale)
+    std::vector<size_t> levelStart_;   // per tile level: its first record
+    std::vector<VertexRecord> zeros_;  // the records of a tile that holds none
     std::vector<int> usable_;
     std::vector<uint8_t> reached_;
 };
@@ -115,19 +125,24 @@ std::vector<std::array<uint32_t, 3>> decodeTiledStrip(const std::vector<uint64_t
 
 // TiledVertices over a (2^n+1)^2 field in memory and its computeVertexErrors,
 // each tile's residency set by hand: the tiled refinement's tests and
-// benchmarks against Refiner. Keeps pointers to both.
+// benchmarks against Refiner. Keeps pointers to both, and every tile's
+// records packed in level order (12 bytes a vertex).
 class InMemoryTiles : public TiledVertices {
   public:
     InMemoryTiles(const terrain::Heightfield& field, const VertexErrors& errors, int k);
     int residentLevels(int tx, int ty) const override;
-    VertexRecord vertex(uint32_t i, uint32_t j) const override;
+    const VertexRecord* tileRecords(int tx, int ty) const override;
+    VertexRecord corner(uint32_t i, uint32_t j) const override;
     // Every tile resident to `levels` (0..2k).
     void setAllResident(int levels);
     void setResident(int tx, int ty, int levels);
+    // Vertex (i, j), resident or not.
+    VertexRecord vertex(uint32_t i, uint32_t j) const;
 
   private:
     const terrain::Heightfield& field_;
     const VertexErrors& errors_;
+    std::vector<std::vector<VertexRecord>> packed_;  // per tile
     std::vector<int> resident_;
 };
 
