@@ -54,8 +54,6 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
                         " is a tiled terrain: its spacing and vertical scale were fixed when it "
                         "was built (sierra-tile build --vertical-scale); --vertical-scale and "
                         "--spacing do not apply"));
-    if (s.lighting.shadows || s.lighting.skyLight)
-        log::info("tiled terrain: no cast shadows or sky light (they need the grid in memory)");
     const int width = s.output.width, height = s.output.height;
     const int frames = s.path.frames;
     const int first = s.path.range ? s.path.range->first : 0;
@@ -78,6 +76,12 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
     options.sunDirection = {sun.x, sun.y, sun.z};
     options.sky = {s.lighting.sky.r, s.lighting.sky.g, s.lighting.sky.b};
     options.fogDensity = s.lighting.fog ? *s.lighting.fog : -1.0f;
+    options.ambient = s.lighting.ambient;
+    // Shadows and sky light from the terrain's overview, once (the first frame).
+    options.shadows = s.lighting.shadows;
+    options.skyLight = s.lighting.skyLight;
+    options.sunSize = s.lighting.sunSize;
+    options.horizonRadius = s.lighting.horizonRadius;
     options.frameSeconds = 1.0f / float(s.output.fps);
     const bool still = first == last;
     for (int k = first; k <= last; ++k) {
@@ -86,16 +90,18 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
         Stopwatch waited;
         bool firstPass = true;
         int64_t lastRead = -1;
+        double reliefMs = 0.0;
         for (;;) {
             target.begin({options.sky, 1.0f});
             stats = terrain->draw(camera, width, height, options);
+            reliefMs += stats.reliefMs;
             // A still waits for what it asked for, while anything can still
             // arrive; a sequence streams.
             const bool stalled =
                 !firstPass && stats.uploadedTiles == 0 && stats.cache.tilesRead == lastRead;
             lastRead = stats.cache.tilesRead;
             if (!still || stats.coarseTiles == 0 || stalled ||
-                waited.ms() > o.tileWaitSeconds * 1000.0)
+                waited.ms() - reliefMs > o.tileWaitSeconds * 1000.0)
                 break;
             firstPass = false;
             terrain->waitForTiles();
@@ -103,10 +109,11 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
         const std::string path = sequenceFrame(s, k);
         render::writePng(path, target.read());
         log::info("frame ", k, ": ", stats.triangles, " triangles, refine + strip ",
-                  fixed(stats.refineMs), " ms, ", stats.coarseTiles, " tiles drawn coarse, ",
-                  stats.uploadedTiles, " uploaded; tiles ", stats.cache.residentTiles,
-                  " in memory (", fixed(double(stats.cache.residentBytes) / 1048576.0, 1),
-                  " MiB), ", stats.gpuTiles, " on the GPU; wrote ", path);
+                  fixed(stats.refineMs), " ms, relief ", fixed(reliefMs, 1), " ms, ",
+                  stats.coarseTiles, " tiles drawn coarse, ", stats.uploadedTiles,
+                  " uploaded; tiles ", stats.cache.residentTiles, " in memory (",
+                  fixed(double(stats.cache.residentBytes) / 1048576.0, 1), " MiB), ",
+                  stats.gpuTiles, " on the GPU; wrote ", path);
     }
     log::info("done in ", fixed(total.ms(), 1), " ms");
     return 0;

@@ -9,8 +9,8 @@
 - sierra-bench tiled flies over the mosaic under a small cache: the first
   frame comes at once, the cache stays within its budget, tiles are read.
 - sierra-render draws the mosaic from its tile file: a PNG of the frame once
-  every tile it wanted has arrived; options that need the grid in memory are
-  refused with one message.
+  every tile it wanted has arrived, with shadows and sky light from the
+  overview; options that need the grid in memory are refused with one message.
 - sierra-gen map of a float tile file is the map of the grid it was built from,
   byte for byte (the overview at full resolution): a generated .npy and a real
   DEM (Jacksboro, 403 x 344, an .npz with its georeference), which also draws.
@@ -114,6 +114,9 @@ def main():
             "--memory-budget", "64")
     assert os.path.getsize(frame) > 1000, "a frame was written"
     assert "0 tiles drawn coarse" in p.stderr, p.stderr
+    # Shadows and sky light (on by default) from the overview, here the whole grid.
+    assert "shadows and sky light on an overview of 2401x2401 samples (stride 1" in p.stderr, \
+        p.stderr
     with open(frame, "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
     run(render, "--heightmap", out, "--zones", "auto", "--out", os.path.join(work, "z.png"),

@@ -97,6 +97,7 @@ struct TiledTerrain::State {
     std::vector<GpuClass> classes;
     gpu::Texture pages;
     gpu::Texture corners;  // the tile corners' world heights
+    std::unique_ptr<TiledRelief> relief;
     std::vector<int32_t> pageData;
     bool pagesDirty = true;
     gpu::Program program;
@@ -182,6 +183,7 @@ std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
     s->program =
         gpu::Program::create({.vertex = "tiled_terrain.vert", .fragment = "tiled_terrain.frag"});
     s->vao = gpu::VertexArray::create();
+    s->relief = std::make_unique<TiledRelief>(*s->file, desc.reliefMaxSide);
 
     float lo = INFINITY, hi = -INFINITY;
     const int T = 1 << info.k;
@@ -350,6 +352,12 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
     int uploaded = 0;
     s.uploadArrivals(uploaded);
     stats.uploadMs = upload.ms();
+    const TiledReliefRequest relief{.shadows = options.shadows,
+                                    .skyLight = options.skyLight,
+                                    .sunDirection = options.sunDirection,
+                                    .sunSize = options.sunSize,
+                                    .radius = options.horizonRadius};
+    stats.reliefMs = s.relief->prepare(relief);
 
     const float aspect = float(width) / float(height);
     sbt::ViewParams view;
@@ -405,8 +413,11 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
         const glm::mat4 vp = camera.viewProjection(aspect);
         glUniformMatrix4fv(s.program.uniform("uViewProj"), 1, GL_FALSE, glm::value_ptr(vp));
         glUniform3fv(s.program.uniform("uEye"), 1, glm::value_ptr(camera.position));
-        glUniform3fv(s.program.uniform("uSun"), 1,
-                     glm::value_ptr(glm::normalize(options.sunDirection)));
+        // A sun whose whole disc is below the horizon lights nothing directly.
+        glm::vec3 sun = glm::normalize(options.sunDirection);
+        if (std::asin(std::clamp(sun.y, -1.0f, 1.0f)) <= -0.5f * glm::radians(options.sunSize))
+            sun = glm::vec3(0.0f);
+        glUniform3fv(s.program.uniform("uSun"), 1, glm::value_ptr(sun));
         glUniform3fv(s.program.uniform("uSky"), 1, glm::value_ptr(options.sky));
         const SceneBounds b = bounds();
         // Automatic haze: a third of the light gone at the terrain's centre.
@@ -414,7 +425,9 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
                               ? options.fogDensity
                               : 0.4f / std::max(glm::distance(camera.position, b.centre()), 1.0f);
         glUniform1f(s.program.uniform("uFog"), fog);
-        glUniform1f(s.program.uniform("uAmbient"), 0.32f);
+        glUniform1f(s.program.uniform("uAmbient"), options.ambient);
+        glUniform4fv(s.program.uniform("uReliefUv"), 1, glm::value_ptr(s.relief->worldToUv()));
+        s.relief->bind(14, 15);
         glBindBufferBase(GL_UNIFORM_BUFFER, 2, s.uniforms.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s.vertices.id());
         glBindTextureUnit(3, s.pages.id());
@@ -437,6 +450,10 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
 
 void TiledTerrain::waitForTiles() {
     state_->cache->waitIdle();
+}
+
+const TiledRelief& TiledTerrain::relief() const {
+    return *state_->relief;
 }
 
 }  // namespace sierra::render

@@ -19,12 +19,14 @@
 // fewer of those read and those uploaded.
 //
 // Shading: a hypsometric ramp over the terrain's height range, a sun and an
-// ambient term, haze towards the sky colour; fragments over the padding and
-// over no-data samples (of tiles read whole) are dropped. Everything else of the in-memory renderer
-// (surfaces, overlays, relief lighting, drapes) needs the grid in memory.
+// ambient term, cast shadows and sky light from the overview (TiledRelief.h),
+// haze towards the sky colour; fragments over the padding and over no-data
+// samples (of tiles read whole) are dropped. Everything else of the in-memory
+// renderer (surfaces, overlays, drapes) needs the grid in memory.
 
 #include <sierra/gpu/Objects.h>
 #include <sierra/render/Camera.h>
+#include <sierra/render/TiledRelief.h>
 #include <sierra/sbt/TileCache.h>
 #include <sierra/sbt/TileFile.h>
 
@@ -44,6 +46,9 @@ struct TiledTerrainDesc {
     // GL_MAX_ARRAY_TEXTURE_LAYERS (2048 on Mesa); beyond it a layer packs
     // several tiles. Lower only to test the packing.
     int maxLayers = 0;
+    // Samples a side of the overview that shadows and sky light are computed
+    // on at most (render/TiledRelief.h); the driver's texture size caps it.
+    int reliefMaxSide = 4097;
 };
 
 struct TiledFrameOptions {
@@ -55,11 +60,20 @@ struct TiledFrameOptions {
     glm::vec3 sunDirection = glm::normalize(glm::vec3(-0.45f, 0.75f, 0.35f));  // towards the sun
     glm::vec3 sky{0.62f, 0.74f, 0.86f};                                        // linear 0..1
     float fogDensity = -1.0f;  // per world unit; < 0 = from the terrain's size
+    float ambient = 0.32f;     // the sky's share of full light, 0..1
+    // Relief lighting on the overview (render/TiledRelief.h), as the in-memory
+    // renderer's: the ambient term times the sky light, the sun's term times
+    // the visible share of its disc. Computed at the first frame asking.
+    bool shadows = false;
+    bool skyLight = false;
+    float sunSize = 0.53f;       // the sun's angular diameter, degrees, (0, 20]
+    float horizonRadius = 0.0f;  // world units, >= 0; 0 = the whole terrain
 };
 
 struct TiledFrameStats {
     double refineMs = 0.0;  // refinement + strip
     double uploadMs = 0.0;  // tiles and the mesh to the GPU
+    double reliefMs = 0.0;  // shadows and sky light computed for this frame
     int64_t triangles = 0;
     int coarseTiles = 0;    // drawn from coarser levels this frame (not arrived yet)
     int uploadedTiles = 0;  // to the GPU this frame
@@ -88,6 +102,8 @@ class TiledTerrain {
                          const TiledFrameOptions& options);
     // Blocks until the loaders have read what the last frame asked for.
     void waitForTiles();
+    // Shadows and sky light as the last frame asking for them drew them.
+    const TiledRelief& relief() const;
 
   private:
     struct State;
