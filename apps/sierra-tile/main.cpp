@@ -77,10 +77,10 @@ int main(int argc, char** argv) {
         ->required();
     b->add_option("--out", out, "The tile file to write")->type_name("T.sierra")->required();
     b->add_option("--tile-levels", build.k,
-                  "Tiles of 2^K cells ((2^K+1)^2 samples; at most the grid's n)")
+                  "Tiles of 2^K cells ((2^K+1)^2 samples; at most the grid's n). Default: the "
+                  "K of 4..8 that makes the smallest file (8 for large grids)")
         ->type_name("K")
-        ->check(CLI::Range(1, 16))
-        ->capture_default_str();
+        ->check(CLI::Range(1, 16));
     b->add_option(
          "--heights", heights,
          "int16: quantised over the input's range (integer inputs exactly); float: as read")

@@ -267,6 +267,27 @@ TEST(TileFile, RawInt16IsStoredExactly) {
     std::remove(path.c_str());
 }
 
+// The default tile size is the one whose file is smallest: a small grid's
+// partly padded edge tiles make the largest tiles cost bytes.
+TEST(TileFile, TheDefaultTileSizeMakesTheSmallestFile) {
+    const terrain::Heightfield field = roughField(403, 344, 17);
+    const auto reader = terrain::memoryGridReader(field);
+    const std::string path = testing::TempDir() + "/auto.sierra";
+    uint64_t least = ~uint64_t(0), chosen = 0;
+    for (int k = 4; k <= 8; ++k) {
+        const sbt::TileBuildReport r = sbt::buildTileFile(*reader, path, {.k = k});
+        least = std::min(least, r.fileBytes);
+    }
+    const sbt::TileBuildReport r = sbt::buildTileFile(*reader, path, {});
+    chosen = r.fileBytes;
+    EXPECT_EQ(r.info.k, sbt::autoTileLevels(403, 344, sbt::TileHeights::Int16, false));
+    EXPECT_LE(double(chosen), 1.05 * double(least)) << "k " << r.info.k;
+    EXPECT_LE(r.bytesPerSample, 6.0);
+    EXPECT_EQ(sbt::autoTileLevels(65537, 65537, sbt::TileHeights::Int16, false), 8);
+    EXPECT_EQ(sbt::autoTileLevels(20, 20, sbt::TileHeights::Float32, true), 5) << "one tile";
+    std::remove(path.c_str());
+}
+
 TEST(TileFile, ADamagedFileIsRefusedOrReadUnchanged) {
     const terrain::Heightfield field = roughField(65, 65, 1);
     const std::string good = buildFile(field, 3, sbt::TileHeights::Int16, "good");

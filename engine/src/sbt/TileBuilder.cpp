@@ -426,6 +426,26 @@ class Builder {
 
 }  // namespace
 
+int autoTileLevels(int64_t width, int64_t height, TileHeights heights, bool noData) {
+    const int n = levelsFor(width, height);
+    const int top = std::min(8, n), bottom = std::min(4, top);
+    std::vector<double> bytes(size_t(top + 1), 0.0);
+    for (int k = bottom; k <= top; ++k) {
+        const Layout L(n, k, heights);
+        const int64_t T = int64_t(1) << k;
+        const double stored = double(std::max<int64_t>(1, (width - 1 + T - 1) / T)) *
+                              double(std::max<int64_t>(1, (height - 1 + T - 1) / T));
+        const double perTile = double(L.chunkEnd.back()) + 8.0 * double(L.entryWords()) +
+                               (noData ? double(L.maskBytes()) : 0.0);
+        const double corners = double(L.P + 1) * double(L.P + 1) * double(L.heightBytes + 8);
+        bytes[size_t(k)] = stored * perTile + corners;
+    }
+    const double least = *std::min_element(bytes.begin() + bottom, bytes.end());
+    int k = top;
+    while (bytes[size_t(k)] > 1.05 * least) --k;
+    return k;
+}
+
 TileBuildReport buildTileFile(const terrain::GridReader& input, const std::string& path,
                               const TileBuildOptions& options) {
     const terrain::GridInfo& in = input.info();
@@ -435,7 +455,7 @@ TileBuildReport buildTileFile(const terrain::GridReader& input, const std::strin
     SIERRA_CHECK(n <= kMaxLevels, "tile build: a ", in.width, "x", in.height,
                  " grid is larger than the ", (1 << kMaxLevels) + 1,
                  "-sample side tile files take");
-    SIERRA_CHECK(options.k >= 1, "tile build: tiles of 2^k cells need k >= 1, got ", options.k);
+    SIERRA_CHECK(options.k >= 0, "tile build: tiles of 2^k cells need k >= 1, got ", options.k);
     SIERRA_CHECK(std::isfinite(options.verticalScale) && options.verticalScale > 0.0f,
                  "tile build: the vertical scale must be > 0, got ", options.verticalScale);
     const int threads = options.threads > 0 ? options.threads : defaultThreadCount();
@@ -443,7 +463,8 @@ TileBuildReport buildTileFile(const terrain::GridReader& input, const std::strin
 
     TileFileInfo info;
     info.n = n;
-    info.k = std::min(options.k, n);
+    info.k = options.k > 0 ? std::min(options.k, n)
+                           : autoTileLevels(in.width, in.height, options.heights, in.hasNoData);
     info.width = in.width;
     info.height = in.height;
     info.heights = options.heights;

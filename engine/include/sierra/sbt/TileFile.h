@@ -70,7 +70,8 @@ inline float dequantizeHeight(int16_t q, double scale, double offset) {
 }
 
 struct TileBuildOptions {
-    int k = 8;  // tiles of 2^k cells; 1..n (larger than n: one tile)
+    // Tiles of 2^k cells; 1..n (larger than n: one tile). 0: autoTileLevels.
+    int k = 0;
     TileHeights heights = TileHeights::Int16;
     float verticalScale = 1.0f;  // world height = stored height * verticalScale
     int threads = 0;             // 0 = sierra::defaultThreadCount()
@@ -92,6 +93,13 @@ struct TileBuildReport {
 // quantise any other over the input's range (a first pass finds it); no-data
 // samples get the lowest real height and are marked in the mask. Throws
 // sierra::Error naming the input or the output.
+// The tile size a build takes by default for a width x height grid: the k
+// in 4..8 (at most n) whose file is smallest, the larger k among sizes within
+// 5% (fewer tiles to manage). Large grids get 8; a small grid's partly
+// padded edge tiles make smaller tiles pay (403x344: k 6, 4.5 bytes a sample
+// instead of 6.1 with k 8).
+int autoTileLevels(int64_t width, int64_t height, TileHeights heights, bool noData);
+
 TileBuildReport buildTileFile(const terrain::GridReader& input, const std::string& path,
                               const TileBuildOptions& options = {});
 
