@@ -276,6 +276,39 @@ def layers_table(data):
     return (["1920x1080 frame of a 2049² fractal", "median", "vs the plain frame"], rows)
 
 
+def tiled_table(data):
+    """BM_TiledRefine's four ways by their p99 against the in-memory one, then the
+    tile file's build, fly-through and first frame (tiled_figures.py)."""
+    benches = micro_medians(data["tiled_refine"])
+    base = benches.get("BM_TiledRefine/0/real_time")
+    rows = []
+    for run, b in sorted(benches.items()):
+        if not run.startswith("BM_TiledRefine/"):
+            continue
+        rows.append([b.get("label", run), f(ms(b)) + " ms", f(b["p99_ms"]) + " ms",
+                     f(b["p99_ms"] / base["p99_ms"]) if base else "n/a"])
+    t = data["tiled_flight"]
+    side, fl = t["side"], t["flight"]
+    rows.append([f"`sierra-tile build` of a {side}² .r16 (whole process)",
+                 f(t["build_seconds"]) + " s",
+                 f"{f(t['build']['bytes_per_sample'])} bytes a sample",
+                 f"peak RSS {f(t['build_peak_rss'] / 2**20)} MiB"])
+    rows.append([f"`sierra-bench tiled`, {f(fl['frames'])} frames at {f(fl['fps'])} fps, "
+                 f"{t['budget_mib']} MiB budget: refine + strip",
+                 f(fl["refine_ms"]["median"]) + " ms", f(fl["refine_ms"]["p99"]) + " ms",
+                 f"first frame {f(fl['first_frame_ms'])} ms after start"])
+    rows.append(["the same flight: tiles read, longest `beginFrame`",
+                 f(fl["tiles_read"]), f(fl["begin_frame_ms_max"]) + " ms",
+                 f"peak RSS {f(t['flight_peak_rss'] / 2**20)} MiB (whole process)"])
+    rows.append(["`sierra-render --heightmap T.sierra` 1920x1080, one frame, nothing waited for",
+                 f(t["frame_seconds"]) + " s", "",
+                 f"peak RSS {f(t['frame_peak_rss'] / 2**20)} MiB (whole process)"])
+    rows.append(["the same with `--shadows off --sky-light off`",
+                 f(t["plain_frame_seconds"]) + " s", "",
+                 f"peak RSS {f(t['plain_frame_peak_rss'] / 2**20)} MiB (whole process)"])
+    return (["tiled terrain", "median", "p99", "vs in-memory p99 / other"], rows)
+
+
 FIGURES = [
     Figure("refinement", "Refinement and strip emission",
            "Milliseconds per refinement (the median of single refinements) and the triangles it "
@@ -381,6 +414,18 @@ FIGURES = [
            layers_table,
            after="Targets: a drape at most 1.15x the plain frame; one million vector vertices at "
                  "most 1.5x; the 16384² orthophoto within 2 GiB of peak RSS."),
+    Figure("tiled", "Tiled terrain",
+           "Refinement over tiles against the in-memory path: 48 views of the moving orbit over "
+           "the rough 2049² fractal, one thread, every tile resident, the 99th percentile of single "
+           "refinements. Then a fractal made by `scripts/make-large-terrain.py`, built into a tile "
+           "file, flown over for 20 s without GL and drawn once (`scripts/tiled_figures.py`).",
+           {"tiled_refine": MICRO + ["--benchmark_filter=^BM_TiledRefine/"],
+            "tiled_flight": ["python3", "scripts/tiled_figures.py", "{apps}", "{out}", "{json}"]},
+           tiled_table,
+           after="Target: tiled p99 at most 1.5x the in-memory p99. The tiled walk has no view "
+                 "keys, from which the in-memory walk decides most splits. A 65537² terrain is "
+                 "the script's default size (8.6 GB, 26 minutes to write): too large for this "
+                 "page's routine run."),
     Figure("capture", "Capture",
            "The orbit's frames at 1920x1080 written to files against the frame loop that renders "
            "and reads them back, each program's whole run by the wall clock, interleaved, medians of "
