@@ -4,8 +4,8 @@
 // Tile (tx, ty) covers samples [tx T, tx T + T]^2, T = 2^k. Page texel
 // (tx, ty): x = resolution class c (its slot holds (2^c + 1)^2 world
 // heights, sample (a, b) at tile-local (a, b) * T / 2^c), y = layer, zw =
-// the slot's first texel in the layer (a layer is an atlas of slots); x < 0:
-// not on the GPU. At most 9 classes (c = 0..8, k <= 8).
+// the texel of the slot's sample (0, 0) in the layer (a layer is an atlas of
+// slots, each in a one-texel gutter); x < 0: not on the GPU. At most 9 classes (c = 0..8, k <= 8).
 layout(binding = 3) uniform isampler2D uPages;
 layout(binding = 4) uniform sampler2DArray uClass[9];
 // The tile corners' world heights ((tiles + 1)^2, the file's coarse
@@ -18,37 +18,24 @@ layout(std140, binding = 2) uniform Tiled {
     vec4 uTileRange;     // x, y: lowest and highest world height
 };
 
-// Texel p of class c's texture.
-float classTexel(int c, ivec3 p) {
-    switch (c) {
-    case 0: return texelFetch(uClass[0], p, 0).r;
-    case 1: return texelFetch(uClass[1], p, 0).r;
-    case 2: return texelFetch(uClass[2], p, 0).r;
-    case 3: return texelFetch(uClass[3], p, 0).r;
-    case 4: return texelFetch(uClass[4], p, 0).r;
-    case 5: return texelFetch(uClass[5], p, 0).r;
-    case 6: return texelFetch(uClass[6], p, 0).r;
-    case 7: return texelFetch(uClass[7], p, 0).r;
-    default: return texelFetch(uClass[8], p, 0).r;
-    }
-}
-
 // The height in the slot of `page` at grid position g (texels of the slot,
-// 0..2^c, may be fractional), bilinear over the slot's own texels only: the
-// slot's neighbours in the atlas never bleed in, and at a whole g the texel
-// itself comes back (a no-data neighbour does not turn it NaN).
+// 0..2^c, may be fractional), bilinear: g is clamped to the slot, whose
+// one-texel gutter repeats its edge, so the slot's neighbours in the atlas
+// never bleed in.
 float classHeight(ivec4 page, vec2 g) {
-    int last = 1 << page.x;
-    vec2 p = clamp(g, vec2(0.0), vec2(float(last)));
-    ivec2 i0 = min(ivec2(floor(p)), ivec2(last));
-    vec2 f = p - vec2(i0);
-    ivec2 i1 = min(i0 + ivec2(greaterThan(f, vec2(0.0))), ivec2(last));
-    ivec3 o = ivec3(page.zw, page.y);
-    float h00 = classTexel(page.x, o + ivec3(i0.x, i0.y, 0));
-    float h10 = i1.x == i0.x ? h00 : classTexel(page.x, o + ivec3(i1.x, i0.y, 0));
-    float h01 = i1.y == i0.y ? h00 : classTexel(page.x, o + ivec3(i0.x, i1.y, 0));
-    float h11 = i1.y == i0.y ? h10 : i1.x == i0.x ? h01 : classTexel(page.x, o + ivec3(i1, 0));
-    return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+    vec2 p = vec2(page.zw) + clamp(g, vec2(0.0), vec2(float(1 << page.x))) + 0.5;
+    float layer = float(page.y);
+    switch (page.x) {
+    case 0: return textureLod(uClass[0], vec3(p / vec2(textureSize(uClass[0], 0).xy), layer), 0.0).r;
+    case 1: return textureLod(uClass[1], vec3(p / vec2(textureSize(uClass[1], 0).xy), layer), 0.0).r;
+    case 2: return textureLod(uClass[2], vec3(p / vec2(textureSize(uClass[2], 0).xy), layer), 0.0).r;
+    case 3: return textureLod(uClass[3], vec3(p / vec2(textureSize(uClass[3], 0).xy), layer), 0.0).r;
+    case 4: return textureLod(uClass[4], vec3(p / vec2(textureSize(uClass[4], 0).xy), layer), 0.0).r;
+    case 5: return textureLod(uClass[5], vec3(p / vec2(textureSize(uClass[5], 0).xy), layer), 0.0).r;
+    case 6: return textureLod(uClass[6], vec3(p / vec2(textureSize(uClass[6], 0).xy), layer), 0.0).r;
+    case 7: return textureLod(uClass[7], vec3(p / vec2(textureSize(uClass[7], 0).xy), layer), 0.0).r;
+    default: return textureLod(uClass[8], vec3(p / vec2(textureSize(uClass[8], 0).xy), layer), 0.0).r;
+    }
 }
 
 // The tile holding sample (i, j) whose page is on the GPU (a border sample

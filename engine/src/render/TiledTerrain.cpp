@@ -46,22 +46,24 @@ class GpuResident : public sbt::TiledVertices {
 };
 
 // Class c's tiles: an array texture of layers, each an atlas of
-// slotsPerRow^2 slots of side^2 texels side by side. The shaders fetch texels
-// clamped to a tile's own slot and filter them themselves, so neighbouring
-// slots never bleed into each other.
+// slotsPerRow^2 slots side by side. A slot is the tile's side^2 heights in a
+// one-texel gutter repeating its edge: the shaders' bilinear lookups stay
+// within a tile's own texels, so neighbouring slots never bleed into each
+// other, whatever the rounding of the texture coordinates.
 struct GpuClass {
     gpu::Texture texture;
     int side = 0;  // 2^c + 1
+    int pitch() const { return side + 2; }
     int slotsPerRow = 1;
     int layers = 0;
     int slots = 0;  // usable: the last layer may have unused slots
     std::vector<int> freeSlots;
     std::vector<int> owner;  // tile per slot, -1 = free
     int perLayer() const { return slotsPerRow * slotsPerRow; }
-    // Layer, then texel x and y of the slot's first texel.
+    // Layer, then texel x and y of the slot's first texel (its gutter's).
     std::array<int, 3> place(int slot) const {
         const int r = slot % perLayer();
-        return {slot / perLayer(), r % slotsPerRow * side, r / slotsPerRow * side};
+        return {slot / perLayer(), r % slotsPerRow * pitch(), r / slotsPerRow * pitch()};
     }
 };
 
@@ -73,7 +75,7 @@ void layoutClass(GpuClass& g, uint64_t wanted, uint64_t left, uint64_t bytes, in
     const uint64_t perLayerMin = (wanted + uint64_t(maxLayers) - 1) / uint64_t(maxLayers);
     int n = std::max(1, int(std::ceil(std::sqrt(double(perLayerMin)))));
     while (uint64_t(n) * uint64_t(n) < perLayerMin) ++n;
-    n = std::max(1, std::min(n, maxSide / g.side));
+    n = std::max(1, std::min(n, maxSide / g.pitch()));
     const uint64_t q = uint64_t(n) * uint64_t(n);
     uint64_t layers = std::min<uint64_t>((wanted + q - 1) / q, uint64_t(maxLayers));
     while (layers > 1 && layers * q * bytes > left) --layers;
@@ -111,7 +113,7 @@ struct TiledTerrain::State {
     glm::vec3 lastEye{0.0f};
     bool haveLastEye = false;
     glm::vec2 range{0.0f, 1.0f};
-    std::vector<float> grid;  // scratch of an upload
+    std::vector<float> grid, slotTexels;  // scratch of an upload
 
     int tiles() const { return file->info().tilesPerSide(); }
     void upload(int tile, const sbt::PackedTile& data, int& uploaded);
@@ -151,7 +153,7 @@ std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
     for (int c = 0; c <= info.k; ++c) {
         GpuClass& g = s->classes[size_t(c)];
         g.side = (1 << c) + 1;
-        const uint64_t tileBytes = uint64_t(g.side) * uint64_t(g.side) * 4;
+        const uint64_t tileBytes = uint64_t(g.pitch()) * uint64_t(g.pitch()) * 4;
         const uint64_t wanted =
             std::min<uint64_t>(left / uint64_t(info.k + 1 - c) / tileBytes, uint64_t(tiles));
         SIERRA_CHECK(wanted >= 1, "a memory budget of ", desc.memoryBudget >> 20,
@@ -161,10 +163,10 @@ std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
         left -= std::min(left, bytes);
         g.texture = gpu::Texture::create({.target = GL_TEXTURE_2D_ARRAY,
                                           .format = GL_R32F,
-                                          .width = g.side * g.slotsPerRow,
-                                          .height = g.side * g.slotsPerRow,
+                                          .width = g.pitch() * g.slotsPerRow,
+                                          .height = g.pitch() * g.slotsPerRow,
                                           .layers = g.layers,
-                                          .filter = GL_NEAREST});
+                                          .filter = GL_LINEAR});
         g.freeSlots.resize(size_t(g.slots));
         std::iota(g.freeSlots.rbegin(), g.freeSlots.rend(), 0);
         g.owner.assign(size_t(g.slots), -1);
@@ -310,15 +312,23 @@ void TiledTerrain::State::upload(int tile, const sbt::PackedTile& data, int& upl
             grid[m] = 0.5f * (grid[size_t(aj) * size_t(side) + size_t(ai)] +
                               grid[size_t(bj) * size_t(side) + size_t(bi)]);
         }
+    // The slot: the grid in its gutter, the edge texels repeated.
+    const int pitch = g.pitch();
+    slotTexels.resize(size_t(pitch) * size_t(pitch));
+    for (int b = 0; b < pitch; ++b)
+        for (int a = 0; a < pitch; ++a)
+            slotTexels[size_t(b) * size_t(pitch) + size_t(a)] =
+                grid[size_t(std::clamp(b - 1, 0, side - 1)) * size_t(side) +
+                     size_t(std::clamp(a - 1, 0, side - 1))];
     const auto [layer, x0, y0] = g.place(slot);
-    glTextureSubImage3D(g.texture.id(), 0, x0, y0, layer, side, side, 1, GL_RED, GL_FLOAT,
-                        grid.data());
+    glTextureSubImage3D(g.texture.id(), 0, x0, y0, layer, pitch, pitch, 1, GL_RED, GL_FLOAT,
+                        slotTexels.data());
     g.owner[size_t(slot)] = tile;
     gpuClass[size_t(tile)] = c;
     gpuSlot[size_t(tile)] = slot;
     gpuLevels[size_t(tile)] = std::min(data.levels, 2 * c);
     gpuUsed[size_t(tile)] = frame;
-    const int page[4] = {c, layer, x0, y0};
+    const int page[4] = {c, layer, x0 + 1, y0 + 1};
     std::copy_n(page, 4, pageData.begin() + ptrdiff_t(tile) * 4);
     pagesDirty = true;
     ++uploaded;

@@ -9,14 +9,14 @@
 // that are missing are the means of their hypotenuse's ends, as the coarser
 // mesh draws them); class c's array texture holds such tiles in slots, one a
 // layer or, where the class wants more tiles than the driver has layers,
-// several side by side in a layer (the shaders filter inside a slot, so
-// neighbours never bleed). A page table (one texel a tile) gives each tile's
-// class, layer and slot. The GPU byte budget bounds the slots. The mesh
-// streams as the refinement's (i, j) vertex pairs in a storage buffer: the
-// vertex shader reads its height from the tile holding it, the fragment
-// shader shades with the finest heights resident at the fragment. What the
-// refinement may use is what is on the GPU: a tile's usable levels are the
-// fewer of those read and those uploaded.
+// several side by side in a layer (each in a one-texel gutter repeating its
+// edge, so bilinear lookups never bleed into a neighbour). A page table (one
+// texel a tile) gives each tile's class, layer and slot. The GPU byte budget
+// bounds the slots. The mesh streams as the refinement's (i, j) vertex pairs
+// in a storage buffer: the vertex shader reads its height from the tile
+// holding it, the fragment shader shades with the finest heights resident at
+// the fragment. What the refinement may use is what is on the GPU: a tile's
+// usable levels are the fewer of those read and those uploaded.
 //
 // Shading: a hypsometric ramp over the terrain's height range, a sun and an
 // ambient term, cast shadows and sky light from the overview (TiledRelief.h),
