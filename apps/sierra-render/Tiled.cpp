@@ -17,6 +17,8 @@
 #include <sierra/render/TiledTerrain.h>
 #include <sierra/render/Video.h>
 
+#include <algorithm>
+#include <climits>
 #include <cstdio>
 
 namespace sierra::apps {
@@ -36,6 +38,33 @@ std::string needsGrid(const scene::Scene& s) {
     if (s.lighting.sunTime) return "--sun-time";
     if (!(s.style == d.style)) return "styles and overlays";
     return "";
+}
+
+// A still's wait for its tiles: refinement, streaming and uploads without
+// drawing, until no tile is coarse, nothing more arrives, the coarse count
+// stops falling (a view wanting more than the GPU cache holds), or
+// `seconds` pass (the relief's first computation not counted). Returns the
+// relief's milliseconds.
+double waitForStill(render::TiledTerrain& terrain, const render::Camera& camera, int width,
+                    int height, render::TiledFrameOptions options, double seconds) {
+    options.uploadsPerFrame = 1 << 30;
+    Stopwatch waited;
+    double reliefMs = 0.0;
+    int64_t lastRead = -1;
+    int fewest = INT_MAX, sinceFewer = 0;
+    for (int pass = 0;; ++pass) {
+        const render::TiledFrameStats stats = terrain.prepare(camera, width, height, options);
+        reliefMs += stats.reliefMs;
+        const bool stalled =
+            pass > 0 && stats.uploadedTiles == 0 && stats.cache.tilesRead == lastRead;
+        lastRead = stats.cache.tilesRead;
+        sinceFewer = stats.coarseTiles < fewest ? 0 : sinceFewer + 1;
+        fewest = std::min(fewest, stats.coarseTiles);
+        if (stats.coarseTiles == 0 || stalled || sinceFewer >= 8 ||
+            waited.ms() - reliefMs > seconds * 1000.0)
+            return reliefMs;
+        terrain.waitForTiles();
+    }
 }
 
 }  // namespace
@@ -86,26 +115,11 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
     const bool still = first == last;
     for (int k = first; k <= last; ++k) {
         const render::Camera camera = facade::sceneCamera(s, bounds, k);
-        render::TiledFrameStats stats;
-        Stopwatch waited;
-        bool firstPass = true;
-        int64_t lastRead = -1;
-        double reliefMs = 0.0;
-        for (;;) {
-            target.begin({options.sky, 1.0f});
-            stats = terrain->draw(camera, width, height, options);
-            reliefMs += stats.reliefMs;
-            // A still waits for what it asked for, while anything can still
-            // arrive; a sequence streams.
-            const bool stalled =
-                !firstPass && stats.uploadedTiles == 0 && stats.cache.tilesRead == lastRead;
-            lastRead = stats.cache.tilesRead;
-            if (!still || stats.coarseTiles == 0 || stalled ||
-                waited.ms() - reliefMs > o.tileWaitSeconds * 1000.0)
-                break;
-            firstPass = false;
-            terrain->waitForTiles();
-        }
+        const double waitReliefMs =
+            still ? waitForStill(*terrain, camera, width, height, options, o.tileWaitSeconds) : 0.0;
+        target.begin({options.sky, 1.0f});
+        const render::TiledFrameStats stats = terrain->draw(camera, width, height, options);
+        const double reliefMs = waitReliefMs + stats.reliefMs;
         const std::string path = sequenceFrame(s, k);
         render::writePng(path, target.read());
         log::info("frame ", k, ": ", stats.triangles, " triangles, refine + strip ",

@@ -21,8 +21,6 @@ namespace {
 
 // Tile resolutions the shaders take (tiled_common.glsl's uClass).
 constexpr int kMaxClasses = 9;
-// Tiles uploaded a frame at most, so one frame's uploads stay short.
-constexpr int kUploadsPerFrame = 96;
 
 // The refinement's view of a cache: a tile's usable levels are those read
 // and uploaded both.
@@ -117,7 +115,14 @@ struct TiledTerrain::State {
 
     int tiles() const { return file->info().tilesPerSide(); }
     void upload(int tile, const sbt::PackedTile& data, int& uploaded);
-    void uploadArrivals(int& uploaded);
+    void uploadArrivals(int& uploaded, int limit);
+    void cacheStats(TiledFrameStats& stats) const {
+        stats.cache = cache->stats();
+        stats.gpuBytes = gpuBytes;
+        stats.gpuSlots = gpuSlots;
+        stats.gpuTiles =
+            int(std::count_if(gpuClass.begin(), gpuClass.end(), [](int c) { return c >= 0; }));
+    }
 };
 
 std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
@@ -334,7 +339,7 @@ void TiledTerrain::State::upload(int tile, const sbt::PackedTile& data, int& upl
     ++uploaded;
 }
 
-void TiledTerrain::State::uploadArrivals(int& uploaded) {
+void TiledTerrain::State::uploadArrivals(int& uploaded, int limit) {
     const int P = tiles();
     // Nearest first would need the distances; the refinement's order is
     // good enough: tiles it reached, deepest want first.
@@ -346,22 +351,23 @@ void TiledTerrain::State::uploadArrivals(int& uploaded) {
     }
     std::sort(todo.begin(), todo.end());
     for (const auto& [negLevels, t] : todo) {
-        if (uploaded >= kUploadsPerFrame) break;
+        if (uploaded >= limit) break;
         (void)negLevels;
         if (const sbt::PackedTile* data = cache->packed(t % P, t / P)) upload(t, *data, uploaded);
     }
 }
 
-TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
-                                   const TiledFrameOptions& options) {
+TiledFrameStats TiledTerrain::prepare(const Camera& camera, int width, int height,
+                                      const TiledFrameOptions& options) {
     State& s = *state_;
     TiledFrameStats stats;
     ++s.frame;
     Stopwatch upload;
     s.cache->beginFrame();
     int uploaded = 0;
-    s.uploadArrivals(uploaded);
+    s.uploadArrivals(uploaded, std::max(options.uploadsPerFrame, 1));
     stats.uploadMs = upload.ms();
+    stats.uploadedTiles = uploaded;
     const TiledReliefRequest relief{.shadows = options.shadows,
                                     .skyLight = options.skyLight,
                                     .sunDirection = options.sunDirection,
@@ -393,6 +399,15 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
     s.lastEye = camera.position;
     s.haveLastEye = true;
     s.cache->wantForView(*s.refiner, view.eye, {ahead.x, ahead.y, ahead.z});
+    s.cacheStats(stats);
+    return stats;
+}
+
+TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
+                                   const TiledFrameOptions& options) {
+    TiledFrameStats stats = prepare(camera, width, height, options);
+    State& s = *state_;
+    const float aspect = float(width) / float(height);
 
     // The mesh: (i, j) pairs and their indices with restarts.
     Stopwatch meshUpload;
@@ -411,7 +426,6 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
             gpu::Buffer::create({.size = s.indexData.size() * 4, .data = s.indexData.data()});
     }
     stats.uploadMs += meshUpload.ms();
-    stats.uploadedTiles = uploaded;
 
     if (!strip.empty()) {
         gpu::GlStateScope scope;
@@ -450,11 +464,7 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
         glBindVertexArray(0);
         glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     }
-    stats.cache = s.cache->stats();
-    stats.gpuBytes = s.gpuBytes;
-    stats.gpuSlots = s.gpuSlots;
-    stats.gpuTiles =
-        int(std::count_if(s.gpuClass.begin(), s.gpuClass.end(), [](int c) { return c >= 0; }));
+    s.cacheStats(stats);
     return stats;
 }
 

@@ -68,6 +68,9 @@ struct TiledFrameOptions {
     bool skyLight = false;
     float sunSize = 0.53f;       // the sun's angular diameter, degrees, (0, 20]
     float horizonRadius = 0.0f;  // world units, >= 0; 0 = the whole terrain
+    // Tiles uploaded a frame at most, so one frame's uploads stay short; a
+    // still that waits for its tiles takes them all.
+    int uploadsPerFrame = 96;
 };
 
 struct TiledFrameStats {
@@ -100,6 +103,10 @@ class TiledTerrain {
     // and what lies ahead, uploads, draws. Never waits for a read.
     TiledFrameStats draw(const Camera& camera, int width, int height,
                          const TiledFrameOptions& options);
+    // All of draw() but the mesh and the drawing: what a still repeats while
+    // it waits for its tiles, without paying for a frame each time.
+    TiledFrameStats prepare(const Camera& camera, int width, int height,
+                            const TiledFrameOptions& options);
     // Blocks until the loaders have read what the last frame asked for.
     void waitForTiles();
     // Shadows and sky light as the last frame asking for them drew them.
