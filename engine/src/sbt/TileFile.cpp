@@ -318,19 +318,8 @@ int TileAddressing::level(int x, int y) const {
 }
 
 size_t TileAddressing::index(int x, int y) const {
-    // Level t = 2m or 2m + 1 has half-step h = T >> (m + 1) and step 2h: all
-    // powers of two, so the lattice coordinates are shifts.
-    const int t = level(x, y), m = t >> 1, hs = k_ - m - 1, ss = hs + 1, h = 1 << hs;
-    const size_t side = size_t(1) << m;
-    size_t at;
-    if ((t & 1) == 0) {
-        at = size_t((y - h) >> ss) * side + size_t((x - h) >> ss);
-    } else {
-        const int r = y >> hs;  // row of the level's lattice
-        const size_t before = size_t((r + 1) >> 1) * side + size_t(r >> 1) * (side + 1);
-        at = before + size_t((r & 1) == 0 ? (x - h) >> ss : x >> ss);
-    }
-    return start_[size_t(t)] + at;
+    const int t = level(x, y);
+    return start_[size_t(t)] + indexInLevel(uint32_t(x), uint32_t(y), t, k_);
 }
 
 uint64_t TileFile::packedBytes(int c) const {

@@ -212,23 +212,10 @@ struct TiledRefiner::Walk {
                 reached[size_t(edgeTile[e])] = std::max(reached[size_t(edgeTile[e])], rEdge[e]);
     }
 
-    // The record index of tile-local vertex (x, y) of tile level t
-    // (TileAddressing::index, the level known).
+    // The record index of tile-local vertex (x, y) of tile level t.
     size_t recordIndex(uint64_t local, int t) const {
-        const uint32_t x = uint32_t(local), y = uint32_t(local >> 32);
-        const int half = t >> 1, hs = k - half - 1, ss = hs + 1;
-        const uint32_t h = uint32_t(1) << hs;
-        const size_t rowLength = size_t(1) << half;
-        size_t at;
-        if ((t & 1) == 0) {
-            at = size_t((y - h) >> ss) * rowLength + size_t((x - h) >> ss);
-        } else {
-            const uint32_t r = y >> hs;  // row of the level's lattice
-            const size_t before =
-                size_t((r + 1) >> 1) * rowLength + size_t(r >> 1) * (rowLength + 1);
-            at = before + size_t((r & 1) == 0 ? (x - h) >> ss : x >> ss);
-        }
-        return levelStart[t] + at;
+        return levelStart[t] +
+               TileAddressing::indexInLevel(uint32_t(local), uint32_t(local >> 32), t, k);
     }
 
     // Triangle (a, q, b) at level l (tileLevel <= l < finest) inside the

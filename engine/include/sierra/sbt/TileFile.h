@@ -121,6 +121,18 @@ class TileAddressing {
     int k() const { return k_; }
     int level(int x, int y) const;  // 0 .. 2k-1
     size_t index(int x, int y) const;
+    // The index of (x, y) among the vertices of its tile level t alone. Level
+    // t = 2m or 2m + 1 has half-step h = 2^k >> (m + 1) and step 2h: all
+    // powers of two, so the lattice coordinates are shifts.
+    static size_t indexInLevel(uint32_t x, uint32_t y, int t, int k) {
+        const int half = t >> 1, hs = k - half - 1, ss = hs + 1;
+        const uint32_t h = uint32_t(1) << hs;
+        const size_t rowLength = size_t(1) << half;
+        if ((t & 1) == 0) return size_t((y - h) >> ss) * rowLength + size_t((x - h) >> ss);
+        const uint32_t r = y >> hs;  // row of the level's lattice
+        const size_t before = size_t((r + 1) >> 1) * rowLength + size_t(r >> 1) * (rowLength + 1);
+        return before + size_t((r & 1) == 0 ? (x - h) >> ss : x >> ss);
+    }
     // Vertices of tile levels 0 .. levels-1.
     size_t countBelow(int levels) const { return start_[size_t(levels)]; }
 
