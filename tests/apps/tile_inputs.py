@@ -114,8 +114,9 @@ def main():
             "--memory-budget", "64")
     assert os.path.getsize(frame) > 1000, "a frame was written"
     assert "0 tiles drawn coarse" in p.stderr, p.stderr
-    # Shadows and sky light (on by default) from the overview, here the whole grid.
-    assert "shadows and sky light on an overview of 2401x2401 samples (stride 1" in p.stderr, \
+    # Shadows and sky light (on by default) from the overview: every 2nd sample
+    # keeps a side within 2049.
+    assert "shadows and sky light on an overview of 1201x1201 samples (stride 2" in p.stderr, \
         p.stderr
     with open(frame, "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"

@@ -48,7 +48,9 @@ struct TiledTerrainDesc {
     int maxLayers = 0;
     // Samples a side of the overview that shadows and sky light are computed
     // on at most (render/TiledRelief.h); the driver's texture size caps it.
-    int reliefMaxSide = 4097;
+    // The horizons of 16 azimuths take 64 bytes a sample while they are
+    // computed: 268 MB at 2049, 1.07 GB at 4097 (in the process on llvmpipe).
+    int reliefMaxSide = 2049;
 };
 
 struct TiledFrameOptions {
