@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 namespace sierra::test {
@@ -75,13 +76,26 @@ gpu::Image finished(render::TiledTerrain& terrain, const render::TiledFrameOptio
     return target.read();
 }
 
-TEST_F(TiledReliefTest, ARidgeShadowsItsLee) {
-    const terrain::Heightfield field = ridge();
-    const std::string path = build(field, "gl_relief");
-    auto terrain = render::TiledTerrain::open({.path = path, .memoryBudget = 64u << 20});
+// The ridge as a tile file, opened, and frame options with the test's sun
+// and no haze.
+struct RidgeScene {
+    terrain::Heightfield field = ridge();
+    std::string path;
+    std::unique_ptr<render::TiledTerrain> terrain;
     render::TiledFrameOptions options;
-    options.sunDirection = render::compassDirection(kSunAzimuth, kSunAltitude);
-    options.fogDensity = 0.0f;
+    explicit RidgeScene(const std::string& name) : path(build(field, name)) {
+        terrain = render::TiledTerrain::open({.path = path, .memoryBudget = 64u << 20});
+        options.sunDirection = render::compassDirection(kSunAzimuth, kSunAltitude);
+        options.fogDensity = 0.0f;
+    }
+};
+
+TEST_F(TiledReliefTest, ARidgeShadowsItsLee) {
+    RidgeScene scene("gl_relief");
+    const terrain::Heightfield& field = scene.field;
+    const std::string& path = scene.path;
+    render::TiledTerrain* terrain = scene.terrain.get();
+    render::TiledFrameOptions& options = scene.options;
     const gpu::Image plain = finished(*terrain, options);
     options.shadows = true;
     const gpu::Image shadowed = finished(*terrain, options);
@@ -121,12 +135,11 @@ TEST_F(TiledReliefTest, ARidgeShadowsItsLee) {
 }
 
 TEST_F(TiledReliefTest, SkyLightDarkensTheRidgesFoot) {
-    const terrain::Heightfield field = ridge();
-    const std::string path = build(field, "gl_sky");
-    auto terrain = render::TiledTerrain::open({.path = path, .memoryBudget = 64u << 20});
-    render::TiledFrameOptions options;
-    options.sunDirection = render::compassDirection(kSunAzimuth, kSunAltitude);
-    options.fogDensity = 0.0f;
+    RidgeScene scene("gl_sky");
+    const terrain::Heightfield& field = scene.field;
+    const std::string& path = scene.path;
+    render::TiledTerrain* terrain = scene.terrain.get();
+    render::TiledFrameOptions& options = scene.options;
     options.shadows = true;
     const gpu::Image shadowsOnly = finished(*terrain, options);
     options.skyLight = true;
