@@ -1,22 +1,32 @@
 // Shared by the tiled terrain's stages (engine: render/TiledTerrain.h): the
 // GPU tile cache, one array texture a tile resolution, and the page table.
+// The names a surface reads (render/Surface.h: the Terrain block's
+// uSpacingValid and uHeightInfo, Ground) are those of terrain_common.glsl, so
+// one surface function shades both terrains; the tile cache takes texture
+// units 16 and up, above the surfaces' own.
 //
 // Tile (tx, ty) covers samples [tx T, tx T + T]^2, T = 2^k. Page texel
 // (tx, ty): x = resolution class c (its slot holds (2^c + 1)^2 world
 // heights, sample (a, b) at tile-local (a, b) * T / 2^c), y = layer, zw =
 // the texel of the slot's sample (0, 0) in the layer (a layer is an atlas of
 // slots, each in a one-texel gutter); x < 0: not on the GPU. At most 9 classes (c = 0..8, k <= 8).
-layout(binding = 3) uniform isampler2D uPages;
-layout(binding = 4) uniform sampler2DArray uClass[9];
+layout(binding = 16) uniform isampler2D uPages;
+layout(binding = 17) uniform sampler2DArray uClass[9];  // units 17..25
 // The tile corners' world heights ((tiles + 1)^2, the file's coarse
 // section): always there, for the coarse mesh and where no tile is resident.
-layout(binding = 13) uniform sampler2D uCorners;
+layout(binding = 26) uniform sampler2D uCorners;
 
-layout(std140, binding = 2) uniform Tiled {
-    ivec4 uTileInfo;     // x: k, y: tiles per side, z: T = 2^k
-    vec4 uTileSpacing;   // xy: world distance between samples along x and z; zw: world x, z of the last real sample
-    vec4 uTileRange;     // x, y: lowest and highest world height
+layout(std140, binding = 1) uniform Terrain {
+    ivec4 uGrid;          // x: samples per side, 2^n + 1
+    vec4 uSpacingValid;   // xy: world distance between samples along x and z; zw: world x, z of the last real sample
+    vec4 uHeightInfo;     // x: world sea level; y: 0 (no water); z, w: lowest and highest world height
+    ivec4 uTileInfo;      // x: k, y: tiles per side, z: T = 2^k
 };
+
+// True for fragments over the padding to (2^n+1)^2 samples.
+bool overPadding(vec3 world) {
+    return any(greaterThan(world.xz, uSpacingValid.zw + 1e-3 * uSpacingValid.xy));
+}
 
 // The height in the slot of `page` at grid position g (texels of the slot,
 // 0..2^c, may be fractional), bilinear: g is clamped to the slot, whose
@@ -59,26 +69,30 @@ float tiledSampleHeight(ivec2 ij) {
     int T = uTileInfo.z;
     if ((ij.x & (T - 1)) == 0 && (ij.y & (T - 1)) == 0) return texelFetch(uCorners, ij >> uTileInfo.x, 0).r;
     ivec2 t = residentTile(ij);
-    if (t.x < 0) return uTileRange.x;
+    if (t.x < 0) return uHeightInfo.z;
     ivec4 page = texelFetch(uPages, t, 0);
     int step = uTileInfo.z >> page.x;
     float h = classHeight(page, vec2(ij - t * uTileInfo.z) / float(step));
-    return isnan(h) ? uTileRange.x : h;
+    return isnan(h) ? uHeightInfo.z : h;
 }
 
 // World height and normal at a ground position from the finest heights on
-// the GPU there; the height is NaN next to a no-data sample.
-struct TiledGround {
-    float height;
-    vec3 normal;
+// the GPU there, as terrain_common.glsl's Ground (a tiled terrain has no
+// water); the height is NaN next to a no-data sample.
+struct Ground {
+    float height;  // world units
+    vec3 normal;   // unit
+    float slope;   // 0 flat .. 1 vertical (1 - normal.y)
+    bool water;    // always false
 };
 
-TiledGround tiledGroundAt(vec2 xz) {
+Ground groundAt(vec2 xz) {
     int k = uTileInfo.x, P = uTileInfo.y, T = uTileInfo.z;
-    vec2 s = xz / uTileSpacing.xy;  // samples
+    vec2 s = xz / uSpacingValid.xy;  // samples
     ivec2 t = clamp(ivec2(floor(s)) >> k, ivec2(0), ivec2(P - 1));
     ivec4 page = texelFetch(uPages, t, 0);
-    TiledGround g;
+    Ground g;
+    g.water = false;
     if (page.x < 0) {
         // No tile here on the GPU: the surface of the tile corners.
         vec2 c = s / float(T);
@@ -88,8 +102,9 @@ TiledGround tiledGroundAt(vec2 xz) {
         float hx1 = textureLod(uCorners, (c + vec2(0.5, 0.0) + 0.5) / size, 0.0).r;
         float hz0 = textureLod(uCorners, (c + vec2(0.0, -0.5) + 0.5) / size, 0.0).r;
         float hz1 = textureLod(uCorners, (c + vec2(0.0, 0.5) + 0.5) / size, 0.0).r;
-        g.normal = normalize(vec3(-(hx1 - hx0) / (float(T) * uTileSpacing.x), 1.0,
-                                  -(hz1 - hz0) / (float(T) * uTileSpacing.y)));
+        g.normal = normalize(vec3(-(hx1 - hx0) / (float(T) * uSpacingValid.x), 1.0,
+                                  -(hz1 - hz0) / (float(T) * uSpacingValid.y)));
+        g.slope = 1.0 - g.normal.y;
         return g;
     }
     float step = float(T >> page.x);
@@ -100,9 +115,10 @@ TiledGround tiledGroundAt(vec2 xz) {
     vec2 a = clamp(p - vec2(1.0, 0.0), vec2(0.0), vec2(last)), b = clamp(p + vec2(1.0, 0.0), vec2(0.0), vec2(last));
     vec2 c = clamp(p - vec2(0.0, 1.0), vec2(0.0), vec2(last)), d = clamp(p + vec2(0.0, 1.0), vec2(0.0), vec2(last));
     float dhdx = (classHeight(page, b) - classHeight(page, a)) /
-                 max((b.x - a.x) * step * uTileSpacing.x, 1e-6);
+                 max((b.x - a.x) * step * uSpacingValid.x, 1e-6);
     float dhdz = (classHeight(page, d) - classHeight(page, c)) /
-                 max((d.y - c.y) * step * uTileSpacing.y, 1e-6);
+                 max((d.y - c.y) * step * uSpacingValid.y, 1e-6);
     g.normal = normalize(vec3(-dhdx, 1.0, -dhdz));
+    g.slope = 1.0 - g.normal.y;
     return g;
 }

@@ -14,6 +14,6 @@ out vec3 vWorld;
 
 void main() {
     ivec2 ij = ivec2(vertices[gl_VertexID]);
-    vWorld = vec3(float(ij.x) * uTileSpacing.x, tiledSampleHeight(ij), float(ij.y) * uTileSpacing.y);
+    vWorld = vec3(float(ij.x) * uSpacingValid.x, tiledSampleHeight(ij), float(ij.y) * uSpacingValid.y);
     gl_Position = uViewProj * vec4(vWorld, 1.0);
 }

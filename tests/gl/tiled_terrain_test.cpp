@@ -1,9 +1,11 @@
 // The tiled terrain drawn from a tile file: the first frame comes from the
 // coarse section alone, later frames from what has arrived, and once every
 // tile is on the GPU the mesh is the in-memory refinement's; a GPU cache too
-// small for the view still draws every frame.
+// small for the view still draws every frame; a drape surface colours it by
+// world position.
 #include "GlTest.h"
 
+#include <sierra/render/DrapeSurface.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/TiledTerrain.h>
 #include <sierra/sbt/Refiner.h>
@@ -15,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -232,6 +235,65 @@ TEST_F(TiledTerrainTest, TilesBeyondTheLayerLimitShareLayers) {
         EXPECT_LE(worst, 2);
         EXPECT_LT(differ, frame.image.rgba.size() / 10000);
     }
+    std::remove(path.c_str());
+}
+
+// An image of two halves, `left` for columns i < side / 2, `right` beyond.
+terrain::DrapeImage halves(int side, std::array<uint8_t, 3> left, std::array<uint8_t, 3> right) {
+    terrain::DrapeImage image;
+    image.width = image.height = side;
+    image.rgba.resize(size_t(side) * size_t(side) * 4);
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            const auto& c = i < side / 2 ? left : right;
+            uint8_t* p = &image.rgba[(size_t(j) * size_t(side) + size_t(i)) * 4];
+            p[0] = c[0], p[1] = c[1], p[2] = c[2], p[3] = 255;
+        }
+    image.coverage = 1.0;
+    return image;
+}
+
+TEST_F(TiledTerrainTest, ADrapeColoursTheTerrainByWorldPosition) {
+    const terrain::Heightfield field = rough(257);
+    const std::string path = build(field, 4, "gl_drape");
+    render::Camera camera;
+    camera.position = {128.0f, 260.0f, -120.0f};
+    camera.target = {128.0f, 0.0f, 128.0f};
+    camera.farPlane = 3000.0f;
+    const int w = 320, h = 200;
+    render::TiledFrameOptions options;
+    options.fogDensity = 0.0f;
+    auto terrain = render::TiledTerrain::open({.path = path, .memoryBudget = 64u << 20});
+    // The same drape and its mirror: red | blue, then blue | red.
+    std::array<gpu::Image, 2> frames;
+    const std::array<uint8_t, 3> red{230, 20, 20}, blue{20, 20, 230};
+    for (int k = 0; k < 2; ++k) {
+        const terrain::DrapeImage image = k == 0 ? halves(64, red, blue) : halves(64, blue, red);
+        const render::DrapeLayer layer{.image = &image};
+        terrain->setSurface(render::makeDrapeSurface(
+            render::makeRampSurface(terrain->surfaceRamp({})), std::span(&layer, 1)));
+        const Finished frame = finishedFrame(*terrain, camera, w, h, options);
+        ASSERT_EQ(frame.stats.coarseTiles, 0);
+        frames[size_t(k)] = frame.image;
+    }
+    // Every terrain pixel swaps red for blue between the two; both halves are seen.
+    const std::vector<uint8_t> mask = terrainMask(frames[0]);
+    size_t terrainPixels = 0, redFirst = 0, blueFirst = 0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+        if (!mask[i]) continue;
+        ++terrainPixels;
+        const uint8_t* a = &frames[0].rgba[i * 4];
+        const uint8_t* b = &frames[1].rgba[i * 4];
+        const int dr = int(a[0]) - int(b[0]), db = int(a[2]) - int(b[2]);
+        redFirst += dr > 8 && db < -8;
+        blueFirst += dr < -8 && db > 8;
+    }
+    std::printf("%zu terrain pixels: %zu red then blue, %zu blue then red\n", terrainPixels,
+                redFirst, blueFirst);
+    ASSERT_GT(terrainPixels, size_t(w * h / 4));
+    EXPECT_GT(redFirst + blueFirst, terrainPixels * 98 / 100);
+    EXPECT_GT(redFirst, terrainPixels / 4);
+    EXPECT_GT(blueFirst, terrainPixels / 4);
     std::remove(path.c_str());
 }
 

@@ -33,15 +33,12 @@ std::unique_ptr<Surface> makePaperSurface() {
     return std::make_unique<PaperSurface>();
 }
 
-terrain::ColourRamp surfaceRamp(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
-    // The ramp spans the terrain's heights in stored units (the shader looks it
-    // up by world height over the same range, linearly), so metric stops stay
-    // in metres whatever the vertical scale.
-    glm::vec2 range = terrain.worldRange() / terrain.verticalScale();
+terrain::ColourRamp surfaceRamp(glm::vec2 range, std::optional<float> seaLevel,
+                                const RampSurfaceDesc& desc) {
     if (!desc.cpt.empty()) return terrain::readCpt(desc.cpt).ramp(range.x, range.y);
     // Without water the ramp's sea level sits below the lowest height, so no
     // sample is coloured as sea or beach.
-    float sea = terrain.hasWater() ? terrain.seaLevel() : range.x - (range.y - range.x);
+    const float sea = seaLevel ? *seaLevel : range.x - (range.y - range.x);
     return terrain::ColourRamp(
         {.scheme = desc.metric ? terrain::RampScheme::Elevation : terrain::RampScheme::Hypsometric,
          .minHeight = range.x,
@@ -51,12 +48,25 @@ terrain::ColourRamp surfaceRamp(const TerrainGpu& terrain, const RampSurfaceDesc
          .snowLine = desc.snowLine});
 }
 
-std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
-    std::vector<uint8_t> table = surfaceRamp(terrain, desc).table(kRampEntries);
+terrain::ColourRamp surfaceRamp(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
+    // The ramp spans the terrain's heights in stored units (the shader looks it
+    // up by world height over the same range, linearly), so metric stops stay
+    // in metres whatever the vertical scale.
+    return surfaceRamp(terrain.worldRange() / terrain.verticalScale(),
+                       terrain.hasWater() ? std::optional<float>(terrain.seaLevel()) : std::nullopt,
+                       desc);
+}
+
+std::unique_ptr<Surface> makeRampSurface(const terrain::ColourRamp& ramp) {
+    std::vector<uint8_t> table = ramp.table(kRampEntries);
     gpu::Texture texture =
         gpu::Texture::create({.target = GL_TEXTURE_1D, .format = GL_RGBA8, .width = kRampEntries});
     texture.upload(GL_RGBA, GL_UNSIGNED_BYTE, table.data());
     return std::make_unique<RampSurface>(std::move(texture));
+}
+
+std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain, const RampSurfaceDesc& desc) {
+    return makeRampSurface(surfaceRamp(terrain, desc));
 }
 
 }  // namespace sierra::render

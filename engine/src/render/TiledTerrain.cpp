@@ -21,6 +21,10 @@ namespace {
 
 // Tile resolutions the shaders take (tiled_common.glsl's uClass).
 constexpr int kMaxClasses = 9;
+// Texture units (tiled_common.glsl, tiled_terrain.frag): above the surfaces'
+// (GL 4.5 has at least 80 units; the fragment stage samples at most 13 of
+// these besides a surface's few, within its 16).
+constexpr GLuint kPagesUnit = 16, kClassUnit = 17, kCornersUnit = 26, kReliefUnit = 27;
 
 // The refinement's view of a cache: a tile's usable levels are those read
 // and uploaded both.
@@ -100,6 +104,7 @@ struct TiledTerrain::State {
     std::unique_ptr<TiledRelief> relief;
     std::vector<int32_t> pageData;
     bool pagesDirty = true;
+    std::unique_ptr<Surface> surface;
     gpu::Program program;
     gpu::Buffer uniforms;
     gpu::VertexArray vao;
@@ -187,8 +192,6 @@ std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
     s->pages =
         gpu::Texture::create({.format = GL_RGBA32I, .width = P, .height = P, .filter = GL_NEAREST});
     s->pageData.assign(size_t(tiles) * 4, -1);
-    s->program =
-        gpu::Program::create({.vertex = "tiled_terrain.vert", .fragment = "tiled_terrain.frag"});
     s->vao = gpu::VertexArray::create();
     s->relief = std::make_unique<TiledRelief>(*s->file, desc.reliefMaxSide);
 
@@ -209,27 +212,29 @@ std::unique_ptr<TiledTerrain> TiledTerrain::open(const TiledTerrainDesc& desc) {
         {.format = GL_R32F, .width = P + 1, .height = P + 1, .filter = GL_LINEAR});
     s->corners.upload(GL_RED, GL_FLOAT, corners.data());
     s->range = {lo, std::max(hi, lo + 1e-3f)};
-    const float block[12] = {0,
-                             0,
-                             0,
-                             0,
-                             info.spacingX,
-                             info.spacingZ,
-                             float(double(info.width - 1) * info.spacingX),
-                             float(double(info.height - 1) * info.spacingZ),
-                             s->range.x,
-                             s->range.y,
-                             0,
-                             0};
-    int32_t ints[4] = {info.k, P, T, 0};
-    std::vector<uint8_t> bytes(sizeof(block));
-    std::memcpy(bytes.data(), block, sizeof(block));
-    std::memcpy(bytes.data(), ints, sizeof(ints));
+    // tiled_common.glsl's Terrain block: uGrid, uSpacingValid, uHeightInfo, uTileInfo.
+    const int32_t side = int32_t(info.gridSide());
+    const int32_t ints[8] = {side, 0, 0, 0, info.k, P, T, 0};
+    const float block[8] = {info.spacingX,
+                            info.spacingZ,
+                            float(double(info.width - 1) * info.spacingX),
+                            float(double(info.height - 1) * info.spacingZ),
+                            0.0f,
+                            0.0f,
+                            s->range.x,
+                            s->range.y};
+    std::vector<uint8_t> bytes(64);
+    std::memcpy(bytes.data(), ints, 16);
+    std::memcpy(bytes.data() + 16, block, sizeof(block));
+    std::memcpy(bytes.data() + 48, ints + 4, 16);
     s->uniforms = gpu::Buffer::create({.size = bytes.size(), .data = bytes.data()});
+    auto terrain = std::unique_ptr<TiledTerrain>(new TiledTerrain(std::move(s)));
+    terrain->setSurface(makeRampSurface(terrain->surfaceRamp({.metric = info.metres})));
+    const State& st = *terrain->state_;
     log::info("tiled terrain ", desc.path, ": ", info.width, "x", info.height, " samples, ", P,
               "^2 tiles of ", info.tileSide(), "^2; tile caches ", cpuBudget >> 20, " MiB CPU, ",
-              s->gpuBytes >> 20, " MiB GPU");
-    return std::unique_ptr<TiledTerrain>(new TiledTerrain(std::move(s)));
+              st.gpuBytes >> 20, " MiB GPU");
+    return terrain;
 }
 
 TiledTerrain::TiledTerrain(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -237,6 +242,10 @@ TiledTerrain::~TiledTerrain() = default;
 
 const sbt::TileFileInfo& TiledTerrain::info() const {
     return state_->file->info();
+}
+
+const sbt::TileFile& TiledTerrain::file() const {
+    return *state_->file;
 }
 
 SceneBounds TiledTerrain::bounds() const {
@@ -451,13 +460,14 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
         glUniform1f(s.program.uniform("uFog"), fog);
         glUniform1f(s.program.uniform("uAmbient"), options.ambient);
         glUniform4fv(s.program.uniform("uReliefUv"), 1, glm::value_ptr(s.relief->worldToUv()));
-        s.relief->bind(14, 15);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 2, s.uniforms.id());
+        s.surface->bind();
+        s.relief->bind(kReliefUnit, kReliefUnit + 1);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 1, s.uniforms.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s.vertices.id());
-        glBindTextureUnit(3, s.pages.id());
-        glBindTextureUnit(13, s.corners.id());
+        glBindTextureUnit(kPagesUnit, s.pages.id());
+        glBindTextureUnit(kCornersUnit, s.corners.id());
         for (int c = 0; c < kMaxClasses; ++c)
-            glBindTextureUnit(GLuint(4 + c), s.classes[size_t(c)].texture.id());
+            glBindTextureUnit(kClassUnit + GLuint(c), s.classes[size_t(c)].texture.id());
         glBindVertexArray(s.vao.id());
         glVertexArrayElementBuffer(s.vao.id(), s.indices.id());
         glDrawElements(GL_TRIANGLE_STRIP, GLsizei(s.indexData.size()), GL_UNSIGNED_INT, nullptr);
@@ -474,6 +484,25 @@ void TiledTerrain::waitForTiles() {
 
 const TiledRelief& TiledTerrain::relief() const {
     return *state_->relief;
+}
+
+void TiledTerrain::setSurface(std::unique_ptr<Surface> surface) {
+    SIERRA_CHECK(surface != nullptr, "the tiled terrain needs a surface");
+    const std::string file = surface->shaderFile(), base = surface->baseShaderFile();
+    const gpu::IncludeAlias aliases[] = {{"surface.glsl", file}, {"surface_base.glsl", base}};
+    const std::string defines =
+        surface->defines() + (surface->lit() ? "" : "#define SIERRA_UNLIT 1\n");
+    state_->program = gpu::Program::create(
+        {.vertex = "tiled_terrain.vert",
+         .fragment = "tiled_terrain.frag",
+         .defines = defines,
+         .aliases = std::span<const gpu::IncludeAlias>(aliases, base.empty() ? 1 : 2)});
+    state_->surface = std::move(surface);
+}
+
+terrain::ColourRamp TiledTerrain::surfaceRamp(const RampSurfaceDesc& desc) const {
+    return render::surfaceRamp(state_->range / state_->file->info().verticalScale, std::nullopt,
+                               desc);
 }
 
 }  // namespace sierra::render

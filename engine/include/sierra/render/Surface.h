@@ -9,7 +9,10 @@
 #include <sierra/gpu/Objects.h>
 #include <sierra/terrain/ColourRamp.h>
 
+#include <glm/glm.hpp>
+
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace sierra::render {
@@ -56,9 +59,15 @@ std::unique_ptr<Surface> makePaperSurface();
 
 std::unique_ptr<Surface> makeRampSurface(const TerrainGpu& terrain,
                                          const RampSurfaceDesc& desc = {});
+// The same surface drawing `ramp` (over the terrain's world height range).
+std::unique_ptr<Surface> makeRampSurface(const terrain::ColourRamp& ramp);
 
 // The ramp makeRampSurface draws with, over the terrain's stored heights (a
 // legend shows it).
 terrain::ColourRamp surfaceRamp(const TerrainGpu& terrain, const RampSurfaceDesc& desc = {});
+// The ramp over stored heights lowest..highest (x, y), with the sea at
+// `seaLevel` (stored units; none: no sample is coloured as sea or beach).
+terrain::ColourRamp surfaceRamp(glm::vec2 storedRange, std::optional<float> seaLevel,
+                                const RampSurfaceDesc& desc = {});
 
 }  // namespace sierra::render

@@ -18,14 +18,18 @@
 // the fragment. What the refinement may use is what is on the GPU: a tile's
 // usable levels are the fewer of those read and those uploaded.
 //
-// Shading: a hypsometric ramp over the terrain's height range, a sun and an
-// ambient term, cast shadows and sky light from the overview (TiledRelief.h),
-// haze towards the sky colour; fragments over the padding and over no-data
-// samples (of tiles read whole) are dropped. Everything else of the in-memory
-// renderer (surfaces, overlays, drapes) needs the grid in memory.
+// Shading: a surface's albedo (render/Surface.h, the same surface functions
+// as the in-memory renderer's: the hypsometric ramp over the terrain's height
+// range unless setSurface gives another, such as drapes or zones), a sun and
+// an ambient term, cast shadows and sky light from the overview
+// (TiledRelief.h), haze towards the sky colour; fragments over the padding
+// and over no-data samples (of tiles read whole) are dropped. The tile cache
+// takes texture units 16..28, above the surfaces' own. The in-memory
+// renderer's passes (overlays, vector lines, labels) need the grid in memory.
 
 #include <sierra/gpu/Objects.h>
 #include <sierra/render/Camera.h>
+#include <sierra/render/Surface.h>
 #include <sierra/render/TiledRelief.h>
 #include <sierra/sbt/TileCache.h>
 #include <sierra/sbt/TileFile.h>
@@ -97,8 +101,9 @@ class TiledTerrain {
     ~TiledTerrain();
 
     const sbt::TileFileInfo& info() const;
-    SceneBounds bounds() const;    // the real samples' box, world units
-    glm::vec2 worldRange() const;  // lowest and highest world height of the tile corners
+    const sbt::TileFile& file() const;  // for an overview (sbt::readOverview)
+    SceneBounds bounds() const;         // the real samples' box, world units
+    glm::vec2 worldRange() const;       // lowest and highest world height of the tile corners
 
     // Draws one frame into the bound framebuffer (the caller clears it to the
     // sky): makes what arrived resident, refines, asks for what is missing
@@ -113,6 +118,14 @@ class TiledTerrain {
     void waitForTiles();
     // Shadows and sky light as the last frame asking for them drew them.
     const TiledRelief& relief() const;
+    // The surface the terrain is drawn with from the next frame; its shader
+    // is built now (throws sierra::Error for one that does not compile). A
+    // surface built for a grid (drapes, zones) takes the real samples'
+    // extent, bounds(), as that grid's.
+    void setSurface(std::unique_ptr<Surface> surface);
+    // The ramp of makeRampSurface over the terrain's heights (stored units),
+    // with `desc` as given; the default surface's is {.metric = info().metres}.
+    terrain::ColourRamp surfaceRamp(const RampSurfaceDesc& desc) const;
 
   private:
     struct State;
