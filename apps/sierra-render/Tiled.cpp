@@ -2,7 +2,8 @@
 // build): render::TiledTerrain draws each frame from the tiles that have
 // arrived, never waiting for a read; a single frame waits for the tiles it
 // asked for (up to --tile-wait seconds) so the picture is the finished one.
-// The options that need the whole grid in memory are refused by name.
+// Its surface is the in-memory renderer's ramp, under the scene's drapes;
+// the options that need the whole grid in memory are refused by name.
 #include "Tiled.h"
 
 #include <sierra/core/Error.h>
@@ -10,15 +11,19 @@
 #include <sierra/core/Log.h>
 #include <sierra/core/Progress.h>
 #include <sierra/core/Timer.h>
+#include <sierra/facade/MapLayers.h>
 #include <sierra/facade/SceneView.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/TiledTerrain.h>
 #include <sierra/render/Video.h>
+#include <sierra/render/ZoneSurface.h>
+#include <sierra/sbt/TileFile.h>
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 
 namespace sierra::apps {
@@ -27,8 +32,10 @@ namespace {
 // The first option of `s` that needs the grid in memory, or "".
 std::string needsGrid(const scene::Scene& s) {
     const scene::Scene d;
-    if (!s.zones.map.empty()) return "--zones";
-    if (!(s.layers == d.layers)) return "drapes, vector layers, labels and map furniture";
+    if (!s.zones.map.empty() && s.zones.map != "auto") return "--zones with a zone map";
+    if (!s.layers.vectors.empty()) return "vector layers";
+    if (!s.layers.labels.empty()) return "labels";
+    if (!(s.layers.furniture == d.layers.furniture)) return "map furniture";
     if (s.lod.mode != scene::LodMode::Sbt) return "--lod full";
     if (!s.lod.mesh.empty()) return "--mesh";
     if (!s.output.depth.empty()) return "--depth";
@@ -36,8 +43,66 @@ std::string needsGrid(const scene::Scene& s) {
     if (scene::isVideoOutput(s.output.frame)) return "video output";
     if (s.camera.projection != scene::Projection::Perspective) return "--projection orthographic";
     if (s.lighting.sunTime) return "--sun-time";
-    if (!(s.style == d.style)) return "styles and overlays";
+    // The ramp's options work (the surface is the in-memory renderer's).
+    scene::StyleDesc style = s.style;
+    style.treeLine = d.style.treeLine;
+    style.snowLine = d.style.snowLine;
+    style.cpt = d.style.cpt;
+    if (!(style == d.style)) return "styles and overlays";
     return "";
+}
+
+// Where the file's real samples lie, for drapes.
+facade::TerrainPlacement tiledPlacement(const sbt::TileFileInfo& info) {
+    facade::TerrainPlacement p;
+    p.width = int(info.width);
+    p.height = int(info.height);
+    if (const auto& g = info.georeference)
+        p.placement = terrain::GridPlacement{g->geoTransform, g->crsWkt, p.width, p.height};
+    return p;
+}
+
+// Auto zones of the terrain's overview (at most kZoneMaxSide a side): the
+// zone map, its borderlines and distance field are the in-memory renderer's
+// at the overview's resolution, the tiles keep their size in grid samples.
+constexpr int kZoneMaxSide = 2049;
+
+std::unique_ptr<render::Surface> autoZoneSurface(const render::TiledTerrain& terrain,
+                                                 const scene::Scene& s) {
+    int stride = 1;
+    terrain::Heightfield overview = sbt::readOverview(terrain.file(), kZoneMaxSide, 0, &stride);
+    // A tiled terrain has no water: the sea lies below its lowest height.
+    render::ZoneSurfaceDesc desc = facade::zoneSurfaceDesc(s, NAN, overview);
+    desc.samplesPerPixel = stride;
+    render::ZoneSurfaceInfo info;
+    auto surface = render::makeZoneSurface(overview, desc, &info);
+    log::info("zones: auto on an overview of ", info.mapWidth, "x", info.mapHeight,
+              " samples (stride ", stride, "), ", info.zoneCount, " surface types, ",
+              info.borderEdges, " borderline edges, band ", info.band, " px, built in ",
+              fixed(info.buildMs, 1), " ms");
+    return surface;
+}
+
+// The scene's surface on the tiled terrain: auto zones or the ramp (its
+// style's tree and snow lines or .cpt), under the scene's drapes.
+void applySurface(render::TiledTerrain& terrain, const scene::Scene& s) {
+    const render::RampSurfaceDesc ramp{.metric = terrain.info().metres,
+                                       .treeLine = s.style.treeLine,
+                                       .snowLine = s.style.snowLine,
+                                       .cpt = s.style.cpt};
+    std::unique_ptr<render::Surface> surface =
+        s.zones.map == "auto" ? autoZoneSurface(terrain, s)
+                              : render::makeRampSurface(terrain.surfaceRamp(ramp));
+    if (!s.layers.drapes.empty()) {
+        std::vector<std::string> notes;
+        surface = facade::drapeSurface(s, tiledPlacement(terrain.info()), std::move(surface), {},
+                                       nullptr, notes);
+        std::string description;  // as the in-memory renderer's: the notes on one line
+        for (const std::string& line : notes)
+            description += (description.empty() ? "" : "; ") + line;
+        log::info(description);
+    }
+    terrain.setSurface(std::move(surface));
 }
 
 // A still's wait for its tiles: refinement, streaming and uploads without
@@ -94,6 +159,7 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
               ")");
     auto terrain = render::TiledTerrain::open(
         {.path = s.terrain.heightmap, .memoryBudget = o.memoryBudget, .loaderThreads = o.loaders});
+    applySurface(*terrain, s);
     const render::SceneBounds bounds = terrain->bounds();
     render::FrameTarget target = render::FrameTarget::create(
         {.width = width, .height = height, .samples = s.output.msaa >= 2 ? s.output.msaa : 0});

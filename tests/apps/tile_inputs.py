@@ -13,19 +13,23 @@
   overview; options that need the grid in memory are refused with one message.
 - sierra-gen map of a float tile file is the map of the grid it was built from,
   byte for byte (the overview at full resolution): a generated .npy and a real
-  DEM (Jacksboro, 403 x 344, an .npz with its georeference), which also draws.
+  DEM (Jacksboro, 403 x 344, an .npz with its georeference), which also draws,
+  with an image drape too, and with auto zones of its overview that lie where
+  the in-memory renderer's do.
 - Bad input: a missing file, a truncated tile file, an unknown option, each one
   message and a non-zero exit, and no output file left behind.
 Exit 77 (CTest: skipped) with a note when NumPy is
 missing: apt-get install python3-numpy.
 
-Usage: tile_inputs.py SIERRA_TILE SIERRA_BENCH SIERRA_RENDER SIERRA_GEN WORK_DIR
+Usage: tile_inputs.py SIERRA_TILE SIERRA_BENCH SIERRA_RENDER SIERRA_GEN IMAGE_COMPARE WORK_DIR
 """
 
 import json
 import os
 import subprocess
+import struct
 import sys
+import zlib
 
 SKIP = 77
 
@@ -45,6 +49,18 @@ try:
     import numpy as np
 except ImportError:
     reexec_or_skip("NumPy is missing")
+
+
+def write_png(path, width, height, colour):
+    """An RGB PNG whose pixel (i, j) is colour(i, j)."""
+    rows = b"".join(b"\0" + bytes(c for i in range(width) for c in colour(i, j))
+                    for j in range(height))
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
 
 
 def run(*args, ok=True):
@@ -67,7 +83,7 @@ def info(tile, path):
 
 
 def main():
-    tile, bench, render, gen, work = sys.argv[1:6]
+    tile, bench, render, gen, compare, work = sys.argv[1:7]
     os.makedirs(work, exist_ok=True)
 
     # Four SRTM3 tiles at 46-48 N, 7-9 E; each tile's value encodes its position.
@@ -120,8 +136,9 @@ def main():
         p.stderr
     with open(frame, "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
-    run(render, "--heightmap", out, "--zones", "auto", "--out", os.path.join(work, "z.png"),
-        "--no-debug", ok=False)
+    p = run(render, "--heightmap", out, "--zones", os.path.join(work, "zones.png"), "--out",
+            os.path.join(work, "z.png"), "--no-debug", ok=False)
+    assert "--zones with a zone map needs a heightmap in memory" in p.stderr, p.stderr
     print("tiled render: ok")
 
     # A non-square float32 .npy, memory-mapped.
@@ -162,6 +179,40 @@ def main():
         assert "0 tiles drawn coarse" in p.stderr, p.stderr
         run(render, "--heightmap", jack, "--vertical-scale", "2", "--no-debug",
             "--out", os.path.join(work, "jack2.png"), ok=False)
+        # An image drape (a PNG with no georeference: stretched over the
+        # terrain), and a missing one.
+        drape = os.path.join(work, "drape.png")
+        write_png(drape, 64, 32, lambda i, j: (200, 40, 40) if i < 32 else (40, 40, 200))
+        p = run(render, "--heightmap", jack, "--size", "320x180", "--no-debug",
+                "--drape", drape, "--out", os.path.join(work, "jack_drape.png"))
+        # (resampled to the terrain's aspect, as the in-memory renderer does)
+        assert "drape: " + drape + ", 64x55 texels, 100% of the terrain" in p.stderr, p.stderr
+        assert "0 tiles drawn coarse" in p.stderr, p.stderr
+        run(render, "--heightmap", jack, "--drape", os.path.join(work, "none.png"), "--no-debug",
+            "--out", os.path.join(work, "jack_none.png"), ok=False)
+        assert not os.path.exists(os.path.join(work, "jack_none.png"))
+        # Auto zones (flat zone colours): the tiled frame is nearer the in-memory
+        # renderer's zones than either frame is to its own without zones (the
+        # two renderers' meshes and light differ a little everywhere).
+        flat = ["--size", "640x400", "--no-debug", "--shadows", "off", "--sky-light", "off"]
+        frames, logs = {}, {}
+        for name, heightmap in (("mem", dem), ("tiled", jack)):
+            for zones in (True, False):
+                out_png = os.path.join(work, f"jack_{name}_{'zones' if zones else 'ramp'}.png")
+                extra = ["--zones", "auto", "--debug-view", "zones"] if zones else []
+                p = run(render, "--heightmap", heightmap, *flat, *extra, "--out", out_png)
+                frames[name, zones], logs[name, zones] = out_png, p.stderr
+        assert "zones: auto on an overview of 403x344 samples (stride 1), 7 surface types" \
+            in logs["tiled", True], logs["tiled", True]
+        def psnr(a, b):
+            out = run(compare, frames[a], frames[b]).stdout
+            return float(out.split()[1])
+        same_zones = psnr(("mem", True), ("tiled", True))
+        print(f"zones: tiled vs in-memory {same_zones:.1f} dB; against the ramps "
+              f"{psnr(('mem', True), ('tiled', False)):.1f} and "
+              f"{psnr(('tiled', True), ('mem', False)):.1f} dB")
+        assert same_zones > psnr(("mem", True), ("tiled", False)) + 2.0
+        assert same_zones > psnr(("tiled", True), ("mem", False)) + 2.0
         print("real DEM: ok")
 
     # Bad input: one message, a non-zero exit, no output.

@@ -191,6 +191,38 @@ std::vector<Label> sceneLabels(const scene::Scene& s, const terrain::Heightfield
 
 }  // namespace
 
+std::unique_ptr<Surface> drapeSurface(const scene::Scene& s, const TerrainPlacement& place,
+                                      std::unique_ptr<Surface> surface,
+                                      std::span<const DrapeLayer> fills, const LinePyramid* lines,
+                                      std::vector<std::string>& notes) {
+    MapLayers said;
+    const auto& drapes = s.layers.drapes;
+    if (drapes.size() == 1 && drapes[0].blend == "replace" && fills.empty()) {
+        // One image: streamed into its texture, never held whole.
+        terrain::DrapeImage header;
+        surface = makeStreamedDrapeSurface(std::move(surface), drapes[0].image,
+                                           drapeOptions(drapes[0], place), drapes[0].opacity,
+                                           &header, lines);
+        describeDrape(said, drapes[0].image, header);
+    } else {
+        std::vector<terrain::DrapeImage> images;
+        images.reserve(drapes.size());
+        std::vector<DrapeLayer> stack;
+        for (const scene::DrapeDesc& d : drapes) {
+            images.push_back(terrain::readDrape(d.image, drapeOptions(d, place)));
+            describeDrape(said, d.image, images.back());
+        }
+        for (size_t k = 0; k < drapes.size(); ++k)
+            stack.push_back(
+                {&images[k], drapes[k].opacity,
+                 drapes[k].blend == "multiply" ? DrapeBlend::Multiply : DrapeBlend::Replace});
+        stack.insert(stack.end(), fills.begin(), fills.end());
+        surface = makeDrapeSurface(std::move(surface), stack, lines);
+    }
+    notes.insert(notes.end(), said.notes.begin(), said.notes.end());
+    return surface;
+}
+
 MapLayers applyMapLayers(TerrainRenderer& renderer, const scene::Scene& s,
                          const terrain::Heightfield& field, std::unique_ptr<Surface> surface) {
     MapLayers layers;
@@ -202,31 +234,9 @@ MapLayers applyMapLayers(TerrainRenderer& renderer, const scene::Scene& s,
     addVectors(renderer, s, field, place, fills, fillLayers, lineTexture, layers);
     const LinePyramid* lines = lineTexture ? &*lineTexture : nullptr;
 
-    const auto& drapes = s.layers.drapes;
-    if (!drapes.empty() || !fillLayers.empty() || lines) {
+    if (!s.layers.drapes.empty() || !fillLayers.empty() || lines) {
         if (!surface) surface = makeRampSurface(renderer.terrain(), rampDesc(s, field));
-        if (drapes.size() == 1 && drapes[0].blend == "replace" && fillLayers.empty()) {
-            // One image: streamed into its texture, never held whole.
-            terrain::DrapeImage header;
-            surface = makeStreamedDrapeSurface(std::move(surface), drapes[0].image,
-                                               drapeOptions(drapes[0], place), drapes[0].opacity,
-                                               &header, lines);
-            describeDrape(layers, drapes[0].image, header);
-        } else {
-            std::vector<terrain::DrapeImage> images;
-            images.reserve(drapes.size());
-            std::vector<DrapeLayer> stack;
-            for (const scene::DrapeDesc& d : drapes) {
-                images.push_back(terrain::readDrape(d.image, drapeOptions(d, place)));
-                describeDrape(layers, d.image, images.back());
-            }
-            for (size_t k = 0; k < drapes.size(); ++k)
-                stack.push_back(
-                    {&images[k], drapes[k].opacity,
-                     drapes[k].blend == "multiply" ? DrapeBlend::Multiply : DrapeBlend::Replace});
-            stack.insert(stack.end(), fillLayers.begin(), fillLayers.end());
-            surface = makeDrapeSurface(std::move(surface), stack, lines);
-        }
+        surface = drapeSurface(s, place, std::move(surface), fillLayers, lines, layers.notes);
     }
     if (surface) renderer.setSurface(std::move(surface));
 

@@ -220,6 +220,25 @@ std::vector<glm::vec3> sceneSunDirections(const scene::Scene& s,
     return directions;
 }
 
+render::ZoneSurfaceDesc zoneSurfaceDesc(const scene::Scene& s, float seaLevel,
+                                        const terrain::Heightfield& field) {
+    const scene::ZonesDesc& z = s.zones;
+    ZoneSurfaceDesc desc;
+    desc.paletteName = z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
+    desc.palette = scene::loadPalette(desc.paletteName);
+    desc.map = z.map;
+    desc.band = z.band;
+    desc.epsilon = z.epsilon;
+    desc.heightBlend = z.blend == "height";
+    desc.triplanar = z.triplanar;
+    desc.variation = z.variation;
+    desc.debugView = z.debugView == "zones"   ? ZoneDebugView::Zones
+                     : z.debugView == "bands" ? ZoneDebugView::Bands
+                                              : ZoneDebugView::None;
+    desc.autoZones = scene::autoZoneDesc(z, seaLevel, field);
+    return desc;
+}
+
 std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s,
                               const terrain::Heightfield& field, float seaLevel,
                               MapLayers* layers) {
@@ -232,20 +251,7 @@ std::string applySceneSurface(TerrainRenderer& renderer, const scene::Scene& s,
         surface = makePaperSurface();
         description = "surface: paper (style without shaded)";
     } else if (!z.map.empty()) {
-        ZoneSurfaceDesc desc;
-        desc.paletteName =
-            z.palette.empty() ? scene::assetPath("palettes/default.json") : z.palette;
-        desc.palette = scene::loadPalette(desc.paletteName);
-        desc.map = z.map;
-        desc.band = z.band;
-        desc.epsilon = z.epsilon;
-        desc.heightBlend = z.blend == "height";
-        desc.triplanar = z.triplanar;
-        desc.variation = z.variation;
-        desc.debugView = z.debugView == "zones"   ? ZoneDebugView::Zones
-                         : z.debugView == "bands" ? ZoneDebugView::Bands
-                                                  : ZoneDebugView::None;
-        desc.autoZones = scene::autoZoneDesc(z, seaLevel, field);
+        const ZoneSurfaceDesc desc = zoneSurfaceDesc(s, seaLevel, field);
         ZoneSurfaceInfo info;
         surface = makeZoneSurface(renderer.terrain(), field, desc, &info);
         description =

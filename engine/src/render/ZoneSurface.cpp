@@ -84,6 +84,12 @@ class ZoneSurface final : public Surface {
 std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
                                          const terrain::Heightfield& field,
                                          const ZoneSurfaceDesc& desc, ZoneSurfaceInfo* info) {
+    if (desc.map != "auto") return makeZoneSurface(field, desc, info);  // the field is not read
+    return makeZoneSurface(realSamples(field, terrain), desc, info);
+}
+
+std::unique_ptr<Surface> makeZoneSurface(const terrain::Heightfield& real,
+                                         const ZoneSurfaceDesc& desc, ZoneSurfaceInfo* info) {
     Stopwatch sw;
     const zones::Palette& palette = desc.palette;
     SIERRA_CHECK(!palette.surfaces.empty() && palette.surfaces.size() <= size_t(kMaxZones),
@@ -91,7 +97,7 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
                  " surface types; the renderer takes 1..", kMaxZones);
     zones::ZoneMap map;
     if (desc.map == "auto")
-        map = zones::autoZones(realSamples(field, terrain), palette, desc.autoZones);
+        map = zones::autoZones(real, palette, desc.autoZones);
     else
         map = zones::loadZoneMap(desc.map, palette);
     float band = desc.band >= 0.0f ? desc.band : palette.bandWidth;
@@ -158,7 +164,8 @@ std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
     surface->debugView_ = desc.debugView;
     for (size_t k = 0; k < palette.surfaces.size(); ++k) {
         const zones::SurfaceType& s = palette.surfaces[k];
-        u->tile[k] = {1.0f / std::max(s.tileSize, 1e-3f), s.heightBlend, 0.0f, 0.0f};
+        u->tile[k] = {float(std::max(desc.samplesPerPixel, 1)) / std::max(s.tileSize, 1e-3f),
+                      s.heightBlend, 0.0f, 0.0f};
         u->colour[k] = {float((s.colour >> 16) & 255) / 255.0f,
                         float((s.colour >> 8) & 255) / 255.0f, float(s.colour & 255) / 255.0f,
                         1.0f};

@@ -4,6 +4,7 @@
 // furniture drawn over each frame.
 
 #include <sierra/render/Annotations.h>
+#include <sierra/render/DrapeSurface.h>
 #include <sierra/render/Surface.h>
 #include <sierra/render/TerrainRenderer.h>
 #include <sierra/scene/Scene.h>
@@ -13,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -61,6 +63,18 @@ struct MapLayers {
 MapLayers applyMapLayers(render::TerrainRenderer& renderer, const scene::Scene& scene,
                          const terrain::Heightfield& field,
                          std::unique_ptr<render::Surface> surface);
+
+// `surface` under the scene's drapes, then `fills` (vector fills as drape
+// layers) and the far vector `lines` (may be null) over the real samples
+// `place`: what applyMapLayers sets, and a tiled terrain's drapes. Notes
+// (what was read, warnings) are appended to `notes`. Throws sierra::Error
+// for an image that cannot be read or placed.
+std::unique_ptr<render::Surface> drapeSurface(const scene::Scene& scene,
+                                              const TerrainPlacement& place,
+                                              std::unique_ptr<render::Surface> surface,
+                                              std::span<const render::DrapeLayer> fills,
+                                              const render::LinePyramid* lines,
+                                              std::vector<std::string>& notes);
 
 // The title, scale bar and north arrow of `f`, in their corners, with its
 // text size: what 3D frames and sierra-gen's maps draw (labels, the units

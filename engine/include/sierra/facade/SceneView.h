@@ -7,6 +7,7 @@
 #include <sierra/render/Camera.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/TerrainRenderer.h>
+#include <sierra/render/ZoneSurface.h>
 #include <sierra/scene/Scene.h>
 
 #include <optional>
@@ -98,6 +99,12 @@ glm::vec3 toGlm(const scene::Vec3& v);
 // The encoding of a scene's frames (output.png_compression, jpeg_quality, alpha).
 render::ImageEncoding frameEncoding(const scene::OutputDesc& output);
 render::PngCompression pngCompression(scene::PngCompression compression);
+
+// The scene's zone options (--zones and the rest) as a zone surface's, with
+// the palette read; `field` and `seaLevel` for the auto zones' sea level.
+// Throws sierra::Error for a palette that cannot be read.
+render::ZoneSurfaceDesc zoneSurfaceDesc(const scene::Scene& scene, float seaLevel,
+                                        const terrain::Heightfield& field);
 
 // Gives the renderer the scene's surface when it is not the default colour
 // ramp (zone tiles, paper), with the scene's layers over it (applyMapLayers:

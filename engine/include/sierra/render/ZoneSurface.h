@@ -45,6 +45,11 @@ struct ZoneSurfaceDesc {
     bool variation = true;    // a slow warp of the tile coordinates against visible repetition
     ZoneDebugView debugView = ZoneDebugView::None;
     zones::AutoZoneDesc autoZones;  // thresholds for map "auto" (seaLevel in stored units)
+    // Grid samples a zone-map pixel spans: 1 for a map of the grid itself,
+    // the stride for one of an overview (a tiled terrain's). The palette's
+    // tile sizes and band widths are in zone-map pixels at 1; the tiles keep
+    // their size in grid samples, the bands their width in map pixels.
+    int samplesPerPixel = 1;
 };
 
 // What was built, for the log and the debug panel.
@@ -61,6 +66,11 @@ struct ZoneSurfaceInfo {
 // zoned for map "auto"). Throws sierra::Error for a bad palette, zone map or tile.
 std::unique_ptr<Surface> makeZoneSurface(const TerrainGpu& terrain,
                                          const terrain::Heightfield& field,
+                                         const ZoneSurfaceDesc& desc,
+                                         ZoneSurfaceInfo* info = nullptr);
+// The same over `real`, the terrain's real samples and nothing else (for map
+// "auto"; an overview of a tiled terrain, with desc.samplesPerPixel its stride).
+std::unique_ptr<Surface> makeZoneSurface(const terrain::Heightfield& real,
                                          const ZoneSurfaceDesc& desc,
                                          ZoneSurfaceInfo* info = nullptr);
 
