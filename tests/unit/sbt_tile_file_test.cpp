@@ -367,5 +367,51 @@ TEST(TileFile, TheOverviewIsEveryStrideThSampleOfTheWorldHeights) {
     std::remove(path.c_str());
 }
 
+TEST(TileFile, AWindowIsTheGridsSamplesWithItsNoData) {
+    // 150 x 70 samples, a hole across a tile border, tiles of 16 cells.
+    terrain::Heightfield field = roughField(150, 70, 14);
+    std::vector<uint8_t> mask(size_t(150) * 70, 1);
+    for (int j = 20; j < 36; ++j)
+        for (int i = 40; i < 52; ++i) mask[size_t(j) * 150 + size_t(i)] = 0;
+    field.setMask(mask);
+    field.setGeoreference(
+        terrain::Heightfield::Georeference{{500.0, 2.0, 0.0, 900.0, 0.0, -3.0}, "LOCAL"});
+    const std::string path = buildFile(field, 4, sbt::TileHeights::Float32, "window");
+    const sbt::TileFile file(path);
+    struct Case {
+        int64_t i0, j0;
+        int width, height;
+    };
+    // Inside one tile, across borders and the hole, on tile borders, the whole.
+    for (const Case c : {Case{3, 5, 9, 7}, Case{30, 10, 40, 33}, Case{16, 32, 17, 17},
+                         Case{0, 0, 150, 70}, Case{133, 53, 17, 17}}) {
+        SCOPED_TRACE(testing::Message()
+                     << c.i0 << ", " << c.j0 << ", " << c.width << "x" << c.height);
+        const terrain::Heightfield w = sbt::readWindow(file, c.i0, c.j0, c.width, c.height, 2);
+        ASSERT_EQ(w.width(), c.width);
+        ASSERT_EQ(w.height(), c.height);
+        EXPECT_FLOAT_EQ(w.spacingX(), field.spacingX());
+        EXPECT_FLOAT_EQ(w.verticalScale(), 1.0f) << "world heights";
+        bool hole = false;
+        for (int j = 0; j < c.height; ++j)
+            for (int i = 0; i < c.width; ++i) {
+                const int gi = int(c.i0) + i, gj = int(c.j0) + j;
+                ASSERT_EQ(w.valid(i, j), field.valid(gi, gj)) << gi << ", " << gj;
+                hole |= !field.valid(gi, gj);
+                if (!field.valid(gi, gj)) continue;
+                ASSERT_EQ(w.at(i, j), field.at(gi, gj) * field.verticalScale()) << gi << ", " << gj;
+            }
+        EXPECT_EQ(w.hasMask(), hole) << "a mask only where the window holds no-data";
+        // Sample centres keep their place: sample (0, 0) is the file's (i0, j0).
+        ASSERT_TRUE(w.georeference());
+        EXPECT_DOUBLE_EQ(w.georeference()->geoTransform[0], 500.0 + 2.0 * double(c.i0));
+        EXPECT_DOUBLE_EQ(w.georeference()->geoTransform[3], 900.0 - 3.0 * double(c.j0));
+    }
+    EXPECT_THROW(sbt::readWindow(file, 140, 0, 20, 10), Error) << "past the real samples";
+    EXPECT_THROW(sbt::readWindow(file, -1, 0, 5, 5), Error);
+    EXPECT_THROW(sbt::readWindow(file, 0, 0, 0, 5), Error);
+    std::remove(path.c_str());
+}
+
 }  // namespace
 }  // namespace sierra::test

@@ -346,9 +346,77 @@ void TileFile::readPacked(int tx, int ty, int chunks, PackedTile& out) const {
     out.mask = std::move(grid.mask);
 }
 
-terrain::Heightfield readOverview(const TileFile& file, int maxSide, int threads, int* strideOut) {
+namespace {
+
+// Samples [i0, i0 + w) x [j0, j0 + h) of the grid at every stride-th sample,
+// stride = 2^k / 2^c (region in those samples), from the tiles' first 2c
+// levels; world heights. With c = k the tiles are read whole, and their
+// no-data masks, when the file has any, become the field's mask.
+terrain::Heightfield readRegion(const TileFile& file, int c, int64_t i0, int64_t j0, int64_t w,
+                                int64_t h, int threads) {
     const TileFileInfo& info = file.info();
     const int k = info.k, T = 1 << k, P = info.tilesPerSide();
+    const int stride = T >> c;
+    const int per = T / stride;  // region samples a tile, per side
+    terrain::Heightfield out{static_cast<int>(w), static_cast<int>(h)};
+    const bool masked = c == k && info.hasNoData;
+    std::vector<uint8_t> mask(masked ? size_t(w * h) : 0, 1);
+    const int chunks = file.chunksForLevels(2 * c);
+    const TileAddressing address(k);
+    const float vs = info.verticalScale;
+    const int tx0 = int(i0 / per), ty0 = int(j0 / per);
+    const int tx1 = std::min(P - 1, int((i0 + w - 1) / per)),
+              ty1 = std::min(P - 1, int((j0 + h - 1) / per));
+    const int64_t across = tx1 - tx0 + 1;
+    parallelFor(
+        0, across * (ty1 - ty0 + 1),
+        [&](int64_t t) {
+            const int tx = tx0 + int(t % across), ty = ty0 + int(t / across);
+            if (!file.stored(tx, ty)) return;
+            PackedTile tile;
+            if (chunks > 0) file.readPacked(tx, ty, chunks, tile);
+            // A border sample is written by one tile: the last row and column
+            // belong to the next tile when that one is stored.
+            const int aEnd = tx + 1 < P && file.stored(tx + 1, ty) ? per - 1 : per;
+            const int bEnd = ty + 1 < P && file.stored(tx, ty + 1) ? per - 1 : per;
+            for (int b = 0; b <= bEnd; ++b)
+                for (int a = 0; a <= aEnd; ++a) {
+                    const int64_t oi = int64_t(tx) * per + a - i0, oj = int64_t(ty) * per + b - j0;
+                    if (oi < 0 || oj < 0 || oi >= w || oj >= h) continue;
+                    const int x = a * stride, y = b * stride;
+                    const bool corner = (x == 0 || x == T) && (y == 0 || y == T);
+                    const float height =
+                        corner ? file.corner(int64_t(tx) * T + x, int64_t(ty) * T + y).height
+                               : tile.records[address.index(x, y)].height;
+                    out.at(int(oi), int(oj)) = height * vs;
+                    if (masked && !tile.mask.empty() && !tile.mask[size_t(y) * (T + 1) + size_t(x)])
+                        mask[size_t(oj * w + oi)] = 0;
+                }
+        },
+        threads);
+    if (masked && std::find(mask.begin(), mask.end(), uint8_t(0)) != mask.end())
+        out.setMask(std::move(mask));
+    return out;
+}
+
+// The file's georeference for a grid whose sample (0, 0) is the file's
+// (i0, j0) and whose samples are `stride` of the file's apart: sample
+// centres stay where they were, X = g0 + (i + 0.5) g1 + (j + 0.5) g2.
+terrain::Heightfield::Georeference regionGeoreference(terrain::Heightfield::Georeference ref,
+                                                      int64_t i0, int64_t j0, int stride) {
+    auto& g = ref.geoTransform;
+    const double half = 0.5 * (1.0 - double(stride));
+    g[0] += (double(i0) + half) * g[1] + (double(j0) + half) * g[2];
+    g[3] += (double(i0) + half) * g[4] + (double(j0) + half) * g[5];
+    for (int e : {1, 2, 4, 5}) g[size_t(e)] *= double(stride);
+    return ref;
+}
+
+}  // namespace
+
+terrain::Heightfield readOverview(const TileFile& file, int maxSide, int threads, int* strideOut) {
+    const TileFileInfo& info = file.info();
+    const int k = info.k, T = 1 << k;
     int c = k;
     auto sideAt = [&](int cls) {
         const int stride = T >> cls;
@@ -359,49 +427,30 @@ terrain::Heightfield readOverview(const TileFile& file, int maxSide, int threads
                  sideAt(0), ") exceed the ", maxSide, "-sample side asked for");
     const int stride = T >> c;
     const int64_t w = (info.width - 1) / stride + 1, h = (info.height - 1) / stride + 1;
-    terrain::Heightfield out{static_cast<int>(w), static_cast<int>(h)};
+    terrain::Heightfield out = readRegion(file, c, 0, 0, w, h, threads);
+    // The overview's samples keep the builder's fill where there is no data.
+    out.setMask({});
     out.setSpacing(info.spacingX * float(stride), info.spacingZ * float(stride));
     out.setMetres(info.metres);
     out.setGeoCentre(info.geoCentre);
-    if (info.georeference) {
-        // Sample centres stay where they were: X = g0 + (i + 0.5) g1 + (j + 0.5) g2.
-        terrain::Heightfield::Georeference ref = *info.georeference;
-        auto& g = ref.geoTransform;
-        const double half = 0.5 * (1.0 - double(stride));
-        g[0] += half * (g[1] + g[2]);
-        g[3] += half * (g[4] + g[5]);
-        for (int e : {1, 2, 4, 5}) g[size_t(e)] *= double(stride);
-        out.setGeoreference(ref);
-    }
-    const int chunks = file.chunksForLevels(2 * c);
-    const TileAddressing address(k);
-    const float vs = info.verticalScale;
-    const int per = T / stride;  // overview samples a tile, per side
-    parallelFor(
-        0, int64_t(P) * P,
-        [&](int64_t t) {
-            const int tx = int(t % P), ty = int(t / P);
-            if (!file.stored(tx, ty)) return;
-            PackedTile tile;
-            if (chunks > 0) file.readPacked(tx, ty, chunks, tile);
-            // A border sample is written by one tile: the last row and column
-            // belong to the next tile when that one is stored.
-            const int aEnd = tx + 1 < P && file.stored(tx + 1, ty) ? per - 1 : per;
-            const int bEnd = ty + 1 < P && file.stored(tx, ty + 1) ? per - 1 : per;
-            for (int b = 0; b <= bEnd; ++b)
-                for (int a = 0; a <= aEnd; ++a) {
-                    const int64_t oi = int64_t(tx) * per + a, oj = int64_t(ty) * per + b;
-                    if (oi >= w || oj >= h) continue;
-                    const int x = a * stride, y = b * stride;
-                    const bool corner = (x == 0 || x == T) && (y == 0 || y == T);
-                    const float height =
-                        corner ? file.corner(int64_t(tx) * T + x, int64_t(ty) * T + y).height
-                               : tile.records[address.index(x, y)].height;
-                    out.at(int(oi), int(oj)) = height * vs;
-                }
-        },
-        threads);
+    if (info.georeference)
+        out.setGeoreference(regionGeoreference(*info.georeference, 0, 0, stride));
     if (strideOut) *strideOut = stride;
+    return out;
+}
+
+terrain::Heightfield readWindow(const TileFile& file, int64_t i0, int64_t j0, int width, int height,
+                                int threads) {
+    const TileFileInfo& info = file.info();
+    SIERRA_CHECK(width > 0 && height > 0 && i0 >= 0 && j0 >= 0 && i0 + width <= info.width &&
+                     j0 + height <= info.height,
+                 file.path(), ": the window of ", width, "x", height, " samples at ", i0, ", ", j0,
+                 " is not inside its ", info.width, "x", info.height, " samples");
+    terrain::Heightfield out = readRegion(file, info.k, i0, j0, width, height, threads);
+    out.setSpacing(info.spacingX, info.spacingZ);
+    out.setMetres(info.metres);
+    out.setGeoCentre(info.geoCentre);
+    if (info.georeference) out.setGeoreference(regionGeoreference(*info.georeference, i0, j0, 1));
     return out;
 }
 

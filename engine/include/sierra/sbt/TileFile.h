@@ -214,6 +214,15 @@ class TileFile {
 terrain::Heightfield readOverview(const TileFile& file, int maxSide, int threads = 0,
                                   int* stride = nullptr);
 
+// The file's samples [i0, i0 + width) x [j0, j0 + height) at full
+// resolution, from the tiles they lie in, read whole: world heights (the
+// overview's conventions), the no-data mask where the window has no-data
+// samples, the georeference moved to the window (the geographic centre
+// stays the file's). Throws sierra::Error for a window not inside the real
+// samples.
+terrain::Heightfield readWindow(const TileFile& file, int64_t i0, int64_t j0, int width, int height,
+                                int threads = 0);
+
 // TiledVertices over a TileFile: tiles read on request, whole or in part,
 // and kept until dropped. The streaming cache builds on it.
 class FileTiles : public TiledVertices {
