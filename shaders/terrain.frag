@@ -13,16 +13,10 @@
 // compiled out (llvmpipe runs every branch, so a field that is off would
 // still cost its fetch). SIERRA_UNLIT (the paper surface): no light at all.
 //
-// Contour edges (render/passes/ContourPass.h), built with SIERRA_CONTOURS:
-// the view-dependent silhouettes, recomputed every frame where
-// s = dot(normal, towards the eye) changes sign. s comes from the vertices
-// (terrain.vert, full-resolution normals) interpolated across each triangle,
-// so its zero crossings are clean lines at the mesh's scale (the same s per
-// fragment, from this fragment's normal, breaks them into sub-pixel specks
-// where the grid is finer than the pixels); |s| / fwidth(s) is the distance
-// to the crossing in pixels, and the line covers what lies within half the
-// width, antialiased over one pixel. Drawn here they cost a few operations a
-// vertex and a fragment instead of a second pass over the mesh.
+// Contour edges (render/passes/ContourPass.h, contour.glsl), built with
+// SIERRA_CONTOURS: s = dot(normal, towards the eye) from the vertices
+// (terrain.vert). Drawn here they cost a few operations a vertex and a
+// fragment instead of a second pass over the mesh.
 #include "frame.glsl"
 #include "terrain_common.glsl"
 #include "surface.glsl"
@@ -31,15 +25,8 @@ in vec3 vWorld;
 out vec4 fragColour;
 
 #ifdef SIERRA_CONTOURS
-uniform float uContourWidth;  // pixels, > 0
-uniform vec4 uContourColour;  // RGBA 0..1
+#include "contour.glsl"
 in float vFacing;
-
-// Coverage 0..1 of this fragment by a contour edge through the zero crossing of s.
-float contourCoverage(float s) {
-    float pixels = abs(s) / max(fwidth(s), 1e-6);
-    return clamp(0.5 * uContourWidth + 0.5 - pixels, 0.0, 1.0);
-}
 #endif
 
 #ifdef SIERRA_RELIEF_LIGHT
@@ -78,7 +65,7 @@ void main() {
     vec3 colour = albedo * terrainLight(vWorld.xz, g);
     colour = mix(colour, uSky.rgb, clamp(fogAmount(vWorld), 0.0, 1.0));
 #ifdef SIERRA_CONTOURS
-    colour = mix(colour, uContourColour.rgb, uContourColour.a * contourCoverage(vFacing));
+    colour = withContour(colour, vFacing);
 #endif
     fragColour = vec4(colour, 1.0);
 }

@@ -76,6 +76,17 @@ float tiledSampleHeight(ivec2 ij) {
     return isnan(h) ? uHeightInfo.z : h;
 }
 
+// World height at grid position s (samples, may be fractional) from the tile
+// holding it: bilinear in its slot, or the tile corners' surface where the
+// tile has no slot on the GPU.
+float heightAtGrid(vec2 s) {
+    int k = uTileInfo.x, P = uTileInfo.y, T = uTileInfo.z;
+    ivec2 t = clamp(ivec2(floor(s)) >> k, ivec2(0), ivec2(P - 1));
+    ivec4 page = texelFetch(uPages, t, 0);
+    if (page.x < 0) return textureLod(uCorners, (s / float(T) + 0.5) / vec2(P + 1), 0.0).r;
+    return classHeight(page, (s - vec2(t * T)) / float(T >> page.x));
+}
+
 // World height and normal at a ground position from the finest heights on
 // the GPU there, as terrain_common.glsl's Ground (a tiled terrain has no
 // water); the height is NaN next to a no-data sample.
@@ -86,38 +97,26 @@ struct Ground {
     bool water;    // always false
 };
 
+// The normal is a central difference one texel of the tile's slot either
+// side (half a tile on the corners' surface), taken from whichever tile
+// holds each end, so it is continuous across tile borders; one-sided only at
+// the grid's edges.
 Ground groundAt(vec2 xz) {
     int k = uTileInfo.x, P = uTileInfo.y, T = uTileInfo.z;
     vec2 s = xz / uSpacingValid.xy;  // samples
     ivec2 t = clamp(ivec2(floor(s)) >> k, ivec2(0), ivec2(P - 1));
-    ivec4 page = texelFetch(uPages, t, 0);
+    int c = texelFetch(uPages, t, 0).x;
+    float step = c < 0 ? 0.5 * float(T) : float(T >> c);
+    float last = float(uGrid.x - 1);
     Ground g;
     g.water = false;
-    if (page.x < 0) {
-        // No tile here on the GPU: the surface of the tile corners.
-        vec2 c = s / float(T);
-        vec2 size = vec2(P + 1);
-        g.height = textureLod(uCorners, (c + 0.5) / size, 0.0).r;
-        float hx0 = textureLod(uCorners, (c + vec2(-0.5, 0.0) + 0.5) / size, 0.0).r;
-        float hx1 = textureLod(uCorners, (c + vec2(0.5, 0.0) + 0.5) / size, 0.0).r;
-        float hz0 = textureLod(uCorners, (c + vec2(0.0, -0.5) + 0.5) / size, 0.0).r;
-        float hz1 = textureLod(uCorners, (c + vec2(0.0, 0.5) + 0.5) / size, 0.0).r;
-        g.normal = normalize(vec3(-(hx1 - hx0) / (float(T) * uSpacingValid.x), 1.0,
-                                  -(hz1 - hz0) / (float(T) * uSpacingValid.y)));
-        g.slope = 1.0 - g.normal.y;
-        return g;
-    }
-    float step = float(T >> page.x);
-    float last = float(1 << page.x);
-    vec2 p = clamp((s - vec2(t * T)) / step, vec2(0.0), vec2(last));
-    g.height = classHeight(page, p);
-    // Central differences one texel apart, inside the tile.
-    vec2 a = clamp(p - vec2(1.0, 0.0), vec2(0.0), vec2(last)), b = clamp(p + vec2(1.0, 0.0), vec2(0.0), vec2(last));
-    vec2 c = clamp(p - vec2(0.0, 1.0), vec2(0.0), vec2(last)), d = clamp(p + vec2(0.0, 1.0), vec2(0.0), vec2(last));
-    float dhdx = (classHeight(page, b) - classHeight(page, a)) /
-                 max((b.x - a.x) * step * uSpacingValid.x, 1e-6);
-    float dhdz = (classHeight(page, d) - classHeight(page, c)) /
-                 max((d.y - c.y) * step * uSpacingValid.y, 1e-6);
+    g.height = heightAtGrid(s);
+    float x0 = max(s.x - step, 0.0), x1 = min(s.x + step, last);
+    float z0 = max(s.y - step, 0.0), z1 = min(s.y + step, last);
+    float dhdx = (heightAtGrid(vec2(x1, s.y)) - heightAtGrid(vec2(x0, s.y))) /
+                 max((x1 - x0) * uSpacingValid.x, 1e-6);
+    float dhdz = (heightAtGrid(vec2(s.x, z1)) - heightAtGrid(vec2(s.x, z0))) /
+                 max((z1 - z0) * uSpacingValid.y, 1e-6);
     g.normal = normalize(vec3(-dhdx, 1.0, -dhdz));
     g.slope = 1.0 - g.normal.y;
     return g;

@@ -6,6 +6,7 @@
 // distance. Height and normal from the finest heights on the GPU at the
 // fragment; cast shadows and sky light from the overview's relief fields
 // (render/TiledRelief.h). SIERRA_UNLIT (the paper surface): no light at all.
+// SIERRA_CONTOURS: contour edges (contour.glsl) from the vertices' facing.
 #include "tiled_common.glsl"
 #include "surface.glsl"
 
@@ -20,6 +21,11 @@ layout(binding = 28) uniform sampler2D uSkyLight;       // the cosine-weighted s
 
 in vec3 vWorld;
 out vec4 fragColour;
+
+#ifdef SIERRA_CONTOURS
+#include "contour.glsl"
+in float vFacing;
+#endif
 
 // As the in-memory renderer's terrainLight (terrain.frag): the ambient term
 // scaled by the sky light, the sun's Lambert term by the share of its disc
@@ -42,5 +48,9 @@ void main() {
     // imagery), lit, then hazed towards the sky the frame is cleared to.
     vec3 colour = surfaceAlbedo(vWorld, g) * tiledLight(g);
     float haze = 1.0 - exp(-uFog * distance(uEye, vWorld));
-    fragColour = vec4(mix(colour, uSky, clamp(haze, 0.0, 1.0)), 1.0);
+    colour = mix(colour, uSky, clamp(haze, 0.0, 1.0));
+#ifdef SIERRA_CONTOURS
+    colour = withContour(colour, vFacing);
+#endif
+    fragColour = vec4(colour, 1.0);
 }

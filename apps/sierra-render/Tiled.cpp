@@ -2,8 +2,10 @@
 // build): render::TiledTerrain draws each frame from the tiles that have
 // arrived, never waiting for a read; a single frame waits for the tiles it
 // asked for (up to --tile-wait seconds) so the picture is the finished one.
-// Its surface is the in-memory renderer's ramp, under the scene's drapes;
-// the options that need the whole grid in memory are refused by name.
+// Its surface is the in-memory renderer's ramp (or auto zones, or paper),
+// under the scene's drapes, with contour edges and, near the camera, the
+// curvature lines and hatches (facade/TiledOverlays.h); the options that
+// need the whole grid in memory are refused by name.
 #include "Tiled.h"
 
 #include <sierra/core/Error.h>
@@ -13,12 +15,14 @@
 #include <sierra/core/Timer.h>
 #include <sierra/facade/MapLayers.h>
 #include <sierra/facade/SceneView.h>
+#include <sierra/facade/TiledOverlays.h>
 #include <sierra/gpu/EglContext.h>
 #include <sierra/render/Capture.h>
 #include <sierra/render/FrameTarget.h>
 #include <sierra/render/TiledTerrain.h>
 #include <sierra/render/Video.h>
 #include <sierra/render/ZoneSurface.h>
+#include <sierra/render/passes/ContourPass.h>
 #include <sierra/sbt/TileFile.h>
 
 #include <algorithm>
@@ -43,12 +47,11 @@ std::string needsGrid(const scene::Scene& s) {
     if (scene::isVideoOutput(s.output.frame)) return "video output";
     if (s.camera.projection != scene::Projection::Perspective) return "--projection orthographic";
     if (s.lighting.sunTime) return "--sun-time";
-    // The ramp's options work (the surface is the in-memory renderer's).
-    scene::StyleDesc style = s.style;
-    style.treeLine = d.style.treeLine;
-    style.snowLine = d.style.snowLine;
-    style.cpt = d.style.cpt;
-    if (!(style == d.style)) return "styles and overlays";
+    // The ramp's options and the curvature overlays work; the debug views
+    // of the mesh do not.
+    const scene::StyleDesc& style = s.style;
+    if (style.wireframe || style.points || !style.polygons) return "--display";
+    if (style.colourBy != d.style.colourBy) return "--colour-by";
     return "";
 }
 
@@ -83,16 +86,18 @@ std::unique_ptr<render::Surface> autoZoneSurface(const render::TiledTerrain& ter
     return surface;
 }
 
-// The scene's surface on the tiled terrain: auto zones or the ramp (its
-// style's tree and snow lines or .cpt), under the scene's drapes.
+// The scene's surface on the tiled terrain: paper, auto zones or the ramp
+// (its style's tree and snow lines or .cpt), under the scene's drapes.
 void applySurface(render::TiledTerrain& terrain, const scene::Scene& s) {
     const render::RampSurfaceDesc ramp{.metric = terrain.info().metres,
                                        .treeLine = s.style.treeLine,
                                        .snowLine = s.style.snowLine,
                                        .cpt = s.style.cpt};
+    // Line and hatch styles without shading draw on paper, as in memory.
     std::unique_ptr<render::Surface> surface =
-        s.zones.map == "auto" ? autoZoneSurface(terrain, s)
-                              : render::makeRampSurface(terrain.surfaceRamp(ramp));
+        !s.style.overlay.layers.shaded ? render::makePaperSurface()
+        : s.zones.map == "auto"        ? autoZoneSurface(terrain, s)
+                                       : render::makeRampSurface(terrain.surfaceRamp(ramp));
     if (!s.layers.drapes.empty()) {
         std::vector<std::string> notes;
         surface = facade::drapeSurface(s, tiledPlacement(terrain.info()), std::move(surface), {},
@@ -178,6 +183,12 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
     options.sunSize = s.lighting.sunSize;
     options.horizonRadius = s.lighting.horizonRadius;
     options.frameSeconds = 1.0f / float(s.output.fps);
+    if (s.style.overlay.layers.contours) {
+        const render::ContourPassDesc contours;  // the in-memory renderer's
+        options.contourWidth = contours.width;
+        options.contourColour = contours.colour;
+    }
+    const auto overlays = facade::TiledOverlays::create(terrain->file(), s);
     const bool still = first == last;
     for (int k = first; k <= last; ++k) {
         const render::Camera camera = facade::sceneCamera(s, bounds, k);
@@ -185,6 +196,7 @@ int runTiled(const scene::Scene& s, const TiledRenderOptions& o) {
             still ? waitForStill(*terrain, camera, width, height, options, o.tileWaitSeconds) : 0.0;
         target.begin({options.sky, 1.0f});
         const render::TiledFrameStats stats = terrain->draw(camera, width, height, options);
+        if (overlays) overlays->draw(camera, width, height, options.tau);
         const double reliefMs = waitReliefMs + stats.reliefMs;
         const std::string path = sequenceFrame(s, k);
         render::writePng(path, target.read());

@@ -213,6 +213,17 @@ def main():
               f"{psnr(('tiled', True), ('mem', False)):.1f} dB")
         assert same_zones > psnr(("mem", True), ("tiled", False)) + 2.0
         assert same_zones > psnr(("tiled", True), ("mem", False)) + 2.0
+        # Curvature lines and contour edges: the overlays' window near the
+        # camera is the whole of this small DEM; they darken the frame.
+        lines = os.path.join(work, "jack_tiled_lines.png")
+        p = run(render, "--heightmap", jack, *flat, "--style", "shaded,lines,contours",
+                "--curvature-scale", "auto", "--out", lines)
+        assert "overlays: near the camera, samples 0..402 x 0..343 of the tiled terrain" \
+            in p.stderr, p.stderr
+        differing = float(run(compare, lines, frames["tiled", False]).stdout.split()[3])
+        assert differing > 0.01, f"the overlays change {differing:.3f} of the frame"
+        run(render, "--heightmap", jack, "--wireframe", "--no-debug",
+            "--out", os.path.join(work, "jack_wire.png"), ok=False)
         print("real DEM: ok")
 
     # Bad input: one message, a non-zero exit, no output.

@@ -88,7 +88,7 @@ TEST_F(TiledTerrainTest, ConvergesToTheInMemoryRefinement) {
         difference += std::abs(int(fineImage.rgba[b]) - int(coarseImage.rgba[b]));
     difference /= double(fineImage.rgba.size());
     std::printf("tiled terrain: mean colour difference coarse to finished %.2f\n", difference);
-    EXPECT_LT(difference, 4.0);  // 0.9 here; a flat coarse frame (corners lost) gives 8
+    EXPECT_LT(difference, 4.0);  // 1.5 here; a flat coarse frame (corners lost) gives 8
     EXPECT_EQ(stats.coarseTiles, 0);
     // Every tile on the GPU: the refinement of the grid in memory.
     const sbt::VertexErrors errors = sbt::computeVertexErrors(field, 1);

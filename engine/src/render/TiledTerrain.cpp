@@ -105,7 +105,8 @@ struct TiledTerrain::State {
     std::vector<int32_t> pageData;
     bool pagesDirty = true;
     std::unique_ptr<Surface> surface;
-    gpu::Program program;
+    // The surface's programs, without and with contour edges (built on first use).
+    std::array<gpu::Program, 2> programs;
     gpu::Buffer uniforms;
     gpu::VertexArray vao;
     gpu::Buffer vertices, indices;
@@ -119,6 +120,7 @@ struct TiledTerrain::State {
     std::vector<float> grid, slotTexels;  // scratch of an upload
 
     int tiles() const { return file->info().tilesPerSide(); }
+    const gpu::Program& program(bool contours);
     void upload(int tile, const sbt::PackedTile& data, int& uploaded);
     void uploadArrivals(int& uploaded, int limit);
     void cacheStats(TiledFrameStats& stats) const {
@@ -442,24 +444,31 @@ TiledFrameStats TiledTerrain::draw(const Camera& camera, int width, int height,
         glDepthFunc(GL_LESS);
         glDisable(GL_CULL_FACE);
         glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
-        glUseProgram(s.program.id());
+        const bool contours = options.contourWidth > 0.0f;
+        const gpu::Program& program = s.program(contours);
+        glUseProgram(program.id());
+        if (contours) {
+            glUniform1f(program.uniform("uContourWidth"), options.contourWidth);
+            glUniform4fv(program.uniform("uContourColour"), 1,
+                         glm::value_ptr(options.contourColour));
+        }
         const glm::mat4 vp = camera.viewProjection(aspect);
-        glUniformMatrix4fv(s.program.uniform("uViewProj"), 1, GL_FALSE, glm::value_ptr(vp));
-        glUniform3fv(s.program.uniform("uEye"), 1, glm::value_ptr(camera.position));
+        glUniformMatrix4fv(program.uniform("uViewProj"), 1, GL_FALSE, glm::value_ptr(vp));
+        glUniform3fv(program.uniform("uEye"), 1, glm::value_ptr(camera.position));
         // A sun whose whole disc is below the horizon lights nothing directly.
         glm::vec3 sun = glm::normalize(options.sunDirection);
         if (std::asin(std::clamp(sun.y, -1.0f, 1.0f)) <= -0.5f * glm::radians(options.sunSize))
             sun = glm::vec3(0.0f);
-        glUniform3fv(s.program.uniform("uSun"), 1, glm::value_ptr(sun));
-        glUniform3fv(s.program.uniform("uSky"), 1, glm::value_ptr(options.sky));
+        glUniform3fv(program.uniform("uSun"), 1, glm::value_ptr(sun));
+        glUniform3fv(program.uniform("uSky"), 1, glm::value_ptr(options.sky));
         const SceneBounds b = bounds();
         // Automatic haze: a third of the light gone at the terrain's centre.
         const float fog = options.fogDensity >= 0.0f
                               ? options.fogDensity
                               : 0.4f / std::max(glm::distance(camera.position, b.centre()), 1.0f);
-        glUniform1f(s.program.uniform("uFog"), fog);
-        glUniform1f(s.program.uniform("uAmbient"), options.ambient);
-        glUniform4fv(s.program.uniform("uReliefUv"), 1, glm::value_ptr(s.relief->worldToUv()));
+        glUniform1f(program.uniform("uFog"), fog);
+        glUniform1f(program.uniform("uAmbient"), options.ambient);
+        glUniform4fv(program.uniform("uReliefUv"), 1, glm::value_ptr(s.relief->worldToUv()));
         s.surface->bind();
         s.relief->bind(kReliefUnit, kReliefUnit + 1);
         glBindBufferBase(GL_UNIFORM_BUFFER, 1, s.uniforms.id());
@@ -486,18 +495,37 @@ const TiledRelief& TiledTerrain::relief() const {
     return *state_->relief;
 }
 
-void TiledTerrain::setSurface(std::unique_ptr<Surface> surface) {
-    SIERRA_CHECK(surface != nullptr, "the tiled terrain needs a surface");
+const gpu::Program& TiledTerrain::State::program(bool contours) {
+    gpu::Program& program = programs[contours ? 1 : 0];
+    if (program.id() != 0) return program;
+    // IncludeAlias holds views: the names stay in these locals while it builds.
     const std::string file = surface->shaderFile(), base = surface->baseShaderFile();
     const gpu::IncludeAlias aliases[] = {{"surface.glsl", file}, {"surface_base.glsl", base}};
-    const std::string defines =
-        surface->defines() + (surface->lit() ? "" : "#define SIERRA_UNLIT 1\n");
-    state_->program = gpu::Program::create(
+    const std::string defines = surface->defines() +
+                                (surface->lit() ? "" : "#define SIERRA_UNLIT 1\n") +
+                                (contours ? "#define SIERRA_CONTOURS 1\n" : "");
+    program = gpu::Program::create(
         {.vertex = "tiled_terrain.vert",
          .fragment = "tiled_terrain.frag",
          .defines = defines,
          .aliases = std::span<const gpu::IncludeAlias>(aliases, base.empty() ? 1 : 2)});
-    state_->surface = std::move(surface);
+    return program;
+}
+
+void TiledTerrain::setSurface(std::unique_ptr<Surface> surface) {
+    SIERRA_CHECK(surface != nullptr, "the tiled terrain needs a surface");
+    State& s = *state_;
+    std::unique_ptr<Surface> previous = std::move(s.surface);
+    std::array<gpu::Program, 2> programs = std::move(s.programs);
+    s.surface = std::move(surface);
+    s.programs = {};
+    try {
+        s.program(false);  // a surface that does not compile is refused now
+    } catch (...) {
+        s.surface = std::move(previous);
+        s.programs = std::move(programs);
+        throw;
+    }
 }
 
 terrain::ColourRamp TiledTerrain::surfaceRamp(const RampSurfaceDesc& desc) const {

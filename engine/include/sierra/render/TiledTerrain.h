@@ -24,8 +24,9 @@
 // an ambient term, cast shadows and sky light from the overview
 // (TiledRelief.h), haze towards the sky colour; fragments over the padding
 // and over no-data samples (of tiles read whole) are dropped. The tile cache
-// takes texture units 16..28, above the surfaces' own. The in-memory
-// renderer's passes (overlays, vector lines, labels) need the grid in memory.
+// takes texture units 16..28, above the surfaces' own. Contour edges are
+// drawn by the fragment stage, as the in-memory renderer's; the curvature
+// lines and hatches near the camera by facade/TiledOverlays.h.
 
 #include <sierra/gpu/Objects.h>
 #include <sierra/render/Camera.h>
@@ -74,6 +75,10 @@ struct TiledFrameOptions {
     bool skyLight = false;
     float sunSize = 0.53f;       // the sun's angular diameter, degrees, (0, 20]
     float horizonRadius = 0.0f;  // world units, >= 0; 0 = the whole terrain
+    // Contour edges (render/passes/ContourPass.h) this many pixels wide, as
+    // the in-memory renderer's; 0 = none.
+    float contourWidth = 0.0f;
+    glm::vec4 contourColour{0.0f, 0.0f, 0.0f, 1.0f};  // RGBA 0..1
     // Tiles uploaded a frame at most, so one frame's uploads stay short; a
     // still that waits for its tiles takes them all.
     int uploadsPerFrame = 96;
